@@ -1,0 +1,60 @@
+// Rigid bodies: a definition (what the user asks for) and the hot state the
+// solver touches every substep.
+#pragma once
+
+#include <string>
+
+#include "reeve/engine/math.h"
+#include "reeve/engine/shape.h"
+
+namespace reeve {
+
+/// Index of a body in its World; kWorldBody stands for the fixed world frame.
+using BodyId = int;
+inline constexpr BodyId kWorldBody = -1;
+
+/// What a user asks for. Exactly one of `density` (kg/m^3) or `mass` (kg)
+/// is used: `mass` when positive, else density x volume. Static bodies
+/// ignore both and never move.
+struct BodyDef {
+  std::string name;
+  Shape shape;
+  double density = 1000.0;
+  double mass = 0.0;
+  bool is_static = false;
+  Vec3 position = Vec3::Zero();                // m, world
+  Quat orientation = Quat::Identity();         // local -> world
+  Vec3 linear_velocity = Vec3::Zero();         // m/s, world
+  Vec3 angular_velocity = Vec3::Zero();        // rad/s, world
+};
+
+/// Solver state of one body (Müller et al. 2020, Alg. 2). Static bodies
+/// have zero inverse mass and inertia, so corrections leave them in place
+/// without a branch in the kernels.
+struct BodyState {
+  Vec3 x = Vec3::Zero();          // position, m
+  Quat q = Quat::Identity();      // orientation, local -> world
+  Vec3 v = Vec3::Zero();          // m/s
+  Vec3 omega = Vec3::Zero();      // rad/s, world
+  Vec3 x_prev = Vec3::Zero();
+  Quat q_prev = Quat::Identity();
+  double inv_mass = 0.0;          // 1/kg
+  Vec3 inv_inertia = Vec3::Zero();  // 1/(kg m^2), principal, local axes
+  Vec3 inertia = Vec3::Zero();      // kg m^2, principal, local axes
+
+  /// World point of the body-local point `local`.
+  Vec3 toWorld(const Vec3& local) const { return x + q * local; }
+  /// Body-local point of the world point `world`.
+  Vec3 toLocal(const Vec3& world) const { return q.conjugate() * (world - x); }
+  /// I^-1 v for a world-space vector v, with the current orientation.
+  Vec3 applyInvInertia(const Vec3& v) const {
+    return q * inv_inertia.cwiseProduct(q.conjugate() * v);
+  }
+  double mass() const { return inv_mass > 0.0 ? 1.0 / inv_mass : 0.0; }
+};
+
+/// Builds the solver state of `def`: mass from density unless given,
+/// inertia of the solid shape.
+BodyState makeBodyState(const BodyDef& def);
+
+}  // namespace reeve

@@ -1,0 +1,39 @@
+// The scalar-row kernels every XPBD constraint is built from (Müller,
+// Macklin, Chentanez, Jeschke, Kim, "Detailed Rigid Body Simulation with
+// Extended Position Based Dynamics", SCA 2020, sec. 3.3).
+//
+// Sign convention for both kernels: C is the constraint value and n its unit
+// gradient with respect to body b (dC/dx_b = n, dC/dx_a = -n for positions;
+// the same for rotations). A correction P = dlambda * n is applied to b and
+// -P to a. With C > 0 and zero compliance, dlambda < 0 and C is driven to 0.
+// The force on b is lambda * n / h^2 (N), the torque lambda * n / h^2 (N m).
+#pragma once
+
+#include "reeve/engine/body.h"
+
+namespace reeve {
+
+/// w = 1/m + (r x n)^T I^-1 (r x n): inverse mass of `body` seen along unit
+/// `n` at world-space arm `r` (m) from its centre (SCA 2020, eq. 2).
+double generalizedInverseMass(const BodyState& body, const Vec3& r, const Vec3& n);
+
+/// dlambda = (-C - alpha~ lambda) / (w_a + w_b + alpha~) for a positional
+/// row (SCA 2020, eq. 4), alpha~ = compliance / h^2. `C` in m, arms in m.
+double positionalDeltaLambda(const BodyState& a, const BodyState& b, const Vec3& r_a,
+                             const Vec3& r_b, const Vec3& n, double C,
+                             double alpha_tilde, double lambda);
+
+/// Moves b by the positional impulse P (kg m) applied at arm r_b, and a by
+/// -P at r_a: x += P/m, q += 1/2 [I^-1 (r x P), 0] q (SCA 2020, eq. 6-9).
+void applyPositionalImpulse(BodyState& a, BodyState& b, const Vec3& r_a, const Vec3& r_b,
+                            const Vec3& P);
+
+/// dlambda for an angular row: w = n^T I^-1 n per body (SCA 2020, eq.
+/// 11-12). `C` in rad.
+double angularDeltaLambda(const BodyState& a, const BodyState& b, const Vec3& n, double C,
+                          double alpha_tilde, double lambda);
+
+/// Rotates b by I_b^-1 P and a by -I_a^-1 P (SCA 2020, eq. 13-14).
+void applyAngularImpulse(BodyState& a, BodyState& b, const Vec3& P);
+
+}  // namespace reeve

@@ -1,0 +1,85 @@
+// The XPBD world: bodies, joints, distance constraints and the substepped
+// step of Müller et al. 2020, Alg. 2.
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "reeve/engine/body.h"
+#include "reeve/engine/distance_constraint.h"
+#include "reeve/engine/hinge_joint.h"
+
+namespace reeve {
+
+/// Solver knobs. A frame of length dt is split into `substeps` substeps of
+/// h = dt / substeps, each with `iterations` Gauss-Seidel sweeps over all
+/// constraints. More substeps: smaller h, stiffer and more accurate; more
+/// iterations: better convergence within one substep.
+struct SolverSettings {
+  Vec3 gravity = Vec3(0.0, -9.81, 0.0);  // m/s^2
+  int substeps = 10;
+  int iterations = 2;
+};
+
+/// Id of a constraint in the World's per-type arrays.
+using HingeId = int;
+using DistanceId = int;
+
+class World {
+ public:
+  /// Called once per substep after integration and before the position
+  /// solve, with the substep h (s). The seam through which cable/ moves the
+  /// anchors and rest lengths of its distance constraints (DESIGN.md).
+  using SubstepHook = std::function<void(World&, double h)>;
+
+  explicit World(SolverSettings settings = {});
+
+  BodyId addBody(const BodyDef& def);
+  HingeId addHinge(const HingeDef& def);
+  DistanceId addDistance(const DistanceConstraint& c);
+  void addSubstepHook(SubstepHook hook);
+
+  /// Advances by dt (s) with the current settings.
+  void step(double dt);
+
+  SolverSettings& settings() { return settings_; }
+  const SolverSettings& settings() const { return settings_; }
+
+  int bodyCount() const { return static_cast<int>(bodies_.size()); }
+  /// State of body `id`; kWorldBody gives the fixed world frame.
+  BodyState& body(BodyId id) { return id == kWorldBody ? world_frame_ : bodies_[id]; }
+  const BodyState& body(BodyId id) const {
+    return id == kWorldBody ? world_frame_ : bodies_[id];
+  }
+  const BodyDef& bodyDef(BodyId id) const { return defs_[id]; }
+  /// Body named `name`, if any.
+  std::optional<BodyId> findBody(const std::string& name) const;
+
+  const std::vector<HingeJoint>& hinges() const { return hinges_; }
+  DistanceConstraint& distance(DistanceId id) { return distances_[id]; }
+  const DistanceConstraint& distance(DistanceId id) const { return distances_[id]; }
+  /// Tension (N) of a distance constraint over the last substep: -lambda/h^2.
+  double tension(DistanceId id) const;
+
+  double time() const { return time_; }        // s simulated so far
+  double lastSubstep() const { return last_h_; }  // s
+
+ private:
+  void integrate(double h);
+  void solvePositions(double h);
+  void updateVelocities(double h);
+
+  SolverSettings settings_;
+  std::vector<BodyState> bodies_;
+  std::vector<BodyDef> defs_;
+  BodyState world_frame_;
+  std::vector<HingeJoint> hinges_;
+  std::vector<DistanceConstraint> distances_;
+  std::vector<SubstepHook> hooks_;
+  double time_ = 0.0;
+  double last_h_ = 0.0;
+};
+
+}  // namespace reeve

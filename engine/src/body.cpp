@@ -1,0 +1,22 @@
+#include "reeve/engine/body.h"
+
+#include <cassert>
+
+namespace reeve {
+
+BodyState makeBodyState(const BodyDef& def) {
+  BodyState s;
+  s.x = s.x_prev = def.position;
+  s.q = s.q_prev = def.orientation.normalized();
+  if (def.is_static) return s;
+  s.v = def.linear_velocity;
+  s.omega = def.angular_velocity;
+  const double m = def.mass > 0.0 ? def.mass : def.density * volume(def.shape);
+  assert(m > 0.0 && "a dynamic body needs a positive mass");
+  s.inv_mass = 1.0 / m;
+  s.inertia = principalInertia(def.shape, m);
+  s.inv_inertia = s.inertia.cwiseInverse();
+  return s;
+}
+
+}  // namespace reeve

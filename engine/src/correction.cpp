@@ -1,0 +1,38 @@
+#include "reeve/engine/correction.h"
+
+namespace reeve {
+
+double generalizedInverseMass(const BodyState& body, const Vec3& r, const Vec3& n) {
+  const Vec3 rn = r.cross(n);
+  return body.inv_mass + rn.dot(body.applyInvInertia(rn));
+}
+
+double positionalDeltaLambda(const BodyState& a, const BodyState& b, const Vec3& r_a,
+                             const Vec3& r_b, const Vec3& n, double C,
+                             double alpha_tilde, double lambda) {
+  const double w = generalizedInverseMass(a, r_a, n) + generalizedInverseMass(b, r_b, n);
+  const double denom = w + alpha_tilde;
+  return denom > 0.0 ? (-C - alpha_tilde * lambda) / denom : 0.0;
+}
+
+void applyPositionalImpulse(BodyState& a, BodyState& b, const Vec3& r_a, const Vec3& r_b,
+                            const Vec3& P) {
+  b.x += P * b.inv_mass;
+  rotateBy(b.q, b.applyInvInertia(r_b.cross(P)));
+  a.x -= P * a.inv_mass;
+  rotateBy(a.q, -a.applyInvInertia(r_a.cross(P)));
+}
+
+double angularDeltaLambda(const BodyState& a, const BodyState& b, const Vec3& n, double C,
+                          double alpha_tilde, double lambda) {
+  const double w = n.dot(a.applyInvInertia(n)) + n.dot(b.applyInvInertia(n));
+  const double denom = w + alpha_tilde;
+  return denom > 0.0 ? (-C - alpha_tilde * lambda) / denom : 0.0;
+}
+
+void applyAngularImpulse(BodyState& a, BodyState& b, const Vec3& P) {
+  rotateBy(b.q, b.applyInvInertia(P));
+  rotateBy(a.q, -a.applyInvInertia(P));
+}
+
+}  // namespace reeve

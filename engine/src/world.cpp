@@ -1,0 +1,92 @@
+#include "reeve/engine/world.h"
+
+#include <cassert>
+
+namespace reeve {
+
+World::World(SolverSettings settings) : settings_(settings) {}
+
+BodyId World::addBody(const BodyDef& def) {
+  bodies_.push_back(makeBodyState(def));
+  defs_.push_back(def);
+  return static_cast<BodyId>(bodies_.size() - 1);
+}
+
+HingeId World::addHinge(const HingeDef& def) {
+  hinges_.push_back(makeHingeJoint(def, body(def.body), body(def.other)));
+  return static_cast<HingeId>(hinges_.size() - 1);
+}
+
+DistanceId World::addDistance(const DistanceConstraint& c) {
+  distances_.push_back(c);
+  return static_cast<DistanceId>(distances_.size() - 1);
+}
+
+void World::addSubstepHook(SubstepHook hook) { hooks_.push_back(std::move(hook)); }
+
+std::optional<BodyId> World::findBody(const std::string& name) const {
+  for (size_t i = 0; i < defs_.size(); ++i)
+    if (defs_[i].name == name) return static_cast<BodyId>(i);
+  return std::nullopt;
+}
+
+double World::tension(DistanceId id) const {
+  return last_h_ > 0.0 ? -distances_[id].lambda / (last_h_ * last_h_) : 0.0;
+}
+
+void World::step(double dt) {
+  assert(settings_.substeps > 0 && settings_.iterations > 0);
+  const double h = dt / settings_.substeps;
+  for (int s = 0; s < settings_.substeps; ++s) {
+    integrate(h);
+    for (auto& hook : hooks_) hook(*this, h);
+    solvePositions(h);
+    updateVelocities(h);
+    time_ += h;
+  }
+  last_h_ = h;
+}
+
+void World::integrate(double h) {
+  const Vec3 g = settings_.gravity;
+  for (BodyState& b : bodies_) {
+    if (b.inv_mass == 0.0) continue;
+    b.x_prev = b.x;
+    b.v += h * g;
+    b.x += h * b.v;
+    b.q_prev = b.q;
+    // Gyroscopic term, body frame: w += h I^-1 (-w x I w).
+    Vec3 w = b.q.conjugate() * b.omega;
+    w += h * b.inv_inertia.cwiseProduct(-w.cross(b.inertia.cwiseProduct(w)));
+    b.omega = b.q * w;
+    rotateBy(b.q, h * b.omega);
+  }
+}
+
+void World::solvePositions(double h) {
+  const double inv_h2 = 1.0 / (h * h);
+  for (HingeJoint& j : hinges_) {
+    j.lambda_point = j.lambda_axis = 0.0;
+    j.impulse_point.setZero();
+    j.impulse_axis.setZero();
+  }
+  for (DistanceConstraint& c : distances_) c.lambda = 0.0;
+  for (int it = 0; it < settings_.iterations; ++it) {
+    for (HingeJoint& j : hinges_)
+      solveHingeJoint(j, body(j.a), body(j.b), j.compliance * inv_h2);
+    for (DistanceConstraint& c : distances_)
+      solveDistanceConstraint(c, body(c.a), body(c.b), c.compliance * inv_h2);
+  }
+}
+
+void World::updateVelocities(double h) {
+  for (BodyState& b : bodies_) {
+    if (b.inv_mass == 0.0) continue;
+    b.v = (b.x - b.x_prev) / h;
+    const Quat dq = b.q * b.q_prev.conjugate();
+    b.omega = 2.0 / h * dq.vec();
+    if (dq.w() < 0.0) b.omega = -b.omega;
+  }
+}
+
+}  // namespace reeve

@@ -1,0 +1,95 @@
+// Alg. 1 lines 4-5: a wheel turned by an angle moves exactly r x angle of
+// cable between its two spans, in the sense given by its orientation.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "reeve/cable/cable.h"
+
+namespace reeve {
+namespace {
+
+// A static post, a wheel (radius 0.5, axis z) and a second post: the cable
+// runs post A -> over the wheel clockwise -> down to post B.
+struct WheelRig {
+  double radius = 0.5;
+  World world;
+  CableSystem cables{world};
+  BodyId wheel;
+  int cable;
+  explicit WheelRig(int orientation = -1) {
+    BodyDef post;
+    post.is_static = true;
+    post.position = Vec3(-2.0, -1.0, 0.0);
+    const BodyId a = world.addBody(post);
+    post.position = Vec3(1.5, -2.0, 0.0);
+    const BodyId b = world.addBody(post);
+    BodyDef w;
+    w.is_static = true;  // turned by hand below
+    w.shape = Shape::cylinder(radius, 0.1);
+    wheel = world.addBody(w);
+    CableDef def;
+    def.links = {{a, LinkType::Attachment, 1, Vec3::Zero()},
+                 {wheel, LinkType::Rolling, orientation, Vec3::Zero()},
+                 {b, LinkType::Attachment, 1, Vec3::Zero()}};
+    cable = cables.addCable(def);
+  }
+  void turn(double angle, int steps) {
+    for (int i = 0; i < steps; ++i) {
+      rotateBy(world.body(wheel).q, Vec3(0, 0, angle / steps));
+      cables.update();
+    }
+  }
+};
+
+TEST(RestLength, TurningInThePayingOutSenseLengthensTheLeavingSpanByRadiusTimesAngle) {
+  // The cable leaves the wheel into span 1 travelling clockwise; turning the
+  // wheel clockwise (negative about z) by 1.5 turns pays out r * 3 pi into
+  // span 1 and takes the same from span 0.
+  WheelRig rig(-1);
+  const double d0 = rig.cables.restLength(rig.cable, 0);
+  const double d1 = rig.cables.restLength(rig.cable, 1);
+  const double angle = 3.0 * std::numbers::pi;
+  rig.turn(-angle, 90);
+  EXPECT_NEAR(rig.cables.restLength(rig.cable, 1) - d1, rig.radius * angle, 1e-12);
+  EXPECT_NEAR(rig.cables.restLength(rig.cable, 0) - d0, -rig.radius * angle, 1e-12);
+}
+
+TEST(RestLength, TurningTheOtherWayShortensIt) {
+  WheelRig rig(-1);
+  const double d1 = rig.cables.restLength(rig.cable, 1);
+  rig.turn(0.8, 10);
+  EXPECT_NEAR(rig.cables.restLength(rig.cable, 1) - d1, -rig.radius * 0.8, 1e-12);
+}
+
+TEST(RestLength, TurningBackAndForthConservesTotalLengthAndWrapArc) {
+  WheelRig rig(-1);
+  const double total = rig.cables.totalLength(rig.cable);
+  const double wrap = rig.cables.cables()[rig.cable].links[1].stored;
+  // Tangent points seen from the centre: from post A (-2, -1) at
+  // atan2(-1, -2) - acos(r / sqrt 5), towards post B (1.5, -2) at
+  // atan2(-2, 1.5) + acos(r / 2.5); clockwise over the top in between.
+  const double arrive = std::atan2(-1.0, -2.0) + 2 * std::numbers::pi - std::acos(0.5 / std::sqrt(5.0));
+  const double depart = std::atan2(-2.0, 1.5) + std::acos(0.5 / 2.5);
+  EXPECT_NEAR(wrap, rig.radius * (arrive - depart), 1e-12);
+  rig.turn(2.0, 40);
+  rig.turn(-5.0, 70);
+  EXPECT_NEAR(rig.cables.totalLength(rig.cable), total, 1e-12 * total);
+  EXPECT_NEAR(rig.cables.cables()[rig.cable].links[1].stored, wrap, 1e-12);
+}
+
+TEST(RestLength, MovingTheWheelWithoutTurningItOnlyRollsTheTangentPoint) {
+  // Translating the wheel changes the spans' geometric lengths but pays out
+  // only the arc the tangent point travels, so rest + stored is unchanged.
+  WheelRig rig(-1);
+  const double total = rig.cables.totalLength(rig.cable);
+  for (int i = 0; i < 50; ++i) {
+    rig.world.body(rig.wheel).x += Vec3(0.004, 0.006, 0.0);
+    rig.cables.update();
+  }
+  EXPECT_NEAR(rig.cables.totalLength(rig.cable), total, 1e-12 * total);
+}
+
+}  // namespace
+}  // namespace reeve

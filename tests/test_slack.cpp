@@ -1,0 +1,60 @@
+// A loose cable exerts nothing (paper sec. 3.1): a body on a slack cable
+// over a wheel falls freely, the wheel does not turn, until the cable is taut.
+#include <gtest/gtest.h>
+
+#include "reeve/cable/cable.h"
+
+namespace reeve {
+namespace {
+
+TEST(Slack, BodyFallsFreelyUntilTheCableIsTaut) {
+  const double g = 10.0, slack = 0.8;
+  World world;
+  world.settings().gravity = Vec3(0, -g, 0);
+  CableSystem cables(world);
+  BodyDef post;
+  post.is_static = true;
+  post.position = Vec3(-1.0, 0.0, 0.0);
+  const BodyId anchor = world.addBody(post);
+  BodyDef w;
+  w.shape = Shape::cylinder(0.3, 0.05);
+  w.mass = 1.0;
+  w.position = Vec3(0.0, 1.0, 0.0);
+  const BodyId wheel = world.addBody(w);
+  world.addHinge({wheel, kWorldBody, w.position, Vec3::UnitZ(), 0.0});
+  BodyDef box;
+  box.shape = Shape::box(Vec3(0.1, 0.1, 0.1));
+  box.mass = 1.0;
+  box.position = Vec3(0.3, -1.0, 0.0);
+  const BodyId body = world.addBody(box);
+  CableDef def;
+  def.links = {{anchor, LinkType::Attachment, 1, Vec3::Zero()},
+               {wheel, LinkType::Rolling, -1, Vec3::Zero()},
+               {body, LinkType::Attachment, 1, Vec3(0, 0.1, 0)}};
+  const int c = cables.addCable(def);
+  // Give the hanging span `slack` m more cable than its length.
+  world.distance(cables.cables()[c].joints[1].constraint).rest_length += slack;
+  const double y0 = world.body(body).x.y();
+
+  bool became_taut = false;
+  for (int f = 1; f <= 60; ++f) {
+    world.step(1.0 / 60.0);
+    const double t = world.time();
+    const double drop = 0.5 * g * t * t;
+    if (drop < slack - 0.05) {
+      // Free fall: XPBD's symplectic Euler differs from 1/2 g t^2 by
+      // g t h / 2 at most, h = 1/600 s.
+      EXPECT_NEAR(world.body(body).x.y(), y0 - drop, 0.5 * g * t / 600.0 + 1e-12);
+      EXPECT_EQ(cables.tension(c, 1), 0.0);
+      EXPECT_EQ(world.body(wheel).omega.norm(), 0.0);
+    } else if (drop > slack + 0.2) {
+      became_taut = true;
+      EXPECT_GT(cables.tension(c, 1), 0.0);
+      EXPECT_LE(cables.length(c, 1), cables.restLength(c, 1) + 1e-3);
+    }
+  }
+  EXPECT_TRUE(became_taut);
+}
+
+}  // namespace
+}  // namespace reeve

@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Installs the Debian packages Reeve builds with. Idempotent: installs only
+# what is missing, so a machine that has everything makes no network call.
+set -euo pipefail
+packages=(
+  build-essential cmake pkg-config
+  libeigen3-dev          # engine maths
+  nlohmann-json3-dev     # scene files
+  libvalijson-dev        # JSON Schema validation of scenes
+  libcli11-dev           # command line
+  libosmesa6-dev         # off-screen OpenGL
+  libpng-dev             # PNG frames
+  libgtest-dev           # tests
+  libbenchmark-dev       # bench/
+  ffmpeg                 # video (the program, piped to)
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q '^install ok installed$' || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+echo "reeve setup: installing ${missing[*]}" >&2
+SUDO=""
+[ "$(id -u)" -eq 0 ] || SUDO="sudo"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null

@@ -37,7 +37,7 @@ struct WheelRig {
   }
   void turn(double angle, int steps) {
     for (int i = 0; i < steps; ++i) {
-      rotateBy(world.body(wheel).q, Vec3(0, 0, angle / steps));
+      rotateExactly(world.body(wheel).q, Vec3(0, 0, angle / steps));
       cables.update();
     }
   }

@@ -59,7 +59,7 @@ void World::integrate(double h) {
     Vec3 w = b.q.conjugate() * b.omega;
     w += h * b.inv_inertia.cwiseProduct(-w.cross(b.inertia.cwiseProduct(w)));
     b.omega = b.q * w;
-    rotateBy(b.q, h * b.omega);
+    rotateExactly(b.q, h * b.omega);
   }
 }
 
@@ -83,9 +83,7 @@ void World::updateVelocities(double h) {
   for (BodyState& b : bodies_) {
     if (b.inv_mass == 0.0) continue;
     b.v = (b.x - b.x_prev) / h;
-    const Quat dq = b.q * b.q_prev.conjugate();
-    b.omega = 2.0 / h * dq.vec();
-    if (dq.w() < 0.0) b.omega = -b.omega;
+    b.omega = rotationVector(b.q * b.q_prev.conjugate()) / h;
   }
 }
 

@@ -1,0 +1,46 @@
+// Off-screen OpenGL renderer of a World and its cables (OSMesa: software
+// rendering, no display or GPU needed).
+#pragma once
+
+#include <memory>
+
+#include "reeve/cable/cable.h"
+#include "reeve/render/camera.h"
+#include "reeve/render/image.h"
+
+namespace reeve {
+
+/// Draws bodies (shaded boxes, cylinders, spheres; dynamic bodies in blues,
+/// static ones in warm greys), a ground grid just below the lowest body, and
+/// the cables as dark tubes: straight spans between tangent points plus the
+/// arcs wrapped on rolling links (see cablePath). Cable hidden behind a body
+/// shows through it faintly. Link markers are drawn on top in the paper's
+/// colours: red at the tangent points of rolling links, green at attachments.
+/// Anti-aliased by 3x3 supersampling. Holds one OSMesa context; reuse one
+/// Renderer for many frames. Not thread-safe: use it from one thread at a
+/// time.
+class Renderer {
+ public:
+  /// An off-screen context for images of width x height pixels.
+  /// Throws std::invalid_argument unless both are positive, and
+  /// std::runtime_error if OSMesa cannot create or bind the context.
+  explicit Renderer(int width = 1280, int height = 720);
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+
+  /// One frame of the current poses of `world` (which must be the World of
+  /// `cables`) seen through `camera`. Throws std::runtime_error if the
+  /// context cannot be made current.
+  Image render(const World& world, const CableSystem& cables, const Camera& camera);
+
+ private:
+  struct Context;
+  int width_, height_;
+  std::unique_ptr<Context> context_;
+};
+
+}  // namespace reeve

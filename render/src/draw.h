@@ -1,0 +1,40 @@
+// Fixed-function OpenGL drawing of the scene's pieces, in the current
+// context with the camera's matrices loaded.
+#pragma once
+
+#include <vector>
+
+#include "meshes.h"
+#include "reeve/engine/body.h"
+#include "style.h"
+
+namespace reeve {
+
+/// The tessellated unit shapes, built once per context.
+struct ShapeMeshes {
+  Mesh box;
+  TwoToneMesh cylinder, sphere;          // bodies
+  TwoToneMesh tube_segment, tube_joint;  // cables and markers, coarser
+  ShapeMeshes();
+};
+
+/// Sets the colour (and alpha) used by lit and unlit drawing.
+void setColour(const style::Colour& colour, float alpha = 1.0f);
+
+/// A body's shape at its pose, lit, in `colour` (accents darker).
+void drawBody(const ShapeMeshes& meshes, const Shape& shape, const BodyState& body,
+              const style::Colour& colour);
+
+/// A tube of `radius` (m) along the polyline `path` (m, world), rounded at
+/// its vertices, in the current colour.
+void drawTube(const ShapeMeshes& meshes, const std::vector<Vec3>& path, double radius);
+
+/// A ball of `radius` (m) at `centre` (m, world), in the current colour.
+void drawBall(const ShapeMeshes& meshes, const Vec3& centre, double radius);
+
+/// The floor: a square at height `y` (m) centred under (`centre_x`,
+/// `centre_z`) with half side `half` (m), filled and ruled by a 1-2-5 grid
+/// (every fifth line darker), lines `line_px` pixels wide, unlit.
+void drawFloor(double y, double centre_x, double centre_z, double half, float line_px);
+
+}  // namespace reeve

@@ -1,0 +1,37 @@
+// Triangle meshes of the unit shapes the renderer scales into bodies.
+#pragma once
+
+#include <vector>
+
+#include "reeve/engine/math.h"
+
+namespace reeve {
+
+/// Triangles, three vertices each, counter-clockwise seen from outside,
+/// with unit normals per vertex; packed xyz floats for glDrawArrays.
+struct Mesh {
+  std::vector<float> positions;
+  std::vector<float> normals;
+
+  void addVertex(const Vec3& position, const Vec3& normal);
+  int vertexCount() const { return static_cast<int>(positions.size() / 3); }
+};
+
+/// A mesh drawn in a body's colour plus an accent part drawn darker, so
+/// that a turning round body visibly turns.
+struct TwoToneMesh {
+  Mesh main, accent;
+};
+
+/// The cube [-1, 1]^3 with flat faces.
+Mesh unitBox();
+
+/// Cylinder of radius 1 about local z from z = -1 to 1, sides smooth with
+/// `segments` facets, flat caps; accent: two opposite quarters of each cap.
+TwoToneMesh unitCylinder(int segments);
+
+/// Sphere of radius 1 in `slices` x `stacks` facets; accent: two opposite
+/// quarter lunes about local z.
+TwoToneMesh unitSphere(int slices, int stacks);
+
+}  // namespace reeve

@@ -1,0 +1,201 @@
+#include "reeve/render/renderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+#include <GL/osmesa.h>
+
+#include "draw.h"
+#include "reeve/render/cable_path.h"
+#include "scene_points.h"
+#include "supersample.h"
+#include "view.h"
+
+namespace reeve {
+namespace {
+
+constexpr int kSupersample = 3;        // 3x3 samples per output pixel
+constexpr double kArcStepRad = 2.0 * std::numbers::pi / 96.0;
+
+// Where the floor goes and how far the scene reaches, from its points.
+struct Layout {
+  Eigen::AlignedBox3d scene;  // bodies and cable, m
+  double floor_y = 0.0, floor_half = 1.0;
+};
+
+Layout layout(const World& world, const CableSystem& cables) {
+  Layout l;
+  for (const Vec3& p : scenePoints(world, cables)) l.scene.extend(p);
+  if (l.scene.isEmpty()) l.scene.extend(Vec3::Zero());
+  const Vec3 size = l.scene.sizes();
+  const double extent = std::max(size.maxCoeff(), 1e-3);
+  l.floor_y = l.scene.min().y() - 0.02 * extent;
+  l.floor_half = 0.75 * extent;
+  return l;
+}
+
+void setUpLights() {
+  // Positions are given with an identity model-view: fixed to the camera.
+  glMatrixMode(GL_MODELVIEW);
+  glLoadIdentity();
+  const GLfloat ambient[] = {0.32f, 0.32f, 0.33f, 1.0f};
+  const GLfloat key_position[] = {-0.45f, 0.65f, 0.62f, 0.0f};
+  const GLfloat key_diffuse[] = {0.72f, 0.71f, 0.69f, 1.0f};
+  const GLfloat key_specular[] = {0.35f, 0.35f, 0.35f, 1.0f};
+  const GLfloat fill_position[] = {0.7f, -0.1f, 0.7f, 0.0f};
+  const GLfloat fill_diffuse[] = {0.25f, 0.26f, 0.28f, 1.0f};
+  const GLfloat black[] = {0.0f, 0.0f, 0.0f, 1.0f};
+  const GLfloat specular[] = {0.30f, 0.30f, 0.30f, 1.0f};
+  glLightModelfv(GL_LIGHT_MODEL_AMBIENT, ambient);
+  glLightfv(GL_LIGHT0, GL_POSITION, key_position);
+  glLightfv(GL_LIGHT0, GL_DIFFUSE, key_diffuse);
+  glLightfv(GL_LIGHT0, GL_SPECULAR, key_specular);
+  glLightfv(GL_LIGHT1, GL_POSITION, fill_position);
+  glLightfv(GL_LIGHT1, GL_DIFFUSE, fill_diffuse);
+  glLightfv(GL_LIGHT1, GL_SPECULAR, black);
+  glEnable(GL_LIGHT0);
+  glEnable(GL_LIGHT1);
+  glColorMaterial(GL_FRONT, GL_AMBIENT_AND_DIFFUSE);
+  glEnable(GL_COLOR_MATERIAL);
+  glMaterialfv(GL_FRONT, GL_SPECULAR, specular);
+  glMaterialf(GL_FRONT, GL_SHININESS, 40.0f);
+}
+
+void drawCables(const ShapeMeshes& meshes, const std::vector<std::vector<Vec3>>& paths,
+                double radius) {
+  setColour(style::kCable);
+  for (const auto& path : paths) drawTube(meshes, path, radius);
+  // Cable hidden behind bodies, faintly through them: front faces only,
+  // each pixel blended once (stencil).
+  glDepthFunc(GL_GREATER);
+  glDepthMask(GL_FALSE);
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+  glEnable(GL_STENCIL_TEST);
+  glStencilFunc(GL_EQUAL, 0, 0xff);
+  glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
+  setColour(style::kCable, style::kHiddenCableAlpha);
+  for (const auto& path : paths) drawTube(meshes, path, radius);
+  glDisable(GL_STENCIL_TEST);
+  glDisable(GL_BLEND);
+  glDepthMask(GL_TRUE);
+  glDepthFunc(GL_LESS);
+}
+
+// Link markers in the paper's colours, over everything: red at the tangent
+// points of rolling links, green at attachments.
+void drawMarkers(const ShapeMeshes& meshes, const CableSystem& cables, double radius) {
+  glClear(GL_DEPTH_BUFFER_BIT);
+  for (int c = 0; c < static_cast<int>(cables.cables().size()); ++c) {
+    const Cable& cable = cables.cables()[c];
+    for (int j = 0; j < static_cast<int>(cable.joints.size()); ++j)
+      for (const auto& [link, point] : {std::pair{cable.links[j], cables.startPoint(c, j)},
+                                         std::pair{cable.links[j + 1], cables.endPoint(c, j)}}) {
+        setColour(link.type == LinkType::Rolling ? style::kRollingMarker
+                                                 : style::kAttachmentMarker);
+        drawBall(meshes, point, radius);
+      }
+  }
+}
+
+}  // namespace
+
+struct Renderer::Context {
+  OSMesaContext osmesa = nullptr;
+  std::vector<std::uint8_t> buffer;  // RGBA, supersampled, bottom row first
+  ShapeMeshes meshes;
+
+  ~Context() {
+    if (osmesa) OSMesaDestroyContext(osmesa);
+  }
+  void makeCurrent(int width, int height) {
+    if (!OSMesaMakeCurrent(osmesa, buffer.data(), GL_UNSIGNED_BYTE, width, height))
+      throw std::runtime_error("Renderer: OSMesaMakeCurrent failed for a " +
+                               std::to_string(width) + "x" + std::to_string(height) +
+                               " RGBA buffer");
+  }
+};
+
+Renderer::Renderer(int width, int height) : width_(width), height_(height) {
+  if (width <= 0 || height <= 0)
+    throw std::invalid_argument("Renderer: image size must be positive, got " +
+                                std::to_string(width) + "x" + std::to_string(height));
+  context_ = std::make_unique<Context>();
+  context_->osmesa = OSMesaCreateContextExt(OSMESA_RGBA, 24, 8, 0, nullptr);
+  if (!context_->osmesa)
+    throw std::runtime_error(
+        "Renderer: OSMesaCreateContextExt (RGBA, 24-bit depth, 8-bit stencil) failed; is "
+        "Mesa's libOSMesa installed (apt-get install libosmesa6)?");
+  context_->buffer.resize(4 * std::size_t(width) * kSupersample * height * kSupersample);
+  context_->makeCurrent(width * kSupersample, height * kSupersample);
+}
+
+Renderer::~Renderer() = default;
+
+Image Renderer::render(const World& world, const CableSystem& cables, const Camera& camera) {
+  const int w = width_ * kSupersample, h = height_ * kSupersample;
+  context_->makeCurrent(w, h);
+  const ShapeMeshes& meshes = context_->meshes;
+  const Layout l = layout(world, cables);
+  const Vec3 floor_centre(l.scene.center().x(), l.floor_y, l.scene.center().z());
+
+  // Depth range: the bounding sphere of scene and floor.
+  Eigen::AlignedBox3d all = l.scene;
+  all.extend(floor_centre - Vec3(l.floor_half, 0.0, l.floor_half));
+  all.extend(floor_centre + Vec3(l.floor_half, 0.0, l.floor_half));
+  const double reach = 0.5 * all.diagonal().norm();
+  const double eye_to_centre = (camera.eye - all.center()).norm();
+  const double far = 1.01 * (eye_to_centre + reach);
+  const double near = std::max(0.99 * (eye_to_centre - reach), 1e-3 * far);
+
+  glViewport(0, 0, w, h);
+  glClearColor(style::kBackground.x(), style::kBackground.y(), style::kBackground.z(), 1.0f);
+  glClearStencil(0);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+  glMatrixMode(GL_PROJECTION);
+  glLoadMatrixd(projectionMatrix(camera, double(width_) / height_, near, far).data());
+  setUpLights();
+  glLoadMatrixd(viewMatrix(camera).data());
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+
+  // The floor, unlit, fading into the background with distance.
+  const double eye_to_floor = (camera.eye - floor_centre).norm();
+  glFogi(GL_FOG_MODE, GL_LINEAR);
+  const GLfloat fog_colour[] = {style::kBackground.x(), style::kBackground.y(),
+                                style::kBackground.z(), 1.0f};
+  glFogfv(GL_FOG_COLOR, fog_colour);
+  glFogf(GL_FOG_START, static_cast<float>(eye_to_floor - 0.5 * l.floor_half));
+  glFogf(GL_FOG_END, static_cast<float>(eye_to_floor + 1.5 * l.floor_half));
+  glEnable(GL_FOG);
+  drawFloor(l.floor_y, floor_centre.x(), floor_centre.z(), l.floor_half, kSupersample);
+  glDisable(GL_FOG);
+
+  glEnable(GL_LIGHTING);
+  glEnable(GL_NORMALIZE);  // shapes are scaled unit meshes
+  glEnable(GL_CULL_FACE);
+  glEnableClientState(GL_VERTEX_ARRAY);
+  glEnableClientState(GL_NORMAL_ARRAY);
+  for (BodyId id = 0; id < world.bodyCount(); ++id) {
+    const BodyDef& def = world.bodyDef(id);
+    drawBody(meshes, def.shape, world.body(id), style::bodyColour(id, def.is_static));
+  }
+
+  // Cable thickness: a fixed number of pixels at the target's distance.
+  const double pixel = 2.0 * (camera.target - camera.eye).norm() *
+                       std::tan(camera.fov_y_deg * std::numbers::pi / 360.0) / height_;
+  const double cable_radius = style::kCableRadiusPx * pixel;
+  std::vector<std::vector<Vec3>> paths;
+  for (int c = 0; c < static_cast<int>(cables.cables().size()); ++c)
+    paths.push_back(cablePath(cables, c, kArcStepRad));
+  drawCables(meshes, paths, cable_radius);
+  drawMarkers(meshes, cables, style::kMarkerScale * cable_radius);
+
+  glFinish();
+  return downsample(context_->buffer, width_, height_, kSupersample);
+}
+
+}  // namespace reeve

@@ -1,0 +1,16 @@
+// Box-filter reduction of a supersampled frame.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "reeve/render/image.h"
+
+namespace reeve {
+
+/// Averages each `factor` x `factor` block of `rgba` (an RGBA frame of
+/// width*factor x height*factor pixels, bottom row first, as OpenGL reads
+/// it) into one pixel of a width x height RGB Image, top row first.
+Image downsample(const std::vector<std::uint8_t>& rgba, int width, int height, int factor);
+
+}  // namespace reeve

@@ -1,0 +1,103 @@
+// Scenes: JSON files (scenes/README.md, schema scenes/scene.schema.json)
+// turned into a World with its hinges and a CableSystem with its cables.
+// Bad input gives a SceneError naming the file, the JSON path, what was
+// expected and what was found; never a crash, never a silent default.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+#include "reeve/cable/cable.h"
+#include "reeve/engine/world.h"
+
+namespace reeve {
+
+/// Where a scene is viewed from: a pinhole camera at `eye` (m, world)
+/// looking at `target` (m, world), with `up` (world, need not be unit) the
+/// image's up direction and `fov_y_deg` the vertical field of view (deg).
+struct CameraDef {
+  Vec3 eye = Vec3::Zero();
+  Vec3 target = Vec3::Zero();
+  Vec3 up = Vec3::UnitY();
+  double fov_y_deg = 40.0;
+};
+
+/// A loaded scene, ready to step: `world->step(1.0 / frame_rate_hz)` once
+/// per frame for `frameCount()` frames. `cables` is built on `*world` and
+/// registered a substep hook in it, so keep both together: the members are
+/// declared so that `cables` is destroyed before `world`.
+struct Scene {
+  std::string name;
+  std::string description;
+  double frame_rate_hz = 60.0;  ///< frames per simulated second, Hz
+  double duration_s = 5.0;      ///< simulated time, s
+  std::unique_ptr<World> world;
+  std::unique_ptr<CableSystem> cables;
+  std::optional<CameraDef> camera;
+
+  /// Number of frames to simulate: round(duration_s * frame_rate_hz).
+  int frameCount() const;
+};
+
+/// An error in a scene. `file()` is the file (or source name), `jsonPath()`
+/// a JSON Pointer (RFC 6901) to the offending value ("/bodies/2/shape/radius_m";
+/// "" for the root or when no value applies), `expected()` and `found()`
+/// describe what should have been there and what was.
+///
+/// what() is one of
+///   "FILE: PATH: expected EXPECTED, got FOUND"   (PATH "(root)" for "")
+///   "FILE:LINE:COLUMN: invalid JSON: REASON"     (JSON syntax; expected()
+///                                                 is "valid JSON", found() REASON)
+///   "FILE: cannot read: REASON"                  (expected() is "a readable
+///                                                 file", found() REASON)
+class SceneError : public std::runtime_error {
+ public:
+  /// An error at `json_path` in `file`.
+  SceneError(std::string file, std::string json_path, std::string expected, std::string found);
+
+  /// A JSON syntax error at 1-based `line` and `column` (in characters).
+  static SceneError syntax(std::string file, int line, int column, std::string reason);
+  /// A file that cannot be read, `reason` as from strerror.
+  static SceneError unreadable(std::string file, std::string reason);
+
+  const std::string& file() const { return file_; }
+  const std::string& jsonPath() const { return json_path_; }
+  const std::string& expected() const { return expected_; }
+  const std::string& found() const { return found_; }
+  /// 1-based position of a JSON syntax error; 0 for other errors.
+  int line() const { return line_; }
+  int column() const { return column_; }
+
+ private:
+  SceneError(const std::string& what, std::string file, std::string json_path,
+             std::string expected, std::string found, int line, int column);
+
+  std::string file_, json_path_, expected_, found_;
+  int line_ = 0, column_ = 0;
+};
+
+/// Reads and builds the scene in the JSON file at `path`.
+/// Throws SceneError if the file cannot be read or the scene is invalid.
+Scene loadScene(const std::filesystem::path& path);
+
+/// Builds the scene in `json_text`; `source_name` names it in errors (a file
+/// name, "<stdin>", ...). Checks, in order: JSON syntax (and duplicate keys),
+/// the schema sceneSchemaJson(), then what a schema cannot say (unique and
+/// known body names, density or mass, rolling links on circular sections,
+/// rest length counts, non-zero axes, cables the solver can build).
+/// Throws SceneError at the first problem.
+Scene parseScene(const std::string& json_text, const std::string& source_name);
+
+/// The text of scenes/simple.json (paper Fig. 12, left), embedded at build
+/// time so programs work from any folder.
+std::string_view defaultSceneJson();
+
+/// The text of scenes/scene.schema.json (JSON Schema draft-07), embedded at
+/// build time; parseScene validates against it.
+std::string_view sceneSchemaJson();
+
+}  // namespace reeve

@@ -1,0 +1,80 @@
+#include "build.h"
+
+#include <climits>
+#include <cmath>
+
+#include "describe.h"
+
+namespace reeve::scene_detail {
+namespace {
+
+// Defaults of optional keys; scene.schema.json states the same under
+// "default" (a test compares them).
+constexpr double kFrameRateHz = 60.0;
+constexpr int kSubsteps = 10;
+constexpr int kIterations = 2;
+constexpr double kDurationS = 5.0;
+const Vec3 kGravity(0.0, -9.81, 0.0);
+
+SolverSettings solverOf(const nlohmann::json& solver) {
+  SolverSettings settings;
+  settings.gravity = solver.contains("gravity_m_per_s2") ? vec3(solver.at("gravity_m_per_s2")) : kGravity;
+  settings.substeps = solver.value("substeps", kSubsteps);
+  settings.iterations = solver.value("iterations", kIterations);
+  return settings;
+}
+
+CameraDef cameraOf(const nlohmann::json& camera, const std::string& source) {
+  CameraDef def;
+  def.eye = vec3(camera.at("eye_m"));
+  def.target = vec3(camera.at("target_m"));
+  if (camera.contains("up")) def.up = vec3(camera.at("up"));
+  def.fov_y_deg = camera.value("fov_y_deg", def.fov_y_deg);
+  const Vec3 view = def.target - def.eye;
+  if (view.squaredNorm() == 0.0)
+    throw SceneError(source, "/camera/target_m", "a point other than eye_m",
+                     literal(camera.at("target_m")));
+  if (def.up.cross(view).norm() <= 1e-9 * def.up.norm() * view.norm())
+    throw SceneError(source, "/camera/up",
+                     "a direction not parallel to the view direction target_m - eye_m",
+                     camera.contains("up") ? literal(camera.at("up")) : "the default [0,1,0]");
+  return def;
+}
+
+}  // namespace
+
+Scene buildScene(const nlohmann::json& document, const std::string& source) {
+  Scene scene;
+  scene.name = document.at("name").get<std::string>();
+  scene.description = document.value("description", std::string());
+  const nlohmann::json& solver = document.at("solver");
+  scene.frame_rate_hz = solver.value("frame_rate_hz", kFrameRateHz);
+  scene.duration_s = document.value("duration_s", kDurationS);
+  const double frames = std::round(scene.duration_s * scene.frame_rate_hz);
+  if (frames < 1.0 || frames > INT_MAX)
+    throw SceneError(source, "/duration_s",
+                     "a duration of 1 to " + std::to_string(INT_MAX) +
+                         " frames at solver/frame_rate_hz " + number(scene.frame_rate_hz),
+                     number(scene.duration_s) + " s (" + number(frames) + " frames)");
+
+  scene.world = std::make_unique<World>(solverOf(solver));
+  scene.cables = std::make_unique<CableSystem>(*scene.world);
+  const BodyNames names = addBodies(document.at("bodies"), *scene.world, source);
+  if (const auto hinges = document.find("hinges"); hinges != document.end())
+    addHinges(*hinges, names, *scene.world, source);
+  if (const auto cables = document.find("cables"); cables != document.end())
+    addCables(*cables, names, *scene.world, *scene.cables, source);
+  if (const auto camera = document.find("camera"); camera != document.end())
+    scene.camera = cameraOf(*camera, source);
+  return scene;
+}
+
+}  // namespace reeve::scene_detail
+
+namespace reeve {
+
+int Scene::frameCount() const {
+  return static_cast<int>(std::lround(duration_s * frame_rate_hz));
+}
+
+}  // namespace reeve

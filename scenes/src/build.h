@@ -1,0 +1,50 @@
+// Scene document -> World, hinges, CableSystem: the checks a schema cannot
+// make, then construction. The document has passed validateSceneSchema, so
+// keys and types are as the schema says.
+#pragma once
+
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "reeve/scene/scene.h"
+
+namespace reeve::scene_detail {
+
+/// Builds the scene of a schema-valid `document`. Throws SceneError naming
+/// `source` for what the schema cannot check (see parseScene).
+Scene buildScene(const nlohmann::json& document, const std::string& source);
+
+/// The bodies of a scene by name, and their names in scene order.
+struct BodyNames {
+  std::unordered_map<std::string, BodyId> ids;
+  std::vector<std::string> ordered;
+
+  /// The body named by the string `name` found at `pointer`; "world" gives
+  /// kWorldBody when `world_allowed`. Throws SceneError for other names.
+  BodyId find(const nlohmann::json& name, const std::string& pointer, const std::string& source,
+              bool world_allowed) const;
+};
+
+/// Adds "bodies" (build_bodies.cpp): unique names other than "world",
+/// exactly one of density or mass when dynamic, nothing of either and no
+/// velocity when static, non-zero orientation axes.
+BodyNames addBodies(const nlohmann::json& bodies, World& world, const std::string& source);
+
+/// Adds "hinges" (build_hinges.cpp): known bodies, two different ones,
+/// non-zero axes.
+void addHinges(const nlohmann::json& hinges, const BodyNames& names, World& world,
+               const std::string& source);
+
+/// Adds "cables" (build_cables.cpp): unique names, known bodies, rolling
+/// links on circular sections, attachments at both ends, one rest length
+/// per joint; CableSystem::addCable's own refusals at the cable's path.
+void addCables(const nlohmann::json& cables, const BodyNames& names, const World& world,
+               CableSystem& system, const std::string& source);
+
+/// [x, y, z] (schema-checked) as a vector.
+Vec3 vec3(const nlohmann::json& xyz);
+
+}  // namespace reeve::scene_detail

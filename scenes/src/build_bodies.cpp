@@ -1,0 +1,88 @@
+#include "build.h"
+
+#include "describe.h"
+
+namespace reeve::scene_detail {
+namespace {
+
+constexpr const char* kWorldName = "world";
+
+Shape shapeOf(const nlohmann::json& shape) {
+  const std::string type = shape.at("type").get<std::string>();
+  if (type == "box") return Shape::box(vec3(shape.at("half_extents_m")));
+  if (type == "cylinder")
+    return Shape::cylinder(shape.at("radius_m").get<double>(), shape.at("half_length_m").get<double>());
+  return Shape::sphere(shape.at("radius_m").get<double>());
+}
+
+}  // namespace
+
+Vec3 vec3(const nlohmann::json& xyz) {
+  return Vec3(xyz.at(0).get<double>(), xyz.at(1).get<double>(), xyz.at(2).get<double>());
+}
+
+BodyId BodyNames::find(const nlohmann::json& name, const std::string& pointer,
+                       const std::string& source, bool world_allowed) const {
+  const std::string text = name.get<std::string>();
+  if (world_allowed && text == kWorldName) return kWorldBody;
+  if (const auto it = ids.find(text); it != ids.end()) return it->second;
+  throw SceneError(source, pointer,
+                   std::string(world_allowed ? "\"world\" or " : "") + "the name of a body (" +
+                       nameList(ordered) + ")",
+                   quoted(text));
+}
+
+BodyNames addBodies(const nlohmann::json& bodies, World& world, const std::string& source) {
+  BodyNames names;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const nlohmann::json& b = bodies[i];
+    const std::string path = "/bodies/" + std::to_string(i);
+    const auto fail = [&](const std::string& key, const std::string& expected,
+                          const std::string& found) {
+      throw SceneError(source, key.empty() ? path : childPointer(path, key), expected, found);
+    };
+
+    BodyDef def;
+    def.name = b.at("name").get<std::string>();
+    if (def.name == kWorldName)
+      fail("name", "a body name other than \"world\" (it names the fixed world frame)",
+           quoted(def.name));
+    if (names.ids.count(def.name))
+      fail("name", "a body name not already used by /bodies/" +
+                       std::to_string(names.ids.at(def.name)),
+           quoted(def.name));
+    def.shape = shapeOf(b.at("shape"));
+    def.position = vec3(b.at("position_m"));
+    if (const auto o = b.find("orientation"); o != b.end()) {
+      const Vec3 axis = vec3(o->at("axis"));
+      if (axis.squaredNorm() == 0.0)
+        fail("orientation/axis", "a non-zero rotation axis", literal(o->at("axis")));
+      def.orientation = Quat(Eigen::AngleAxisd(o->at("angle_rad").get<double>(), axis.normalized()));
+    }
+    def.is_static = b.value("static", false);
+    const bool has_density = b.contains("density_kg_per_m3");
+    const bool has_mass = b.contains("mass_kg");
+    if (def.is_static) {
+      for (const char* key : {"density_kg_per_m3", "mass_kg"})
+        if (b.contains(key))
+          fail(key, "no density or mass for a static body (it never moves)", literal(b.at(key)));
+      for (const char* key : {"linear_velocity_m_per_s", "angular_velocity_rad_per_s"})
+        if (b.contains(key))
+          fail(key, "no velocity for a static body (it never moves)", literal(b.at(key)));
+    } else {
+      if (has_density == has_mass)
+        fail("", "exactly one of density_kg_per_m3 or mass_kg for a dynamic body",
+             has_mass ? "both" : "neither");
+      if (has_mass) def.mass = b.at("mass_kg").get<double>();
+      else def.density = b.at("density_kg_per_m3").get<double>();
+      if (const auto v = b.find("linear_velocity_m_per_s"); v != b.end()) def.linear_velocity = vec3(*v);
+      if (const auto w = b.find("angular_velocity_rad_per_s"); w != b.end()) def.angular_velocity = vec3(*w);
+    }
+    const BodyId id = world.addBody(def);
+    names.ids.emplace(def.name, id);
+    names.ordered.push_back(def.name);
+  }
+  return names;
+}
+
+}  // namespace reeve::scene_detail

@@ -1,0 +1,35 @@
+#include <utility>
+
+#include "reeve/scene/scene.h"
+
+namespace reeve {
+
+SceneError::SceneError(std::string file, std::string json_path, std::string expected,
+                       std::string found)
+    : SceneError(file + ": " + (json_path.empty() ? "(root)" : json_path) + ": expected " +
+                     expected + ", got " + found,
+                 std::move(file), std::move(json_path), std::move(expected), std::move(found), 0,
+                 0) {}
+
+SceneError SceneError::syntax(std::string file, int line, int column, std::string reason) {
+  const std::string what = file + ":" + std::to_string(line) + ":" + std::to_string(column) +
+                           ": invalid JSON: " + reason;
+  return SceneError(what, std::move(file), "", "valid JSON", std::move(reason), line, column);
+}
+
+SceneError SceneError::unreadable(std::string file, std::string reason) {
+  const std::string what = file + ": cannot read: " + reason;
+  return SceneError(what, std::move(file), "", "a readable file", std::move(reason), 0, 0);
+}
+
+SceneError::SceneError(const std::string& what, std::string file, std::string json_path,
+                       std::string expected, std::string found, int line, int column)
+    : std::runtime_error(what),
+      file_(std::move(file)),
+      json_path_(std::move(json_path)),
+      expected_(std::move(expected)),
+      found_(std::move(found)),
+      line_(line),
+      column_(column) {}
+
+}  // namespace reeve

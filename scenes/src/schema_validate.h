@@ -1,0 +1,16 @@
+// JSON Schema validation of a scene document (scenes/scene.schema.json).
+#pragma once
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace reeve::scene_detail {
+
+/// Validates `document` against the embedded scene schema (valijson,
+/// draft-07). Throws SceneError for the first violation in document order,
+/// phrased from the schema: unknown and missing keys, wrong types, numbers
+/// out of bounds, values not allowed, wrong array sizes.
+void validateSceneSchema(const nlohmann::json& document, const std::string& source);
+
+}  // namespace reeve::scene_detail

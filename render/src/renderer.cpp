@@ -170,6 +170,8 @@ Image Renderer::render(const World& world, const CableSystem& cables, const Came
   glFogfv(GL_FOG_COLOR, fog_colour);
   glFogf(GL_FOG_START, static_cast<float>(eye_to_floor - 0.5 * l.floor_half));
   glFogf(GL_FOG_END, static_cast<float>(eye_to_floor + 1.5 * l.floor_half));
+  glDisable(GL_LIGHTING);
+  glDisable(GL_CULL_FACE);
   glEnable(GL_FOG);
   drawFloor(l.floor_y, floor_centre.x(), floor_centre.z(), l.floor_half, kSupersample);
   glDisable(GL_FOG);

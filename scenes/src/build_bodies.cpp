@@ -29,7 +29,7 @@ BodyId BodyNames::find(const nlohmann::json& name, const std::string& pointer,
   throw SceneError(source, pointer,
                    std::string(world_allowed ? "\"world\" or " : "") + "the name of a body (" +
                        nameList(ordered) + ")",
-                   quoted(text));
+                   quote(text));
 }
 
 BodyNames addBodies(const nlohmann::json& bodies, World& world, const std::string& source) {
@@ -46,11 +46,11 @@ BodyNames addBodies(const nlohmann::json& bodies, World& world, const std::strin
     def.name = b.at("name").get<std::string>();
     if (def.name == kWorldName)
       fail("name", "a body name other than \"world\" (it names the fixed world frame)",
-           quoted(def.name));
+           quote(def.name));
     if (names.ids.count(def.name))
       fail("name", "a body name not already used by /bodies/" +
                        std::to_string(names.ids.at(def.name)),
-           quoted(def.name));
+           quote(def.name));
     def.shape = shapeOf(b.at("shape"));
     def.position = vec3(b.at("position_m"));
     if (const auto o = b.find("orientation"); o != b.end()) {

@@ -47,7 +47,7 @@ void addCables(const nlohmann::json& cables, const BodyNames& names, const World
     def.name = cable.at("name").get<std::string>();
     if (!cable_names.insert(def.name).second)
       throw SceneError(source, path + "/name", "a cable name not already used",
-                       quoted(def.name));
+                       quote(def.name));
 
     const nlohmann::json& links = cable.at("links");
     for (std::size_t k = 0; k < links.size(); ++k)

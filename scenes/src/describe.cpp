@@ -32,7 +32,7 @@ std::string literal(const nlohmann::json& value) {
   return shortened(value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
 }
 
-std::string quoted(const std::string& text) { return literal(nlohmann::json(text)); }
+std::string quote(const std::string& text) { return literal(nlohmann::json(text)); }
 
 std::string number(double value) { return nlohmann::json(value).dump(); }
 

@@ -19,7 +19,7 @@ std::string describe(const nlohmann::json& value);
 std::string literal(const nlohmann::json& value);
 
 /// `text` as a JSON string literal: `"wheel_left"`.
-std::string quoted(const std::string& text);
+std::string quote(const std::string& text);
 
 /// Shortest text that reads back as `value`: 0.1 -> "0.1", 2 -> "2".
 std::string number(double value);

@@ -134,7 +134,7 @@ nlohmann::json parseJson(const std::string& text, const std::string& source) {
   if (builder.repeatedKey())
     throw SceneError(source, childPointer(builder.openPointer(), *builder.repeatedKey()),
                      "each key at most once in an object",
-                     quoted(*builder.repeatedKey()) + " a second time");
+                     quote(*builder.repeatedKey()) + " a second time");
   throw syntaxError(text, builder.errorPosition(), reasonOf(builder.error()), source);
 }
 

@@ -134,13 +134,13 @@ SchemaProblem phraseSchemaError(const ordered_json& schema, const json& document
   const SchemaSite site = schemaSite(schema, document, tokens);
 
   if (startsWith(description, kMissing))
-    return {pointer, "required property " + quoted(nameAfter(description, kMissing)), "nothing"};
+    return {pointer, "required property " + quote(nameAfter(description, kMissing)), "nothing"};
   if (startsWith(description, kUnknown)) {
     const std::string key = nameAfter(description, kUnknown);
     return {childPointer(pointer, key),
-            "no property " + quoted(key) + " (allowed: " + nameList(allowedKeys(site.schemas), 100) +
+            "no property " + quote(key) + " (allowed: " + nameList(allowedKeys(site.schemas), 100) +
                 ")",
-            quoted(key)};
+            quote(key)};
   }
   if (startsWith(description, kType))
     return {pointer, typePhrase(site.schemas),

@@ -1,0 +1,179 @@
+// The `reeve` program as a user runs it: outputs, refusals to overwrite,
+// and exit codes for bad scenes and missing tools.
+#include <gtest/gtest.h>
+#include <png.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <algorithm>
+#include <filesystem>
+#include <iterator>
+#include <regex>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int code;
+  std::string out, err;
+};
+
+// Runs `reeve ARGS` through the shell with stdout and stderr captured.
+Result reeve(const std::string& args, const std::string& env = "") {
+  const fs::path dir = fs::temp_directory_path();
+  const std::string out = (dir / "reeve_cli_out.txt").string(), err = (dir / "reeve_cli_err.txt").string();
+  const std::string cmd = env + " " REEVE_BINARY " " + args + " >" + out + " 2>" + err;
+  const int status = std::system(cmd.c_str());
+  const auto slurp = [](const std::string& p) {
+    std::ifstream f(p);
+    std::stringstream s;
+    s << f.rdbuf();
+    return s.str();
+  };
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("reeve_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  std::string write(const std::string& name, const std::string& text) const {
+    std::ofstream(path(name)) << text;
+    return path(name);
+  }
+  fs::path dir_;
+};
+
+// Pixels of an RGB(A) PNG, read with libpng; empty on failure.
+std::vector<unsigned char> readPng(const std::string& file, int& w, int& h) {
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_file(&image, file.c_str())) return {};
+  image.format = PNG_FORMAT_RGB;
+  std::vector<unsigned char> px(PNG_IMAGE_SIZE(image));
+  if (!png_image_finish_read(&image, nullptr, px.data(), 0, nullptr)) return {};
+  w = static_cast<int>(image.width);
+  h = static_cast<int>(image.height);
+  return px;
+}
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> cells;
+  std::stringstream s(line);
+  for (std::string c; std::getline(s, c, ',');) cells.push_back(c);
+  return cells;
+}
+
+TEST_F(Cli, RunOfTheDefaultSceneWritesFramesAndCsv) {
+  const Result r = reeve("run --frames 3 --png " + path("frames") + " --csv " + path("out.csv"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find(path("out.csv")), std::string::npos) << "says where the CSV went";
+  for (int f = 0; f < 3; ++f) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%05d.png", f);
+    int w = 0, h = 0;
+    const auto px = readPng(path("frames/") + name, w, h);
+    ASSERT_FALSE(px.empty()) << name << " is not a readable PNG";
+    EXPECT_EQ(w, 1280);
+    EXPECT_EQ(h, 720);
+    std::set<int> colours;
+    for (size_t i = 0; i + 2 < px.size(); i += 3 * 97) colours.insert(px[i] << 16 | px[i + 1] << 8 | px[i + 2]);
+    EXPECT_GT(colours.size(), 20u) << name << " looks blank";
+  }
+  EXPECT_FALSE(fs::exists(path("frames/frame_00003.png")));
+
+  std::ifstream csv(path("out.csv"));
+  std::string header, line;
+  std::getline(csv, header);
+  const auto cols = split(header);
+  const std::vector<std::string> expected_start = {"time_s", "left_top.x_m", "left_top.y_m", "left_top.z_m"};
+  ASSERT_GE(cols.size(), 1 + 3 * 3 + 3 * 4u);
+  EXPECT_EQ(cols[0], "time_s");
+  for (const char* col : {"left_bottom.y_m", "right.z_m", "wheel_left.x_m", "cable.0.tension_N",
+                          "cable.3.rest_length_m", "cable.3.length_m"})
+    EXPECT_NE(std::find(cols.begin(), cols.end(), col), cols.end()) << col;
+  int rows = 0;
+  while (std::getline(csv, line)) {
+    ++rows;
+    EXPECT_EQ(split(line).size(), cols.size());
+  }
+  EXPECT_EQ(rows, 3);
+}
+
+TEST_F(Cli, ExistingOutputsAreNotOverwrittenWithoutForce) {
+  const std::string csv = write("keep.csv", "my data\n");
+  const Result r = reeve("run --frames 2 --csv " + csv);
+  EXPECT_EQ(r.code, 3);
+  EXPECT_NE(r.err.find("--force"), std::string::npos) << r.err;
+  std::ifstream f(csv);
+  std::string content((std::istreambuf_iterator<char>(f)), {});
+  EXPECT_EQ(content, "my data\n");
+  EXPECT_EQ(reeve("run --frames 2 --force --csv " + csv).code, 0);
+}
+
+TEST_F(Cli, VideoIsAnH264Mp4WithOneFramePerStep) {
+  const Result r = reeve("run --frames 5 --width 320 --height 180 --video " + path("v.mp4"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string probe = "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+                            "stream=codec_name,pix_fmt,nb_read_frames -of csv=p=0 " + path("v.mp4") +
+                            " > " + path("probe.txt");
+  ASSERT_EQ(std::system(probe.c_str()), 0);
+  std::ifstream f(path("probe.txt"));
+  std::string line;
+  std::getline(f, line);
+  EXPECT_EQ(line, "h264,yuv420p,5");
+}
+
+TEST_F(Cli, MissingFfmpegIsAClearError) {
+  const Result r = reeve("run --frames 2 --video " + path("v.mp4"), "PATH=" + path("empty"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("ffmpeg"), std::string::npos) << r.err;
+}
+
+TEST_F(Cli, BadScenesExitWithCode2AndNameFilePathExpectedAndFound) {
+  const std::string base =
+      R"({"solver": {}, "bodies": [{"name": "w", "shape": {"type": "cylinder", "radius_m": RADIUS, "half_length_m": 0.1}, "mass_kg": 1, "position_m": [0, 0, 0]}]})";
+  const std::string bad_radius = write("bad_radius.json", std::regex_replace(base, std::regex("RADIUS"), "-0.5"));
+  const Result r = reeve("validate " + bad_radius);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("bad_radius.json"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("/bodies/0/shape/radius_m"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("-0.5"), std::string::npos) << r.err;
+
+  const std::string syntax = write("syntax.json", "{\n  \"solver\": {,\n}");
+  const Result s = reeve("run " + syntax + " --frames 1");
+  EXPECT_EQ(s.code, 2);
+  EXPECT_NE(s.err.find("syntax.json:2:"), std::string::npos) << s.err;
+
+  const std::string good = write("good.json", std::regex_replace(base, std::regex("RADIUS"), "0.5"));
+  const Result ok = reeve("validate " + good);
+  EXPECT_EQ(ok.code, 0) << ok.err;
+
+  EXPECT_EQ(reeve("validate " + path("missing.json")).code, 2);
+}
+
+TEST_F(Cli, UsageErrorsAndHelp) {
+  EXPECT_EQ(reeve("run --frames -3").code, 64);
+  EXPECT_EQ(reeve("frobnicate").code, 64);
+  const Result help = reeve("--help");
+  EXPECT_EQ(help.code, 0);
+  EXPECT_NE(help.out.find("run"), std::string::npos);
+  const Result version = reeve("--version");
+  EXPECT_EQ(version.code, 0);
+  EXPECT_NE(version.out.find("reeve "), std::string::npos);
+}
+
+}  // namespace

@@ -1,0 +1,64 @@
+// Physics of the shipped scenes: the paper's mass-scaling experiment
+// (Fig. 12, density 1 vs 1000), the Simple scene's equilibrium tensions,
+// and the Atwood scene against its closed form.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "reeve/scene/scene.h"
+
+namespace reeve {
+namespace {
+
+const std::string kScenes = REEVE_SCENES_DIR;
+
+TEST(MassScaling, DensityOneAndThousandGiveTheSameTrajectoriesAndScaledTensions) {
+  // XPBD corrections depend on mass ratios only, so scaling every mass by k
+  // leaves positions unchanged and scales every lambda, hence tension, by k.
+  Scene light = loadScene(kScenes + "/simple.json");
+  Scene dense = loadScene(kScenes + "/simple_dense.json");
+  ASSERT_EQ(light.world->bodyCount(), dense.world->bodyCount());
+  const double dt = 1.0 / light.frame_rate_hz;
+  double max_tension = 0.0;
+  for (int f = 0; f < light.frameCount(); ++f) {
+    light.world->step(dt);
+    dense.world->step(dt);
+    for (BodyId b = 0; b < light.world->bodyCount(); ++b) {
+      const Vec3& x1 = light.world->body(b).x;
+      const Vec3& x2 = dense.world->body(b).x;
+      ASSERT_LE((x1 - x2).norm(), 1e-9 * std::max(1.0, x1.norm())) << "frame " << f << " body " << b;
+    }
+    for (int j = 0; j < 4; ++j) {
+      const double t1 = light.cables->tension(0, j), t2 = dense.cables->tension(0, j);
+      ASSERT_NEAR(t2, 1000.0 * t1, 1e-9 * std::abs(t2) + 1e-9) << "frame " << f << " joint " << j;
+      max_tension = std::max(max_tension, t1);
+    }
+  }
+  EXPECT_GT(max_tension, 5.0);  // the cable carried load throughout
+}
+
+TEST(SimpleScene, AtRestTheCableCarriesTheWeightsBelowEachJoint) {
+  // Without the initial push the paper's set-up is in equilibrium: the
+  // bottom-left span holds 1 kg, the rest of the cable 2 kg (g = 10).
+  Scene s = loadScene(kScenes + "/simple.json");
+  const BodyId pushed = *s.world->findBody("left_bottom");
+  s.world->body(pushed).v.setZero();
+  for (int f = 0; f < 120; ++f) s.world->step(1.0 / s.frame_rate_hz);
+  const double expected[] = {10.0, 20.0, 20.0, 20.0};
+  for (int j = 0; j < 4; ++j) EXPECT_NEAR(s.cables->tension(0, j), expected[j], 0.01 * expected[j]) << j;
+  EXPECT_LT(s.world->body(pushed).v.norm(), 1e-6);
+}
+
+TEST(AtwoodScene, FallsWithTheAnalyticAcceleration) {
+  // m1 = 1, m2 = 2, wheel M = 2 kg solid: a = (m2 - m1) g / (m1 + m2 + M/2).
+  Scene s = loadScene(kScenes + "/atwood.json");
+  const BodyId heavy = *s.world->findBody("heavy");
+  const double g = 9.81, a = g / 4.0;
+  for (int f = 0; f < 30; ++f) s.world->step(1.0 / s.frame_rate_hz);
+  EXPECT_NEAR(-s.world->body(heavy).v.y() / s.world->time(), a, 0.01 * a);
+  EXPECT_NEAR(s.cables->tension(0, 0), 1.0 * (g + a), 0.01 * 1.0 * (g + a));
+  EXPECT_NEAR(s.cables->tension(0, 1), 2.0 * (g - a), 0.01 * 2.0 * (g - a));
+}
+
+}  // namespace
+}  // namespace reeve

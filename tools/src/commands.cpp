@@ -1,0 +1,160 @@
+#include "commands.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "csv_writer.h"
+#include "progress.h"
+#include "reeve/render/renderer.h"
+#include "reeve/scene/scene.h"
+
+namespace reeve {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct WouldOverwrite : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+void refuseOverwrite(const fs::path& path, bool force) {
+  if (!force && fs::exists(path))
+    throw WouldOverwrite(path.string() + ": exists; pass --force to overwrite it");
+}
+
+fs::path framePath(const fs::path& dir, int frame) {
+  char name[32];
+  std::snprintf(name, sizeof name, "frame_%05d.png", frame);
+  return dir / name;
+}
+
+// Checks every output before simulating, so nothing is half-written when
+// a later output turns out to be refused.
+void checkOutputs(const RunOptions& o, int frames) {
+  if (!o.csv.empty()) refuseOverwrite(o.csv, o.force);
+  if (!o.video.empty()) {
+    if (o.video.extension() != ".mp4")
+      throw std::runtime_error(o.video.string() + ": expected a file name ending in .mp4");
+    refuseOverwrite(o.video, o.force);
+  }
+  if (!o.png_dir.empty()) {
+    if (fs::exists(o.png_dir) && !fs::is_directory(o.png_dir))
+      throw std::runtime_error(o.png_dir.string() + ": exists and is not a folder");
+    for (int f = 0; f < frames; ++f) refuseOverwrite(framePath(o.png_dir, f), o.force);
+  }
+}
+
+void createParent(const fs::path& file) {
+  if (file.has_parent_path()) fs::create_directories(file.parent_path());
+}
+
+// The first body whose state is not finite, or -1.
+BodyId firstNonFiniteBody(const World& world) {
+  for (BodyId b = 0; b < world.bodyCount(); ++b) {
+    const BodyState& s = world.body(b);
+    if (!s.x.allFinite() || !s.q.coeffs().allFinite() || !s.v.allFinite()) return b;
+  }
+  return -1;
+}
+
+Camera sceneCamera(const Scene& scene, double aspect) {
+  if (!scene.camera) return frameScene(*scene.world, *scene.cables, aspect);
+  return Camera{scene.camera->eye, scene.camera->target, scene.camera->up, scene.camera->fov_y_deg};
+}
+
+int simulate(const RunOptions& o) {
+  Scene scene = o.scene.empty() ? parseScene(std::string(defaultSceneJson()), "<built-in simple.json>")
+                                : loadScene(o.scene);
+  if (o.substeps) scene.world->settings().substeps = *o.substeps;
+  if (o.iterations) scene.world->settings().iterations = *o.iterations;
+  const int frames = o.frames.value_or(scene.frameCount());
+  checkOutputs(o, frames);
+
+  std::unique_ptr<CsvWriter> csv;
+  if (!o.csv.empty()) {
+    createParent(o.csv);
+    csv = std::make_unique<CsvWriter>(o.csv, *scene.cables);
+  }
+  const bool draw = !o.png_dir.empty() || !o.video.empty();
+  std::unique_ptr<Renderer> renderer;
+  std::unique_ptr<VideoWriter> video;
+  Camera camera;
+  if (draw) {
+    renderer = std::make_unique<Renderer>(o.width, o.height);
+    camera = sceneCamera(scene, static_cast<double>(o.width) / o.height);
+  }
+  if (!o.png_dir.empty()) fs::create_directories(o.png_dir);
+  if (!o.video.empty()) {
+    createParent(o.video);
+    video = std::make_unique<VideoWriter>(o.video, o.width, o.height, scene.frame_rate_hz);
+  }
+
+  const double dt = 1.0 / scene.frame_rate_hz;
+  double physics_s = 0.0;
+  ProgressBar progress(frames);
+  for (int f = 0; f < frames; ++f) {
+    const auto t0 = std::chrono::steady_clock::now();
+    scene.world->step(dt);
+    physics_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (const BodyId bad = firstNonFiniteBody(*scene.world); bad >= 0)
+      throw std::runtime_error("the simulation became non-finite at t = " +
+                               std::to_string(scene.world->time()) + " s in body '" +
+                               scene.world->bodyDef(bad).name +
+                               "'; try more substeps or iterations");
+    if (csv) csv->writeRow();
+    if (draw) {
+      const Image image = renderer->render(*scene.world, *scene.cables, camera);
+      if (!o.png_dir.empty()) writePng(framePath(o.png_dir, f), image);
+      if (video) video->add(image);
+    }
+    progress.update(f + 1);
+  }
+  if (video) video->finish();
+
+  std::printf("reeve: simulated %d frames of '%s' (%.3f s, %d substeps x %d iterations) in %.3f ms/frame of physics\n",
+              frames, scene.name.c_str(), frames * dt, scene.world->settings().substeps,
+              scene.world->settings().iterations, 1e3 * physics_s / frames);
+  if (!o.png_dir.empty())
+    std::printf("  PNG frames: %s .. %s\n", framePath(o.png_dir, 0).c_str(),
+                framePath(o.png_dir, frames - 1).filename().c_str());
+  if (!o.video.empty()) std::printf("  video:      %s\n", o.video.c_str());
+  if (!o.csv.empty()) std::printf("  CSV:        %s\n", o.csv.c_str());
+  if (o.png_dir.empty() && o.video.empty() && o.csv.empty())
+    std::printf("  (no output requested: add --png DIR, --video FILE.mp4 or --csv FILE)\n");
+  return 0;
+}
+
+}  // namespace
+
+int runCommand(const RunOptions& options) {
+  try {
+    return simulate(options);
+  } catch (const SceneError& e) {
+    std::cerr << "reeve: " << e.what() << '\n';
+    return kExitBadScene;
+  } catch (const WouldOverwrite& e) {
+    std::cerr << "reeve: " << e.what() << '\n';
+    return kExitWouldOverwrite;
+  } catch (const std::exception& e) {
+    std::cerr << "reeve: " << e.what() << '\n';
+    return kExitFailure;
+  }
+}
+
+int validateCommand(const std::string& scene) {
+  try {
+    loadScene(scene);
+    std::printf("%s: ok\n", scene.c_str());
+    return 0;
+  } catch (const SceneError& e) {
+    std::cerr << "reeve: " << e.what() << '\n';
+    return kExitBadScene;
+  }
+}
+
+}  // namespace reeve

@@ -1,0 +1,29 @@
+// The subcommands of `reeve` and their exit codes.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+namespace reeve {
+
+inline constexpr int kExitFailure = 1;       ///< I/O, rendering, video or a non-finite state
+inline constexpr int kExitBadScene = 2;      ///< the scene file is invalid
+inline constexpr int kExitWouldOverwrite = 3;  ///< an output exists and --force was not given
+inline constexpr int kExitUsage = 64;        ///< bad command line
+
+struct RunOptions {
+  std::string scene;  ///< empty: the built-in default scene
+  std::optional<int> frames, substeps, iterations;
+  std::filesystem::path png_dir, video, csv;
+  int width = 1280, height = 720;
+  bool force = false;
+};
+
+/// `reeve run`: returns the process exit code; errors go to stderr.
+int runCommand(const RunOptions& options);
+
+/// `reeve validate`: 0 and "SCENE: ok" when valid, else kExitBadScene.
+int validateCommand(const std::string& scene);
+
+}  // namespace reeve

@@ -1,0 +1,43 @@
+// The `reeve` command line: run a scene to PNG/MP4/CSV, or validate it.
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <iostream>
+
+#include "commands.h"
+#include "reeve/scene/scene.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"Reeve: cable-driven machines simulated with XPBD cable joints (Müller et al. 2018)."};
+  app.set_version_flag("--version", std::string("reeve ") + REEVE_VERSION);
+  app.require_subcommand(1);
+
+  reeve::RunOptions run;
+  CLI::App* run_cmd = app.add_subcommand("run", "Simulate a scene; write PNG frames, an MP4 video and/or a CSV.");
+  run_cmd->add_option("scene", run.scene, "Scene JSON file (default: the built-in Simple scene)");
+  run_cmd->add_option("--frames", run.frames, "Frames to simulate (default: the scene's duration)")
+      ->check(CLI::PositiveNumber);
+  run_cmd->add_option("--substeps", run.substeps, "Substeps per frame (overrides the scene)")
+      ->check(CLI::PositiveNumber);
+  run_cmd->add_option("--iterations", run.iterations, "Solver iterations per substep (overrides the scene)")
+      ->check(CLI::PositiveNumber);
+  run_cmd->add_option("--png", run.png_dir, "Write frame_NNNNN.png files into this folder");
+  run_cmd->add_option("--video", run.video, "Write an H.264 MP4 video (needs the ffmpeg program)");
+  run_cmd->add_option("--csv", run.csv, "Write time, body positions and cable tensions per frame");
+  run_cmd->add_option("--width", run.width, "Image width in pixels")->check(CLI::Range(16, 8192));
+  run_cmd->add_option("--height", run.height, "Image height in pixels")->check(CLI::Range(16, 8192));
+  run_cmd->add_flag("--force", run.force, "Overwrite existing output files");
+
+  std::string validate_scene;
+  CLI::App* validate_cmd = app.add_subcommand("validate", "Check a scene file and report the first error.");
+  validate_cmd->add_option("scene", validate_scene, "Scene JSON file")->required();
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : reeve::kExitUsage;
+  }
+  if (*run_cmd) return reeve::runCommand(run);
+  return reeve::validateCommand(validate_scene);
+}

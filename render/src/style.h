@@ -16,11 +16,11 @@ inline const Colour kRollingMarker(0.86f, 0.12f, 0.10f);     // paper: rolling l
 inline const Colour kAttachmentMarker(0.12f, 0.66f, 0.22f);  // paper: attachments green
 
 /// Opacity of cable hidden behind bodies, drawn through them.
-inline constexpr float kHiddenCableAlpha = 0.35f;
+inline constexpr float kHiddenCableAlpha = 0.6f;
 /// Darkening of the accent sectors of round bodies.
 inline constexpr float kAccentShade = 0.72f;
 /// Cable tube radius in output pixels at the camera target's distance.
-inline constexpr double kCableRadiusPx = 2.0;
+inline constexpr double kCableRadiusPx = 2.5;
 /// Marker radius as a multiple of the cable radius.
 inline constexpr double kMarkerScale = 2.3;
 /// Grid lines across the floor, roughly (rounded to a 1-2-5 spacing).

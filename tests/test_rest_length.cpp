@@ -93,3 +93,31 @@ TEST(RestLength, MovingTheWheelWithoutTurningItOnlyRollsTheTangentPoint) {
 
 }  // namespace
 }  // namespace reeve
+
+namespace reeve {
+namespace {
+
+TEST(CableSetup, ACableThatCannotBeBuiltLeavesTheWorldUntouched) {
+  // The second span would have to start inside the wheel: no tangent.
+  World world;
+  CableSystem cables(world);
+  BodyDef def;
+  def.is_static = true;
+  const BodyId post = world.addBody(def);
+  def.shape = Shape::cylinder(0.5, 0.1);
+  def.position = Vec3(0, 2, 0);
+  const BodyId wheel = world.addBody(def);
+  def.shape = Shape::box(Vec3(0.1, 0.1, 0.1));
+  def.position = Vec3(0.1, 2.1, 0);
+  const BodyId inside = world.addBody(def);
+  CableDef cable;
+  cable.links = {{post, LinkType::Attachment, 1, Vec3::Zero()},
+                 {wheel, LinkType::Rolling, 1, Vec3::Zero()},
+                 {inside, LinkType::Attachment, 1, Vec3::Zero()}};
+  EXPECT_THROW(cables.addCable(cable), std::invalid_argument);
+  EXPECT_EQ(world.distanceCount(), 0);
+  EXPECT_TRUE(cables.cables().empty());
+}
+
+}  // namespace
+}  // namespace reeve

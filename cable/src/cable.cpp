@@ -61,35 +61,28 @@ int CableSystem::addCable(const CableDef& def) {
     }
     cable.links.push_back(link);
   }
+  // Everything is checked before the World is touched, so a failed cable
+  // leaves no constraint behind.
+  std::vector<DistanceConstraint> spans(n - 1);
   for (int j = 0; j + 1 < n; ++j) {
-    DistanceConstraint c;
-    c.a = cable.links[j].body;
-    c.b = cable.links[j + 1].body;
-    c.local_a = cable.links[j].point;
-    c.local_b = cable.links[j + 1].point;
-    c.compliance = def.compliance;
-    cable.joints.push_back({world_.addDistance(c)});
-  }
-  for (int j = 0; j + 1 < n; ++j) {
-    DistanceConstraint& c = world_.distance(cable.joints[j].constraint);
+    DistanceConstraint& c = spans[j];
     const auto anchors = tangentAnchors(cable, j);
     if (!anchors) fail("joint " + std::to_string(j) + ": the links overlap, no tangent exists");
+    c.a = cable.links[j].body;
+    c.b = cable.links[j + 1].body;
     c.local_a = anchors->first;
     c.local_b = anchors->second;
-  }
-  for (int j = 0; j + 1 < n; ++j) {
-    DistanceConstraint& c = world_.distance(cable.joints[j].constraint);
+    c.compliance = def.compliance;
     c.rest_length = def.rest_lengths.empty() ? currentLength(c, world_.body(c.a), world_.body(c.b))
                                              : def.rest_lengths[j];
-    if (c.rest_length < 0.0) fail("joint " + std::to_string(j) + ": rest length must be >= 0");
+    if (!(c.rest_length >= 0.0)) fail("joint " + std::to_string(j) + ": rest length must be >= 0");
   }
   for (int k = 1; k + 1 < n; ++k) {
     Link& link = cable.links[k];
-    if (link.type != LinkType::Rolling) continue;
-    const Vec3 arrival = world_.distance(cable.joints[k - 1].constraint).local_b;
-    const Vec3 departure = world_.distance(cable.joints[k].constraint).local_a;
-    link.stored = wrappedArc(xy(arrival), xy(departure), link.radius, link.orientation);
+    if (link.type == LinkType::Rolling)
+      link.stored = wrappedArc(xy(spans[k - 1].local_b), xy(spans[k].local_a), link.radius, link.orientation);
   }
+  for (const DistanceConstraint& c : spans) cable.joints.push_back({world_.addDistance(c)});
   cables_.push_back(std::move(cable));
   return static_cast<int>(cables_.size() - 1);
 }

@@ -1,6 +1,7 @@
 #include "reeve/engine/body.h"
 
-#include <cassert>
+#include <cmath>
+#include <stdexcept>
 
 namespace reeve {
 
@@ -12,7 +13,8 @@ BodyState makeBodyState(const BodyDef& def) {
   s.v = def.linear_velocity;
   s.omega = def.angular_velocity;
   const double m = def.mass > 0.0 ? def.mass : def.density * volume(def.shape);
-  assert(m > 0.0 && "a dynamic body needs a positive mass");
+  if (!(m > 0.0) || !std::isfinite(m))
+    throw std::invalid_argument("body '" + def.name + "': a dynamic body needs a finite mass > 0 kg");
   s.inv_mass = 1.0 / m;
   s.inertia = principalInertia(def.shape, m);
   s.inv_inertia = s.inertia.cwiseInverse();

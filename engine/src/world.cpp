@@ -1,6 +1,7 @@
 #include "reeve/engine/world.h"
 
 #include <cassert>
+#include <stdexcept>
 
 namespace reeve {
 
@@ -13,11 +14,16 @@ BodyId World::addBody(const BodyDef& def) {
 }
 
 HingeId World::addHinge(const HingeDef& def) {
+  const auto valid = [&](BodyId id) { return id == kWorldBody || (id >= 0 && id < bodyCount()); };
+  if (!valid(def.body) || !valid(def.other) || def.body == def.other)
+    throw std::invalid_argument("hinge: needs two different existing bodies");
+  if (!(def.axis.norm() > 0.0)) throw std::invalid_argument("hinge: the axis must be a non-zero vector");
   hinges_.push_back(makeHingeJoint(def, body(def.body), body(def.other)));
   return static_cast<HingeId>(hinges_.size() - 1);
 }
 
 DistanceId World::addDistance(const DistanceConstraint& c) {
+  assert(c.a >= kWorldBody && c.a < bodyCount() && c.b >= kWorldBody && c.b < bodyCount());
   distances_.push_back(c);
   return static_cast<DistanceId>(distances_.size() - 1);
 }

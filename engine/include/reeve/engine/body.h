@@ -54,7 +54,8 @@ struct BodyState {
 };
 
 /// Builds the solver state of `def`: mass from density unless given,
-/// inertia of the solid shape.
+/// inertia of the solid shape. Throws std::invalid_argument when a dynamic
+/// body's mass is not finite and positive.
 BodyState makeBodyState(const BodyDef& def);
 
 }  // namespace reeve

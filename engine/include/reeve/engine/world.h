@@ -36,7 +36,11 @@ class World {
 
   explicit World(SolverSettings settings = {});
 
+  /// Adds a body; throws std::invalid_argument for a dynamic body without
+  /// a finite positive mass.
   BodyId addBody(const BodyDef& def);
+  /// Adds a hinge from the current poses; throws std::invalid_argument for
+  /// unknown or identical bodies or a zero axis.
   HingeId addHinge(const HingeDef& def);
   DistanceId addDistance(const DistanceConstraint& c);
   void addSubstepHook(SubstepHook hook);
@@ -58,6 +62,7 @@ class World {
   std::optional<BodyId> findBody(const std::string& name) const;
 
   const std::vector<HingeJoint>& hinges() const { return hinges_; }
+  int distanceCount() const { return static_cast<int>(distances_.size()); }
   DistanceConstraint& distance(DistanceId id) { return distances_[id]; }
   const DistanceConstraint& distance(DistanceId id) const { return distances_[id]; }
   /// Tension (N) of a distance constraint over the last substep: -lambda/h^2.

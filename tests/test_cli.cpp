@@ -145,7 +145,7 @@ TEST_F(Cli, MissingFfmpegIsAClearError) {
 
 TEST_F(Cli, BadScenesExitWithCode2AndNameFilePathExpectedAndFound) {
   const std::string base =
-      R"({"solver": {}, "bodies": [{"name": "w", "shape": {"type": "cylinder", "radius_m": RADIUS, "half_length_m": 0.1}, "mass_kg": 1, "position_m": [0, 0, 0]}]})";
+      R"({"name": "t", "solver": {}, "bodies": [{"name": "w", "shape": {"type": "cylinder", "radius_m": RADIUS, "half_length_m": 0.1}, "mass_kg": 1, "position_m": [0, 0, 0]}]})";
   const std::string bad_radius = write("bad_radius.json", std::regex_replace(base, std::regex("RADIUS"), "-0.5"));
   const Result r = reeve("validate " + bad_radius);
   EXPECT_EQ(r.code, 2);

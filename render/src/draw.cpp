@@ -8,14 +8,6 @@ namespace reeve {
 namespace {
 
 constexpr int kBodySegments = 72;
-constexpr int kTubeSegments = 16;
-
-void drawMesh(const Mesh& mesh) {
-  if (mesh.vertexCount() == 0) return;
-  glVertexPointer(3, GL_FLOAT, 0, mesh.positions.data());
-  glNormalPointer(GL_FLOAT, 0, mesh.normals.data());
-  glDrawArrays(GL_TRIANGLES, 0, mesh.vertexCount());
-}
 
 // Multiplies the model-view matrix by translate * rotate * scale.
 void transform(const Vec3& translation, const Quat& rotation, const Vec3& scale) {
@@ -42,9 +34,18 @@ double niceStep(double raw) {
 ShapeMeshes::ShapeMeshes()
     : box(unitBox()),
       cylinder(unitCylinder(kBodySegments)),
-      sphere(unitSphere(kBodySegments, kBodySegments / 2)),
-      tube_segment(unitCylinder(kTubeSegments)),
-      tube_joint(unitSphere(kTubeSegments, kTubeSegments / 2)) {}
+      sphere(unitSphere(kBodySegments, kBodySegments / 2)) {
+  const TwoToneMesh coarse = unitSphere(kTubeSides, kTubeSides / 2);
+  appendTransformed(ball, coarse.main, Eigen::Affine3d::Identity());
+  appendTransformed(ball, coarse.accent, Eigen::Affine3d::Identity());
+}
+
+void drawMesh(const Mesh& mesh) {
+  if (mesh.vertexCount() == 0) return;
+  glVertexPointer(3, GL_FLOAT, 0, mesh.positions.data());
+  glNormalPointer(GL_FLOAT, 0, mesh.normals.data());
+  glDrawArrays(GL_TRIANGLES, 0, mesh.vertexCount());
+}
 
 void setColour(const style::Colour& colour, float alpha) {
   glColor4f(colour.x(), colour.y(), colour.z(), alpha);
@@ -74,24 +75,8 @@ void drawBody(const ShapeMeshes& meshes, const Shape& shape, const BodyState& bo
 void drawBall(const ShapeMeshes& meshes, const Vec3& centre, double radius) {
   glPushMatrix();
   transform(centre, Quat::Identity(), Vec3::Constant(radius));
-  drawMesh(meshes.tube_joint.main);
-  drawMesh(meshes.tube_joint.accent);
+  drawMesh(meshes.ball);
   glPopMatrix();
-}
-
-void drawTube(const ShapeMeshes& meshes, const std::vector<Vec3>& path, double radius) {
-  for (size_t i = 0; i + 1 < path.size(); ++i) {
-    const Vec3 span = path[i + 1] - path[i];
-    const double length = span.norm();
-    if (length <= 0.0) continue;
-    glPushMatrix();
-    transform(0.5 * (path[i] + path[i + 1]), Quat::FromTwoVectors(Vec3::UnitZ(), span),
-              Vec3(radius, radius, 0.5 * length));
-    drawMesh(meshes.tube_segment.main);
-    drawMesh(meshes.tube_segment.accent);
-    glPopMatrix();
-  }
-  for (const Vec3& p : path) drawBall(meshes, p, radius);
 }
 
 void drawFloor(double y, double centre_x, double centre_z, double half, float line_px) {

@@ -2,19 +2,20 @@
 // context with the camera's matrices loaded.
 #pragma once
 
-#include <vector>
-
 #include "meshes.h"
 #include "reeve/engine/body.h"
 #include "style.h"
 
 namespace reeve {
 
+/// Facets around a cable tube.
+inline constexpr int kTubeSides = 16;
+
 /// The tessellated unit shapes, built once per context.
 struct ShapeMeshes {
   Mesh box;
-  TwoToneMesh cylinder, sphere;          // bodies
-  TwoToneMesh tube_segment, tube_joint;  // cables and markers, coarser
+  TwoToneMesh cylinder, sphere;  // bodies
+  Mesh ball;                     // cable ends and markers, coarser
   ShapeMeshes();
 };
 
@@ -25,9 +26,8 @@ void setColour(const style::Colour& colour, float alpha = 1.0f);
 void drawBody(const ShapeMeshes& meshes, const Shape& shape, const BodyState& body,
               const style::Colour& colour);
 
-/// A tube of `radius` (m) along the polyline `path` (m, world), rounded at
-/// its vertices, in the current colour.
-void drawTube(const ShapeMeshes& meshes, const std::vector<Vec3>& path, double radius);
+/// `mesh` as it is, in the current colour and model-view.
+void drawMesh(const Mesh& mesh);
 
 /// A ball of `radius` (m) at `centre` (m, world), in the current colour.
 void drawBall(const ShapeMeshes& meshes, const Vec3& centre, double radius);

@@ -1,12 +1,14 @@
 #include "meshes.h"
 
 #include <cmath>
+#include <cstddef>
 #include <numbers>
 
 namespace reeve {
 namespace {
 
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
+constexpr double kMitreMaxTurnRad = 45.0 * std::numbers::pi / 180.0;  // tube joints
 
 // Sector i of n (around local z) is an accent when it falls in the first
 // or third quarter turn.
@@ -78,6 +80,68 @@ TwoToneMesh unitSphere(int slices, int stacks) {
     }
   }
   return mesh;
+}
+
+void appendTransformed(Mesh& mesh, const Mesh& unit, const Eigen::Affine3d& pose) {
+  const Eigen::Matrix3d normal_matrix = pose.linear().inverse().transpose();
+  for (int v = 0; v < unit.vertexCount(); ++v) {
+    const Vec3 p = Eigen::Vector3f(&unit.positions[3 * v]).cast<double>();
+    const Vec3 n = Eigen::Vector3f(&unit.normals[3 * v]).cast<double>();
+    mesh.addVertex(pose * p, (normal_matrix * n).normalized());
+  }
+}
+
+void appendTube(Mesh& mesh, const std::vector<Vec3>& path, double radius, int sides,
+                const Mesh& ball) {
+  std::vector<Vec3> points;
+  for (const Vec3& p : path)
+    if (points.empty() || p != points.back()) points.push_back(p);
+  const auto addBall = [&](const Vec3& centre) {
+    appendTransformed(mesh, ball, Eigen::Translation3d(centre) * Eigen::Scaling(radius));
+  };
+  if (points.empty()) return;
+  addBall(points.front());
+  addBall(points.back());
+  const int segments = static_cast<int>(points.size()) - 1;
+  std::vector<Vec3> directions;
+  for (int i = 0; i < segments; ++i) directions.push_back((points[i + 1] - points[i]).normalized());
+  // Normal of the plane that ends a segment at point k: the bisector of
+  // the two directions when the turn is gentle (both segments end on the
+  // same ellipse), else square to `own` with a ball over the corner.
+  const auto jointNormal = [&](int k, const Vec3& own) -> Vec3 {
+    if (k == 0 || k == segments) return own;
+    const Vec3& in = directions[k - 1];
+    const Vec3& out = directions[k];
+    return in.dot(out) >= std::cos(kMitreMaxTurnRad) ? (in + out).normalized() : own;
+  };
+  // Rings are parallel-transported from segment to segment so that the
+  // mitred ends of neighbours match vertex for vertex.
+  Vec3 u = directions[0].unitOrthogonal();
+  for (int i = 0; i < segments; ++i) {
+    const Vec3& t = directions[i];
+    if (i > 0) {
+      u = (Quat::FromTwoVectors(directions[i - 1], t) * u).normalized();
+      if (directions[i - 1].dot(t) < std::cos(kMitreMaxTurnRad)) addBall(points[i]);
+    }
+    const Vec3 v = t.cross(u);
+    const Vec3 start_normal = jointNormal(i, t), end_normal = jointNormal(i + 1, t);
+    // The point at `offset` from the axis at `centre`, slid along the axis
+    // onto the joint plane through `centre` with `normal`.
+    const auto onPlane = [&](const Vec3& centre, const Vec3& offset, const Vec3& normal) {
+      return Vec3(centre + offset - t * (offset.dot(normal) / t.dot(normal)));
+    };
+    for (int k = 0; k < sides; ++k) {
+      const double a0 = kTwoPi * k / sides, a1 = kTwoPi * (k + 1) / sides;
+      const Vec3 n0 = std::cos(a0) * u + std::sin(a0) * v;
+      const Vec3 n1 = std::cos(a1) * u + std::sin(a1) * v;
+      const Vec3 b0 = onPlane(points[i], radius * n0, start_normal);
+      const Vec3 b1 = onPlane(points[i], radius * n1, start_normal);
+      const Vec3 e0 = onPlane(points[i + 1], radius * n0, end_normal);
+      const Vec3 e1 = onPlane(points[i + 1], radius * n1, end_normal);
+      mesh.addVertex(b0, n0), mesh.addVertex(b1, n1), mesh.addVertex(e1, n1);
+      mesh.addVertex(b0, n0), mesh.addVertex(e1, n1), mesh.addVertex(e0, n0);
+    }
+  }
 }
 
 }  // namespace reeve

@@ -34,4 +34,15 @@ TwoToneMesh unitCylinder(int segments);
 /// quarter lunes about local z.
 TwoToneMesh unitSphere(int slices, int stacks);
 
+/// Appends `unit` moved by `pose` (translation * rotation * scaling):
+/// positions transformed, normals by the inverse transpose, renormalized.
+void appendTransformed(Mesh& mesh, const Mesh& unit, const Eigen::Affine3d& pose);
+
+/// Appends a tube of `radius` (m) along the polyline `path` with `sides`
+/// smooth facets around. Segments meet in mitre joints where the path
+/// turns gently; at sharper turns and at both ends a copy of `ball` (a unit
+/// sphere) rounds the tube off.
+void appendTube(Mesh& mesh, const std::vector<Vec3>& path, double radius, int sides,
+                const Mesh& ball);
+
 }  // namespace reeve

@@ -17,23 +17,27 @@
 namespace reeve {
 namespace {
 
-constexpr int kSupersample = 3;        // 3x3 samples per output pixel
+constexpr int kSupersample = 3;  // 3x3 samples per output pixel, where OSMesa allows
 constexpr double kArcStepRad = 2.0 * std::numbers::pi / 96.0;
 
-// Where the floor goes and how far the scene reaches, from its points.
+// Where the floor goes and how far everything drawn reaches (m, world).
 struct Layout {
-  Eigen::AlignedBox3d scene;  // bodies and cable, m
-  double floor_y = 0.0, floor_half = 1.0;
+  Vec3 floor_centre = Vec3::Zero();  // just below the lowest body, under the scene's centre
+  double floor_half = 1.0;           // half side of the square floor
+  Eigen::AlignedBox3d all;           // bodies, cables and floor
 };
 
 Layout layout(const World& world, const CableSystem& cables) {
+  Eigen::AlignedBox3d scene;
+  for (const Vec3& p : scenePoints(world, cables)) scene.extend(p);
+  if (scene.isEmpty()) scene.extend(Vec3::Zero());
+  const double extent = std::max(scene.sizes().maxCoeff(), 1e-3);
   Layout l;
-  for (const Vec3& p : scenePoints(world, cables)) l.scene.extend(p);
-  if (l.scene.isEmpty()) l.scene.extend(Vec3::Zero());
-  const Vec3 size = l.scene.sizes();
-  const double extent = std::max(size.maxCoeff(), 1e-3);
-  l.floor_y = l.scene.min().y() - 0.02 * extent;
+  l.floor_centre = Vec3(scene.center().x(), scene.min().y() - 0.02 * extent, scene.center().z());
   l.floor_half = 0.75 * extent;
+  l.all = scene;
+  l.all.extend(l.floor_centre - Vec3(l.floor_half, 0.0, l.floor_half));
+  l.all.extend(l.floor_centre + Vec3(l.floor_half, 0.0, l.floor_half));
   return l;
 }
 
@@ -64,10 +68,48 @@ void setUpLights() {
   glMaterialf(GL_FRONT, GL_SHININESS, 40.0f);
 }
 
-void drawCables(const ShapeMeshes& meshes, const std::vector<std::vector<Vec3>>& paths,
-                double radius) {
+// Projection with a depth range around everything drawn, lights fixed to
+// the camera, then the view: the model-view matrix ends as world -> eye.
+void loadCamera(const Camera& camera, const Layout& l, double aspect) {
+  const double reach = 0.5 * l.all.diagonal().norm();
+  const double eye_to_centre = (camera.eye - l.all.center()).norm();
+  const double far = 1.01 * (eye_to_centre + reach);
+  const double near = std::max(0.99 * (eye_to_centre - reach), 1e-3 * far);
+  glMatrixMode(GL_PROJECTION);
+  glLoadMatrixd(projectionMatrix(camera, aspect, near, far).data());
+  setUpLights();
+  glLoadMatrixd(viewMatrix(camera).data());
+}
+
+// The floor, unlit, fading into the background with distance.
+void drawGround(const Camera& camera, const Layout& l, float line_px) {
+  const double eye_to_floor = (camera.eye - l.floor_centre).norm();
+  const GLfloat fog_colour[] = {style::kBackground.x(), style::kBackground.y(),
+                                style::kBackground.z(), 1.0f};
+  glFogi(GL_FOG_MODE, GL_LINEAR);
+  glFogfv(GL_FOG_COLOR, fog_colour);
+  glFogf(GL_FOG_START, static_cast<float>(eye_to_floor - 0.5 * l.floor_half));
+  glFogf(GL_FOG_END, static_cast<float>(eye_to_floor + 1.5 * l.floor_half));
+  glDisable(GL_LIGHTING);
+  glDisable(GL_CULL_FACE);
+  glEnable(GL_FOG);
+  drawFloor(l.floor_centre.y(), l.floor_centre.x(), l.floor_centre.z(), l.floor_half, line_px);
+  glDisable(GL_FOG);
+}
+
+void drawBodies(const ShapeMeshes& meshes, const World& world) {
+  glEnable(GL_LIGHTING);
+  glEnable(GL_NORMALIZE);  // shapes are scaled unit meshes
+  glEnable(GL_CULL_FACE);
+  for (BodyId id = 0; id < world.bodyCount(); ++id) {
+    const BodyDef& def = world.bodyDef(id);
+    drawBody(meshes, def.shape, world.body(id), style::bodyColour(id, def.is_static));
+  }
+}
+
+void drawCables(const Mesh& tubes) {
   setColour(style::kCable);
-  for (const auto& path : paths) drawTube(meshes, path, radius);
+  drawMesh(tubes);
   // Cable hidden behind bodies, faintly through them: front faces only,
   // each pixel blended once (stencil).
   glDepthFunc(GL_GREATER);
@@ -78,7 +120,7 @@ void drawCables(const ShapeMeshes& meshes, const std::vector<std::vector<Vec3>>&
   glStencilFunc(GL_EQUAL, 0, 0xff);
   glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
   setColour(style::kCable, style::kHiddenCableAlpha);
-  for (const auto& path : paths) drawTube(meshes, path, radius);
+  drawMesh(tubes);
   glDisable(GL_STENCIL_TEST);
   glDisable(GL_BLEND);
   glDepthMask(GL_TRUE);
@@ -86,18 +128,20 @@ void drawCables(const ShapeMeshes& meshes, const std::vector<std::vector<Vec3>>&
 }
 
 // Link markers in the paper's colours, over everything: red at the tangent
-// points of rolling links, green at attachments.
+// points of rolling links, green at attachments. Back faces are culled, so
+// a ball needs no depth test to cover itself correctly.
 void drawMarkers(const ShapeMeshes& meshes, const CableSystem& cables, double radius) {
-  glClear(GL_DEPTH_BUFFER_BIT);
+  glDisable(GL_DEPTH_TEST);
+  const auto mark = [&](const Link& link, const Vec3& point) {
+    setColour(link.type == LinkType::Rolling ? style::kRollingMarker : style::kAttachmentMarker);
+    drawBall(meshes, point, radius);
+  };
   for (int c = 0; c < static_cast<int>(cables.cables().size()); ++c) {
     const Cable& cable = cables.cables()[c];
-    for (int j = 0; j < static_cast<int>(cable.joints.size()); ++j)
-      for (const auto& [link, point] : {std::pair{cable.links[j], cables.startPoint(c, j)},
-                                         std::pair{cable.links[j + 1], cables.endPoint(c, j)}}) {
-        setColour(link.type == LinkType::Rolling ? style::kRollingMarker
-                                                 : style::kAttachmentMarker);
-        drawBall(meshes, point, radius);
-      }
+    for (int j = 0; j < static_cast<int>(cable.joints.size()); ++j) {
+      mark(cable.links[j], cables.startPoint(c, j));
+      mark(cable.links[j + 1], cables.endPoint(c, j));
+    }
   }
 }
 
@@ -105,6 +149,7 @@ void drawMarkers(const ShapeMeshes& meshes, const CableSystem& cables, double ra
 
 struct Renderer::Context {
   OSMesaContext osmesa = nullptr;
+  int supersample = kSupersample;
   std::vector<std::uint8_t> buffer;  // RGBA, supersampled, bottom row first
   ShapeMeshes meshes;
 
@@ -124,80 +169,61 @@ Renderer::Renderer(int width, int height) : width_(width), height_(height) {
     throw std::invalid_argument("Renderer: image size must be positive, got " +
                                 std::to_string(width) + "x" + std::to_string(height));
   context_ = std::make_unique<Context>();
-  context_->osmesa = OSMesaCreateContextExt(OSMESA_RGBA, 24, 8, 0, nullptr);
-  if (!context_->osmesa)
+  Context& c = *context_;
+  c.osmesa = OSMesaCreateContextExt(OSMESA_RGBA, 24, 8, 0, nullptr);
+  if (!c.osmesa)
     throw std::runtime_error(
         "Renderer: OSMesaCreateContextExt (RGBA, 24-bit depth, 8-bit stencil) failed; is "
         "Mesa's libOSMesa installed (apt-get install libosmesa6)?");
-  context_->buffer.resize(4 * std::size_t(width) * kSupersample * height * kSupersample);
-  context_->makeCurrent(width * kSupersample, height * kSupersample);
+  // OSMesa accepts larger buffers but clips drawing to its maximum size.
+  c.buffer.resize(4);
+  c.makeCurrent(1, 1);
+  GLint max_width = 0, max_height = 0;
+  OSMesaGetIntegerv(OSMESA_MAX_WIDTH, &max_width);
+  OSMesaGetIntegerv(OSMESA_MAX_HEIGHT, &max_height);
+  c.supersample = std::min({kSupersample, max_width / width, max_height / height});
+  if (c.supersample < 1)
+    throw std::runtime_error("Renderer: " + std::to_string(width) + "x" +
+                             std::to_string(height) + " exceeds OSMesa's maximum of " +
+                             std::to_string(max_width) + "x" + std::to_string(max_height));
+  c.buffer.resize(4 * std::size_t(width) * c.supersample * height * c.supersample);
+  c.makeCurrent(width * c.supersample, height * c.supersample);
 }
 
 Renderer::~Renderer() = default;
 
 Image Renderer::render(const World& world, const CableSystem& cables, const Camera& camera) {
-  const int w = width_ * kSupersample, h = height_ * kSupersample;
+  const int factor = context_->supersample;
+  const int w = width_ * factor, h = height_ * factor;
   context_->makeCurrent(w, h);
   const ShapeMeshes& meshes = context_->meshes;
   const Layout l = layout(world, cables);
-  const Vec3 floor_centre(l.scene.center().x(), l.floor_y, l.scene.center().z());
-
-  // Depth range: the bounding sphere of scene and floor.
-  Eigen::AlignedBox3d all = l.scene;
-  all.extend(floor_centre - Vec3(l.floor_half, 0.0, l.floor_half));
-  all.extend(floor_centre + Vec3(l.floor_half, 0.0, l.floor_half));
-  const double reach = 0.5 * all.diagonal().norm();
-  const double eye_to_centre = (camera.eye - all.center()).norm();
-  const double far = 1.01 * (eye_to_centre + reach);
-  const double near = std::max(0.99 * (eye_to_centre - reach), 1e-3 * far);
 
   glViewport(0, 0, w, h);
   glClearColor(style::kBackground.x(), style::kBackground.y(), style::kBackground.z(), 1.0f);
   glClearStencil(0);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
-  glMatrixMode(GL_PROJECTION);
-  glLoadMatrixd(projectionMatrix(camera, double(width_) / height_, near, far).data());
-  setUpLights();
-  glLoadMatrixd(viewMatrix(camera).data());
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
-
-  // The floor, unlit, fading into the background with distance.
-  const double eye_to_floor = (camera.eye - floor_centre).norm();
-  glFogi(GL_FOG_MODE, GL_LINEAR);
-  const GLfloat fog_colour[] = {style::kBackground.x(), style::kBackground.y(),
-                                style::kBackground.z(), 1.0f};
-  glFogfv(GL_FOG_COLOR, fog_colour);
-  glFogf(GL_FOG_START, static_cast<float>(eye_to_floor - 0.5 * l.floor_half));
-  glFogf(GL_FOG_END, static_cast<float>(eye_to_floor + 1.5 * l.floor_half));
-  glDisable(GL_LIGHTING);
-  glDisable(GL_CULL_FACE);
-  glEnable(GL_FOG);
-  drawFloor(l.floor_y, floor_centre.x(), floor_centre.z(), l.floor_half, kSupersample);
-  glDisable(GL_FOG);
-
-  glEnable(GL_LIGHTING);
-  glEnable(GL_NORMALIZE);  // shapes are scaled unit meshes
-  glEnable(GL_CULL_FACE);
   glEnableClientState(GL_VERTEX_ARRAY);
   glEnableClientState(GL_NORMAL_ARRAY);
-  for (BodyId id = 0; id < world.bodyCount(); ++id) {
-    const BodyDef& def = world.bodyDef(id);
-    drawBody(meshes, def.shape, world.body(id), style::bodyColour(id, def.is_static));
-  }
+  loadCamera(camera, l, double(width_) / height_);
+  drawGround(camera, l, factor);
+  drawBodies(meshes, world);
 
   // Cable thickness: a fixed number of pixels at the target's distance.
   const double pixel = 2.0 * (camera.target - camera.eye).norm() *
                        std::tan(camera.fov_y_deg * std::numbers::pi / 360.0) / height_;
   const double cable_radius = style::kCableRadiusPx * pixel;
-  std::vector<std::vector<Vec3>> paths;
+  Mesh tubes;
   for (int c = 0; c < static_cast<int>(cables.cables().size()); ++c)
-    paths.push_back(cablePath(cables, c, kArcStepRad));
-  drawCables(meshes, paths, cable_radius);
+    appendTube(tubes, cablePath(cables, c, kArcStepRad), cable_radius, kTubeSides,
+               meshes.ball);
+  drawCables(tubes);
   drawMarkers(meshes, cables, style::kMarkerScale * cable_radius);
 
   glFinish();
-  return downsample(context_->buffer, width_, height_, kSupersample);
+  return downsample(context_->buffer, width_, height_, factor);
 }
 
 }  // namespace reeve

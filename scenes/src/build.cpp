@@ -18,7 +18,8 @@ const Vec3 kGravity(0.0, -9.81, 0.0);
 
 SolverSettings solverOf(const nlohmann::json& solver) {
   SolverSettings settings;
-  settings.gravity = solver.contains("gravity_m_per_s2") ? vec3(solver.at("gravity_m_per_s2")) : kGravity;
+  settings.gravity =
+      solver.contains("gravity_m_per_s2") ? vec3(solver.at("gravity_m_per_s2")) : kGravity;
   settings.substeps = solver.value("substeps", kSubsteps);
   settings.iterations = solver.value("iterations", kIterations);
   return settings;
@@ -73,8 +74,6 @@ Scene buildScene(const nlohmann::json& document, const std::string& source) {
 
 namespace reeve {
 
-int Scene::frameCount() const {
-  return static_cast<int>(std::lround(duration_s * frame_rate_hz));
-}
+int Scene::frameCount() const { return static_cast<int>(std::lround(duration_s * frame_rate_hz)); }
 
 }  // namespace reeve

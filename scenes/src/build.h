@@ -3,11 +3,10 @@
 // keys and types are as the schema says.
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <string>
 #include <unordered_map>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "reeve/scene/scene.h"
 

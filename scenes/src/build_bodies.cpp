@@ -1,5 +1,4 @@
 #include "build.h"
-
 #include "describe.h"
 
 namespace reeve::scene_detail {
@@ -11,7 +10,8 @@ Shape shapeOf(const nlohmann::json& shape) {
   const std::string type = shape.at("type").get<std::string>();
   if (type == "box") return Shape::box(vec3(shape.at("half_extents_m")));
   if (type == "cylinder")
-    return Shape::cylinder(shape.at("radius_m").get<double>(), shape.at("half_length_m").get<double>());
+    return Shape::cylinder(shape.at("radius_m").get<double>(),
+                           shape.at("half_length_m").get<double>());
   return Shape::sphere(shape.at("radius_m").get<double>());
 }
 
@@ -48,16 +48,18 @@ BodyNames addBodies(const nlohmann::json& bodies, World& world, const std::strin
       fail("name", "a body name other than \"world\" (it names the fixed world frame)",
            quote(def.name));
     if (names.ids.count(def.name))
-      fail("name", "a body name not already used by /bodies/" +
-                       std::to_string(names.ids.at(def.name)),
+      fail("name",
+           "a body name not already used by /bodies/" + std::to_string(names.ids.at(def.name)),
            quote(def.name));
     def.shape = shapeOf(b.at("shape"));
     def.position = vec3(b.at("position_m"));
     if (const auto o = b.find("orientation"); o != b.end()) {
       const Vec3 axis = vec3(o->at("axis"));
       if (axis.squaredNorm() == 0.0)
-        fail("orientation/axis", "a non-zero rotation axis", literal(o->at("axis")));
-      def.orientation = Quat(Eigen::AngleAxisd(o->at("angle_rad").get<double>(), axis.normalized()));
+        throw SceneError(source, path + "/orientation/axis", "a non-zero rotation axis",
+                         literal(o->at("axis")));
+      def.orientation =
+          Quat(Eigen::AngleAxisd(o->at("angle_rad").get<double>(), axis.normalized()));
     }
     def.is_static = b.value("static", false);
     const bool has_density = b.contains("density_kg_per_m3");
@@ -73,10 +75,14 @@ BodyNames addBodies(const nlohmann::json& bodies, World& world, const std::strin
       if (has_density == has_mass)
         fail("", "exactly one of density_kg_per_m3 or mass_kg for a dynamic body",
              has_mass ? "both" : "neither");
-      if (has_mass) def.mass = b.at("mass_kg").get<double>();
-      else def.density = b.at("density_kg_per_m3").get<double>();
-      if (const auto v = b.find("linear_velocity_m_per_s"); v != b.end()) def.linear_velocity = vec3(*v);
-      if (const auto w = b.find("angular_velocity_rad_per_s"); w != b.end()) def.angular_velocity = vec3(*w);
+      if (has_mass)
+        def.mass = b.at("mass_kg").get<double>();
+      else
+        def.density = b.at("density_kg_per_m3").get<double>();
+      if (const auto v = b.find("linear_velocity_m_per_s"); v != b.end())
+        def.linear_velocity = vec3(*v);
+      if (const auto w = b.find("angular_velocity_rad_per_s"); w != b.end())
+        def.angular_velocity = vec3(*w);
     }
     const BodyId id = world.addBody(def);
     names.ids.emplace(def.name, id);

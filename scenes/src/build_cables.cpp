@@ -9,9 +9,12 @@ namespace {
 
 const char* shapeName(Shape::Type type) {
   switch (type) {
-    case Shape::Type::Box: return "box";
-    case Shape::Type::Cylinder: return "cylinder";
-    case Shape::Type::Sphere: return "sphere";
+    case Shape::Type::Box:
+      return "box";
+    case Shape::Type::Cylinder:
+      return "cylinder";
+    case Shape::Type::Sphere:
+      return "sphere";
   }
   return "shape";
 }
@@ -46,8 +49,7 @@ void addCables(const nlohmann::json& cables, const BodyNames& names, const World
     CableDef def;
     def.name = cable.at("name").get<std::string>();
     if (!cable_names.insert(def.name).second)
-      throw SceneError(source, path + "/name", "a cable name not already used",
-                       quote(def.name));
+      throw SceneError(source, path + "/name", "a cable name not already used", quote(def.name));
 
     const nlohmann::json& links = cable.at("links");
     for (std::size_t k = 0; k < links.size(); ++k)

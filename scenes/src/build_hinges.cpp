@@ -1,5 +1,4 @@
 #include "build.h"
-
 #include "describe.h"
 
 namespace reeve::scene_detail {

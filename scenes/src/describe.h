@@ -2,10 +2,9 @@
 // SceneError's "expected ..., got ..." (scenes/README.md, Errors).
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 namespace reeve::scene_detail {
 
@@ -21,7 +20,7 @@ std::string literal(const nlohmann::json& value);
 /// `text` as a JSON string literal: `"wheel_left"`.
 std::string quote(const std::string& text);
 
-/// Shortest text that reads back as `value`: 0.1 -> "0.1", 2 -> "2".
+/// Shortest text that reads back as `value`: 0.1 -> "0.1", 60.0 -> "60".
 std::string number(double value);
 
 /// "a, b, c" (at most `max` names, then ", ...").

@@ -4,12 +4,23 @@
 
 namespace reeve {
 
+namespace {
+
+std::string message(const std::string& file, const std::string& json_path,
+                    const std::string& expected, const std::string& found) {
+  return file + ": " + (json_path.empty() ? "(root)" : json_path) + ": expected " + expected +
+         ", got " + found;
+}
+
+}  // namespace
+
 SceneError::SceneError(std::string file, std::string json_path, std::string expected,
                        std::string found)
-    : SceneError(file + ": " + (json_path.empty() ? "(root)" : json_path) + ": expected " +
-                     expected + ", got " + found,
-                 std::move(file), std::move(json_path), std::move(expected), std::move(found), 0,
-                 0) {}
+    : std::runtime_error(message(file, json_path, expected, found)),
+      file_(std::move(file)),
+      json_path_(std::move(json_path)),
+      expected_(std::move(expected)),
+      found_(std::move(found)) {}
 
 SceneError SceneError::syntax(std::string file, int line, int column, std::string reason) {
   const std::string what = file + ":" + std::to_string(line) + ":" + std::to_string(column) +

@@ -1,9 +1,8 @@
 // Strict JSON text -> document, with positions for syntax errors.
 #pragma once
 
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 namespace reeve::scene_detail {
 

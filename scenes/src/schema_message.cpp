@@ -1,6 +1,7 @@
 #include "schema_message.h"
 
 #include <algorithm>
+#include <string_view>
 
 #include "describe.h"
 #include "schema_walk.h"
@@ -119,7 +120,7 @@ std::vector<std::string> allowedKeys(const Schemas& schemas) {
 
 // A value whose kind may be wrong: strings and numbers as written, other
 // kinds described.
-std::string found(const json* value) {
+std::string foundValue(const json* value) {
   if (!value) return "nothing";
   return value->is_string() || value->is_number() ? literal(*value) : describe(*value);
 }
@@ -143,19 +144,18 @@ SchemaProblem phraseSchemaError(const ordered_json& schema, const json& document
             quote(key)};
   }
   if (startsWith(description, kType))
-    return {pointer, typePhrase(site.schemas),
-            site.value ? describe(*site.value) : "nothing"};
+    return {pointer, typePhrase(site.schemas), site.value ? describe(*site.value) : "nothing"};
   if (startsWith(description, kBound))
     return {pointer, typePhrase(site.schemas) + " " + boundsPhrase(site.schemas),
-            found(site.value)};
+            foundValue(site.value)};
   if (startsWith(description, kEnum)) {
     const ordered_json* s = firstWith(site.schemas, "enum");
     return {pointer, s ? "one of " + literalList(s->at("enum")) : "an allowed value",
-            found(site.value)};
+            foundValue(site.value)};
   }
   if (startsWith(description, kConst)) {
     const ordered_json* s = firstWith(site.schemas, "const");
-    return {pointer, s ? s->at("const").dump() : "the one allowed value", found(site.value)};
+    return {pointer, s ? s->at("const").dump() : "the one allowed value", foundValue(site.value)};
   }
   if (startsWith(description, kItems)) {
     const ordered_json* s = firstWith(site.schemas, "minItems");
@@ -169,7 +169,7 @@ SchemaProblem phraseSchemaError(const ordered_json& schema, const json& document
     return {pointer,
             min == 1 ? "a non-empty string"
                      : "a string of at least " + std::to_string(min) + " characters",
-            found(site.value)};
+            foundValue(site.value)};
   }
   return {pointer, "a value allowed by the scene schema (" + description + ")",
           site.value ? describe(*site.value) : "nothing"};

@@ -1,10 +1,9 @@
 // Turning one valijson error into "PATH: expected ..., got ..." words.
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 namespace reeve::scene_detail {
 

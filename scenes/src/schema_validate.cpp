@@ -43,9 +43,8 @@ std::vector<std::string> tokensOf(const std::vector<std::string>& context) {
   std::vector<std::string> tokens;
   for (std::size_t i = 1; i < context.size(); ++i) {
     const std::string& c = context[i];
-    tokens.push_back(c.size() >= 2 && c.front() == '[' && c.back() == ']'
-                         ? c.substr(1, c.size() - 2)
-                         : c);
+    tokens.push_back(
+        c.size() >= 2 && c.front() == '[' && c.back() == ']' ? c.substr(1, c.size() - 2) : c);
   }
   return tokens;
 }
@@ -65,8 +64,8 @@ void validateSceneSchema(const nlohmann::json& document, const std::string& sour
       break;
     }
   if (!first) first = &*results.begin();
-  const SchemaProblem problem = phraseSchemaError(compiled.ordered, document,
-                                                  tokensOf(first->context), first->description);
+  const SchemaProblem problem =
+      phraseSchemaError(compiled.ordered, document, tokensOf(first->context), first->description);
   throw SceneError(source, problem.pointer, problem.expected, problem.found);
 }
 

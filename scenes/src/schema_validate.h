@@ -1,9 +1,8 @@
 // JSON Schema validation of a scene document (scenes/scene.schema.json).
 #pragma once
 
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 namespace reeve::scene_detail {
 

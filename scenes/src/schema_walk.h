@@ -2,10 +2,9 @@
 // schema errors from the schema itself (allowed keys, types, bounds).
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 namespace reeve::scene_detail {
 

@@ -11,6 +11,7 @@
 #include "csv_writer.h"
 #include "progress.h"
 #include "reeve/render/renderer.h"
+#include "reeve/render/video.h"
 #include "reeve/scene/scene.h"
 
 namespace reeve {
@@ -40,6 +41,9 @@ void checkOutputs(const RunOptions& o, int frames) {
   if (!o.video.empty()) {
     if (o.video.extension() != ".mp4")
       throw std::runtime_error(o.video.string() + ": expected a file name ending in .mp4");
+    if (o.width % 2 != 0 || o.height % 2 != 0)
+      throw std::runtime_error("--video needs an even --width and --height (H.264 yuv420p), got " +
+                               std::to_string(o.width) + "x" + std::to_string(o.height));
     refuseOverwrite(o.video, o.force);
   }
   if (!o.png_dir.empty()) {

@@ -2,6 +2,7 @@
 // step of Müller et al. 2020, Alg. 2.
 #pragma once
 
+#include <cassert>
 #include <functional>
 #include <optional>
 #include <string>
@@ -57,7 +58,11 @@ class World {
   const BodyState& body(BodyId id) const {
     return id == kWorldBody ? world_frame_ : bodies_[id];
   }
-  const BodyDef& bodyDef(BodyId id) const { return defs_[id]; }
+  /// Definition of a real body (not kWorldBody).
+  const BodyDef& bodyDef(BodyId id) const {
+    assert(id >= 0 && id < bodyCount());
+    return defs_[id];
+  }
   /// Body named `name`, if any.
   std::optional<BodyId> findBody(const std::string& name) const;
 

@@ -1,5 +1,6 @@
 // Off-screen OpenGL renderer of a World and its cables (OSMesa: software
-// rendering, no display or GPU needed).
+// rendering, no display or GPU needed). Including this header gives the
+// whole render API: camera, images and PNG, video.
 #pragma once
 
 #include <memory>
@@ -7,6 +8,7 @@
 #include "reeve/cable/cable.h"
 #include "reeve/render/camera.h"
 #include "reeve/render/image.h"
+#include "reeve/render/video.h"
 
 namespace reeve {
 
@@ -16,14 +18,16 @@ namespace reeve {
 /// arcs wrapped on rolling links (see cablePath). Cable hidden behind a body
 /// shows through it faintly. Link markers are drawn on top in the paper's
 /// colours: red at the tangent points of rolling links, green at attachments.
-/// Anti-aliased by 3x3 supersampling. Holds one OSMesa context; reuse one
-/// Renderer for many frames. Not thread-safe: use it from one thread at a
-/// time.
+/// Anti-aliased by 3x3 supersampling (less for images wider or taller than
+/// a third of OSMesa's maximum, 16384 pixels with Mesa 22). Holds one OSMesa
+/// context; reuse one Renderer for many frames. Not thread-safe: use it from
+/// one thread at a time.
 class Renderer {
  public:
   /// An off-screen context for images of width x height pixels.
   /// Throws std::invalid_argument unless both are positive, and
-  /// std::runtime_error if OSMesa cannot create or bind the context.
+  /// std::runtime_error if OSMesa cannot create or bind the context or the
+  /// size exceeds OSMesa's maximum.
   explicit Renderer(int width = 1280, int height = 720);
   ~Renderer();
   Renderer(const Renderer&) = delete;

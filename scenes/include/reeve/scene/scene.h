@@ -28,8 +28,9 @@ struct CameraDef {
 
 /// A loaded scene, ready to step: `world->step(1.0 / frame_rate_hz)` once
 /// per frame for `frameCount()` frames. `cables` is built on `*world` and
-/// registered a substep hook in it, so keep both together: the members are
-/// declared so that `cables` is destroyed before `world`.
+/// has registered a substep hook in it, so keep the two together (do not
+/// move one out alone); the members are declared so that `cables` is
+/// destroyed before `world`.
 struct Scene {
   std::string name;
   std::string description;
@@ -59,7 +60,8 @@ class SceneError : public std::runtime_error {
   /// An error at `json_path` in `file`.
   SceneError(std::string file, std::string json_path, std::string expected, std::string found);
 
-  /// A JSON syntax error at 1-based `line` and `column` (in characters).
+  /// A JSON syntax error at 1-based `line` and `column` (in characters):
+  /// where the parser stopped, the last character of the offending token.
   static SceneError syntax(std::string file, int line, int column, std::string reason);
   /// A file that cannot be read, `reason` as from strerror.
   static SceneError unreadable(std::string file, std::string reason);
@@ -73,8 +75,8 @@ class SceneError : public std::runtime_error {
   int column() const { return column_; }
 
  private:
-  SceneError(const std::string& what, std::string file, std::string json_path,
-             std::string expected, std::string found, int line, int column);
+  SceneError(const std::string& what, std::string file, std::string json_path, std::string expected,
+             std::string found, int line, int column);
 
   std::string file_, json_path_, expected_, found_;
   int line_ = 0, column_ = 0;

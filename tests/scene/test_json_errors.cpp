@@ -1,0 +1,101 @@
+// Errors before the schema: unreadable files and JSON syntax.
+#include <cstdio>
+
+#include "scene_test_util.h"
+
+namespace reeve::test {
+namespace {
+
+// The position is where the parser stopped: the last character of the
+// offending token (here the closing quote of "bodies").
+TEST(JsonErrors, MissingCommaGivesLineAndColumn) {
+  const std::optional<SceneError> e =
+      errorOf("{\n  \"name\": \"x\",\n  \"solver\": {}\n  \"bodies\": []\n}\n");
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->line(), 4);
+  EXPECT_EQ(e->column(), 10);
+  EXPECT_EQ(e->jsonPath(), "");
+  EXPECT_EQ(e->expected(), "valid JSON");
+  EXPECT_NE(e->found().find("syntax error while parsing object"), std::string::npos) << e->what();
+  EXPECT_EQ(std::string(e->what()), "test.json:4:10: invalid JSON: " + e->found());
+}
+
+TEST(JsonErrors, TrailingCommaGivesLineAndColumn) {
+  const std::optional<SceneError> e = errorOf("{\"name\": \"x\",\n \"bodies\": [1, 2,]}");
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->line(), 2);
+  EXPECT_EQ(e->column(), 18);
+  EXPECT_NE(e->found().find("unexpected ']'"), std::string::npos) << e->what();
+}
+
+TEST(JsonErrors, ColumnCountsCharactersNotBytes) {
+  // "é" is two bytes in UTF-8 but one column.
+  const std::optional<SceneError> e = errorOf("{\"name\": \"\xC3\xA9\" x}");
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->line(), 1);
+  EXPECT_EQ(e->column(), 14);
+}
+
+TEST(JsonErrors, EmptyTextIsASyntaxError) {
+  const std::optional<SceneError> e = errorOf("");
+  ASSERT_TRUE(e);
+  EXPECT_EQ(std::string(e->what()).rfind("test.json:1:1: invalid JSON: ", 0), 0u) << e->what();
+  EXPECT_NE(e->found().find("unexpected end of input"), std::string::npos);
+}
+
+TEST(JsonErrors, NumberTooLargeForADoubleIsASyntaxError) {
+  const std::optional<SceneError> e = errorOf("{\n  \"duration_s\": 1e400\n}");
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->line(), 2);
+  EXPECT_EQ(e->column(), 21);
+  EXPECT_NE(e->found().find("number overflow parsing '1e400'"), std::string::npos) << e->what();
+}
+
+TEST(JsonErrors, RepeatedKeyIsRejectedNotSilentlyOverwritten) {
+  expectError(baseWith(R"("radius_m": 0.2})", R"("radius_m": 0.2, "radius_m": 0.3})"),
+              "/bodies/2/shape/radius_m", "each key at most once", "\"radius_m\" a second time");
+}
+
+TEST(JsonErrors, UnreadableFileNamesFileAndReason) {
+  const std::string missing = (kScenesDir / "no_such_scene.json").string();
+  try {
+    loadScene(missing);
+    FAIL() << "no error";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.file(), missing);
+    EXPECT_EQ(e.jsonPath(), "");
+    EXPECT_EQ(e.expected(), "a readable file");
+    EXPECT_EQ(e.found(), "No such file or directory");
+    EXPECT_EQ(std::string(e.what()), missing + ": cannot read: No such file or directory");
+  }
+}
+
+TEST(JsonErrors, FolderIsUnreadable) {
+  try {
+    loadScene(kScenesDir);
+    FAIL() << "no error";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()), kScenesDir.string() + ": cannot read: Is a directory");
+  }
+}
+
+TEST(JsonErrors, LoadSceneErrorsNameTheFile) {
+  const std::filesystem::path path =
+      std::filesystem::temp_directory_path() / "reeve_scene_test_bad_radius.json";
+  {
+    std::ofstream out(path);
+    out << baseWith(R"("radius_m": 0.2})", R"("radius_m": -0.2})");
+  }
+  try {
+    loadScene(path);
+    FAIL() << "no error";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.file(), path.string());
+    EXPECT_EQ(std::string(e.what()),
+              path.string() + ": /bodies/2/shape/radius_m: expected a number > 0, got -0.2");
+  }
+  std::filesystem::remove(path);
+}
+
+}  // namespace
+}  // namespace reeve::test

@@ -1,0 +1,135 @@
+// Errors the schema finds, phrased with the JSON pointer, what the schema
+// expects and what the scene has.
+#include "scene_test_util.h"
+
+namespace reeve::test {
+namespace {
+
+TEST(SchemaErrors, MissingRequiredField) {
+  expectError(baseWith(R"("radius_m": 0.5, "half_length_m": 0.1)", R"("half_length_m": 0.1)"),
+              "/bodies/0/shape", "required property \"radius_m\"", "nothing");
+}
+
+TEST(SchemaErrors, MissingRequiredTopLevelFieldIsAtTheRoot) {
+  expectError(R"({"name": "x", "solver": {}})", "", "required property \"bodies\"", "nothing");
+}
+
+TEST(SchemaErrors, UnknownFieldListsTheAllowedOnes) {
+  expectError(baseWith(R"("mass_kg": 2,)", R"("mass_kg": 2, "colour": "red",)"), "/bodies/1/colour",
+              "no property \"colour\" (allowed: name, shape, density_kg_per_m3, mass_kg, "
+              "position_m, orientation, static, linear_velocity_m_per_s, "
+              "angular_velocity_rad_per_s)",
+              "\"colour\"");
+}
+
+TEST(SchemaErrors, FieldOfAnotherShapeIsUnknown) {
+  expectError(baseWith(R"("half_extents_m": [0.2, 0.2, 0.2]})",
+                       R"("half_extents_m": [0.2, 0.2, 0.2], "radius_m": 0.2})"),
+              "/bodies/1/shape/radius_m",
+              "no property \"radius_m\" (allowed: type, half_extents_m)", "\"radius_m\"");
+}
+
+TEST(SchemaErrors, PointOnARollingLinkIsUnknown) {
+  expectError(baseWith(R"("orientation": "cw"})", R"("orientation": "cw", "point_m": [0, 0, 0]})"),
+              "/cables/0/links/1/point_m",
+              "no property \"point_m\" (allowed: body, type, orientation)", "\"point_m\"");
+}
+
+TEST(SchemaErrors, AttachmentWithoutPoint) {
+  expectError(baseWith(R"({"body": "ball", "type": "attachment", "point_m": [0, 0.2, 0]})",
+                       R"({"body": "ball", "type": "attachment"})"),
+              "/cables/0/links/2", "required property \"point_m\"", "nothing");
+}
+
+TEST(SchemaErrors, UnknownFieldNameIsEscapedInThePointer) {
+  expectError(baseWith(R"("solver": {})", R"("solver": {"a/b~c": 1})"), "/solver/a~1b~0c",
+              "no property \"a/b~c\" (allowed: frame_rate_hz, substeps, iterations, "
+              "gravity_m_per_s2)",
+              "\"a/b~c\"");
+}
+
+TEST(SchemaErrors, WrongType) {
+  expectError(baseWith(R"("solver": {})", R"("solver": {"substeps": "ten"})"), "/solver/substeps",
+              "an integer", "a string (\"ten\")");
+}
+
+TEST(SchemaErrors, WrongTypeForAVector) {
+  expectError(baseWith(R"("position_m": [0.5, -2, 0])", R"("position_m": "0.5, -2, 0")"),
+              "/bodies/2/position_m", "an array of 3 numbers", "a string (\"0.5, -2, 0\")");
+}
+
+TEST(SchemaErrors, WrongTypeInAVector) {
+  expectError(baseWith(R"("position_m": [0.5, -2, 0])", R"("position_m": [0.5, "-2", 0])"),
+              "/bodies/2/position_m/1", "a number", "a string (\"-2\")");
+}
+
+TEST(SchemaErrors, VectorOfTwoNumbers) {
+  expectError(baseWith(R"("axis": [0, 0, 1])", R"("axis": [0, 1])"), "/hinges/0/axis",
+              "an array of 3 numbers", "an array of 2 items");
+}
+
+TEST(SchemaErrors, RootMustBeAnObject) {
+  const std::optional<SceneError> e = errorOf("[]");
+  ASSERT_TRUE(e);
+  EXPECT_EQ(std::string(e->what()),
+            "test.json: (root): expected an object, got an array of 0 items");
+}
+
+TEST(SchemaErrors, NegativeMass) {
+  expectError(baseWith(R"("mass_kg": 2,)", R"("mass_kg": -2,)"), "/bodies/1/mass_kg",
+              "a number > 0", "-2");
+}
+
+TEST(SchemaErrors, NegativeRadius) {
+  const std::string text = baseWith(R"("radius_m": 0.5)", R"("radius_m": -0.5)");
+  expectError(text, "/bodies/0/shape/radius_m", "a number > 0", "-0.5");
+  EXPECT_STREQ(errorOf(text)->what(),
+               "test.json: /bodies/0/shape/radius_m: expected a number > 0, got -0.5");
+}
+
+TEST(SchemaErrors, ZeroHalfExtent) {
+  expectError(
+      baseWith(R"("half_extents_m": [0.2, 0.2, 0.2])", R"("half_extents_m": [0.2, 0, 0.2])"),
+      "/bodies/1/shape/half_extents_m/1", "a number > 0", "0");
+}
+
+TEST(SchemaErrors, ZeroSubsteps) {
+  expectError(baseWith(R"("solver": {})", R"("solver": {"substeps": 0})"), "/solver/substeps",
+              "an integer >= 1 and <= 100000", "0");
+}
+
+TEST(SchemaErrors, FieldOfViewOutOfRange) {
+  expectError(
+      baseWith(
+          R"("name": "base",)",
+          R"("name": "base",
+              "camera": {"eye_m": [0, 0, 5], "target_m": [0, 0, 0], "fov_y_deg": 200},)"),
+      "/camera/fov_y_deg", "a number > 0 and < 180", "200");
+}
+
+TEST(SchemaErrors, UnknownShapeType) {
+  expectError(baseWith(R"("type": "sphere")", R"("type": "cone")"), "/bodies/2/shape/type",
+              "one of \"box\", \"cylinder\", \"sphere\"", "\"cone\"");
+}
+
+TEST(SchemaErrors, UnknownLinkOrientation) {
+  expectError(baseWith(R"("orientation": "cw")", R"("orientation": "clockwise")"),
+              "/cables/0/links/1/orientation", "one of \"ccw\", \"cw\"", "\"clockwise\"");
+}
+
+TEST(SchemaErrors, EmptyName) {
+  expectError(baseWith(R"("name": "base")", R"("name": "")"), "/name", "a non-empty string",
+              "\"\"");
+}
+
+TEST(SchemaErrors, CableWithOneLink) {
+  expectError(R"({"name": "x", "solver": {},
+    "bodies": [{"name": "b", "shape": {"type": "sphere", "radius_m": 1}, "mass_kg": 1,
+                "position_m": [0, 0, 0]}],
+    "cables": [{"name": "c", "links": [
+      {"body": "b", "type": "attachment", "point_m": [0, 0, 0]}]}]})",
+              "/cables/0/links", "an array of at least 2 items", "an array of 1 item");
+}
+
+}  // namespace
+}  // namespace reeve::test

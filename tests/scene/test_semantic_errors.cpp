@@ -1,0 +1,126 @@
+// Errors a schema cannot find: names, mass, cross-sections, counts, axes,
+// cables the solver cannot build.
+#include "scene_test_util.h"
+
+namespace reeve::test {
+namespace {
+
+TEST(SemanticErrors, UnknownBodyInALink) {
+  expectError(
+      baseWith(R"({"body": "wheel", "type": "rolling")", R"({"body": "wheell", "type": "rolling")"),
+      "/cables/0/links/1/body", "the name of a body (wheel, crate, ball)", "\"wheell\"");
+}
+
+TEST(SemanticErrors, UnknownBodyInAHinge) {
+  expectError(baseWith(R"({"body": "wheel", "anchor_m")", R"({"body": "whel", "anchor_m")"),
+              "/hinges/0/body", "the name of a body (wheel, crate, ball)", "\"whel\"");
+}
+
+TEST(SemanticErrors, UnknownOtherBodyInAHinge) {
+  expectError(baseWith(R"("anchor_m": [0, 0, 0])", R"("other": "grond", "anchor_m": [0, 0, 0])"),
+              "/hinges/0/other", "\"world\" or the name of a body (wheel, crate, ball)",
+              "\"grond\"");
+}
+
+TEST(SemanticErrors, HingeToItself) {
+  expectError(baseWith(R"("anchor_m": [0, 0, 0])", R"("other": "wheel", "anchor_m": [0, 0, 0])"),
+              "/hinges/0/other", "a body other than the hinge's body \"wheel\"", "\"wheel\"");
+}
+
+TEST(SemanticErrors, ZeroHingeAxis) {
+  expectError(baseWith(R"("axis": [0, 0, 1])", R"("axis": [0, 0, 0])"), "/hinges/0/axis",
+              "a non-zero hinge axis", "[0,0,0]");
+}
+
+TEST(SemanticErrors, ZeroOrientationAxis) {
+  expectError(baseWith(R"("mass_kg": 1,)",
+                       R"("mass_kg": 1, "orientation": {"axis": [0, 0, 0], "angle_rad": 1},)"),
+              "/bodies/2/orientation/axis", "a non-zero rotation axis", "[0,0,0]");
+}
+
+TEST(SemanticErrors, DuplicateBodyName) {
+  expectError(baseWith(R"("name": "ball")", R"("name": "crate")"), "/bodies/2/name",
+              "a body name not already used by /bodies/1", "\"crate\"");
+}
+
+TEST(SemanticErrors, BodyNamedWorld) {
+  expectError(baseWith(R"("name": "ball")", R"("name": "world")"), "/bodies/2/name",
+              "other than \"world\"", "\"world\"");
+}
+
+TEST(SemanticErrors, DynamicBodyWithDensityAndMass) {
+  expectError(baseWith(R"("mass_kg": 2,)", R"("mass_kg": 2, "density_kg_per_m3": 500,)"),
+              "/bodies/1", "exactly one of density_kg_per_m3 or mass_kg for a dynamic body",
+              "both");
+}
+
+TEST(SemanticErrors, DynamicBodyWithoutDensityOrMass) {
+  expectError(baseWith(R"("mass_kg": 2,)", ""), "/bodies/1",
+              "exactly one of density_kg_per_m3 or mass_kg for a dynamic body", "neither");
+}
+
+TEST(SemanticErrors, StaticBodyWithMass) {
+  expectError(baseWith(R"("mass_kg": 2,)", R"("mass_kg": 2, "static": true,)"), "/bodies/1/mass_kg",
+              "no density or mass for a static body", "2");
+}
+
+TEST(SemanticErrors, StaticBodyWithVelocity) {
+  expectError(baseWith(R"("density_kg_per_m3": 1000,)",
+                       R"("static": true, "angular_velocity_rad_per_s": [0, 0, 1],)"),
+              "/bodies/0/angular_velocity_rad_per_s", "no velocity for a static body", "[0,0,1]");
+}
+
+TEST(SemanticErrors, RollingLinkOnABox) {
+  expectError(
+      baseWith(R"({"body": "wheel", "type": "rolling")", R"({"body": "crate", "type": "rolling")"),
+      "/cables/0/links/1/body",
+      "a body with a circular cross-section (cylinder or sphere) for a rolling link",
+      "box \"crate\"");
+}
+
+TEST(SemanticErrors, CableMustStartWithAnAttachment) {
+  expectError(baseWith(R"({"body": "crate", "type": "attachment", "point_m": [0, 0.2, 0]},)",
+                       R"({"body": "ball", "type": "rolling", "orientation": "ccw"},)"),
+              "/cables/0/links/0/type", "\"attachment\" (a cable starts and ends at an attachment)",
+              "\"rolling\"");
+}
+
+TEST(SemanticErrors, WrongRestLengthCount) {
+  expectError(baseWith(R"({"name": "rope",)", R"({"name": "rope", "rest_length_m": [1, 2, 3],)"),
+              "/cables/0/rest_length_m", "an array of 2 numbers (one rest length per cable joint",
+              "an array of 3 items");
+}
+
+TEST(SemanticErrors, DuplicateCableName) {
+  expectError(baseWith(R"("cables": [)", R"("cables": [{"name": "rope", "links": [
+    {"body": "crate", "type": "attachment", "point_m": [0, 0, 0]},
+    {"body": "ball", "type": "attachment", "point_m": [0, 0, 0]}]},)"),
+              "/cables/1/name", "a cable name not already used", "\"rope\"");
+}
+
+TEST(SemanticErrors, CableTheSolverCannotBuildIsReportedAtTheCable) {
+  // The attachment point lies inside the wheel: no tangent from it exists.
+  expectError(baseWith(R"({"body": "crate", "type": "attachment", "point_m": [0, 0.2, 0]})",
+                       R"({"body": "crate", "type": "attachment", "point_m": [0.5, 2.0, 0]})"),
+              "/cables/0", "a cable the solver can build", "no tangent");
+}
+
+TEST(SemanticErrors, CameraLookingAtItsEye) {
+  expectError(baseWith(R"("name": "base",)",
+                       R"("name": "base", "camera": {"eye_m": [0, 0, 5], "target_m": [0, 0, 5]},)"),
+              "/camera/target_m", "a point other than eye_m", "[0,0,5]");
+}
+
+TEST(SemanticErrors, CameraUpAlongTheView) {
+  expectError(baseWith(R"("name": "base",)",
+                       R"("name": "base", "camera": {"eye_m": [0, 5, 0], "target_m": [0, 0, 0]},)"),
+              "/camera/up", "not parallel to the view direction", "the default [0,1,0]");
+}
+
+TEST(SemanticErrors, DurationShorterThanAFrame) {
+  expectError(baseWith(R"("solver": {})", R"("solver": {}, "duration_s": 0.001)"), "/duration_s",
+              "a duration of 1 to", "0.001 s (0 frames)");
+}
+
+}  // namespace
+}  // namespace reeve::test

@@ -31,9 +31,9 @@ struct Atwood {
     box.position = Vec3(r, -3.0, 0.0);
     box2 = world.addBody(box);
     CableDef def;
-    def.links = {{box1, LinkType::Attachment, 1, Vec3(0, 0.1, 0)},
-                 {wheel, LinkType::Rolling, -1, Vec3::Zero()},  // over the top: clockwise
-                 {box2, LinkType::Attachment, 1, Vec3(0, 0.1, 0)}};
+    def.links = {LinkDef::attachment(box1, Vec3(0, 0.1, 0)),
+                 LinkDef::rolling(wheel, -1),  // over the top: clockwise
+                 LinkDef::attachment(box2, Vec3(0, 0.1, 0))};
     cable = cables.addCable(def);
   }
   double acceleration() const { return (m2 - m1) * g / (m1 + m2 + 0.5 * M * r * r / (r * r)); }

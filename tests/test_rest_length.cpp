@@ -30,9 +30,9 @@ struct WheelRig {
     w.shape = Shape::cylinder(radius, 0.1);
     wheel = world.addBody(w);
     CableDef def;
-    def.links = {{a, LinkType::Attachment, 1, Vec3::Zero()},
-                 {wheel, LinkType::Rolling, orientation, Vec3::Zero()},
-                 {b, LinkType::Attachment, 1, Vec3::Zero()}};
+    def.links = {LinkDef::attachment(a, Vec3::Zero()),
+                 LinkDef::rolling(wheel, orientation),
+                 LinkDef::attachment(b, Vec3::Zero())};
     cable = cables.addCable(def);
   }
   void turn(double angle, int steps) {
@@ -111,11 +111,11 @@ TEST(CableSetup, ACableThatCannotBeBuiltLeavesTheWorldUntouched) {
   def.position = Vec3(0.1, 2.1, 0);
   const BodyId inside = world.addBody(def);
   CableDef cable;
-  cable.links = {{post, LinkType::Attachment, 1, Vec3::Zero()},
-                 {wheel, LinkType::Rolling, 1, Vec3::Zero()},
-                 {inside, LinkType::Attachment, 1, Vec3::Zero()}};
+  cable.links = {LinkDef::attachment(post, Vec3::Zero()),
+                 LinkDef::rolling(wheel, 1),
+                 LinkDef::attachment(inside, Vec3::Zero())};
   EXPECT_THROW(cables.addCable(cable), std::invalid_argument);
-  EXPECT_EQ(world.distanceCount(), 0);
+  EXPECT_EQ(world.pathCount(), 0);
   EXPECT_TRUE(cables.cables().empty());
 }
 

@@ -32,12 +32,12 @@ TEST(Slack, BodyFallsFreelyUntilTheCableIsTaut) {
   box.position = Vec3(0.3, -1.0, 0.0);
   const BodyId body = world.addBody(box);
   CableDef def;
-  def.links = {{anchor, LinkType::Attachment, 1, Vec3::Zero()},
-               {wheel, LinkType::Rolling, -1, Vec3::Zero()},
-               {body, LinkType::Attachment, 1, Vec3(0, 0.1, 0)}};
+  def.links = {LinkDef::attachment(anchor, Vec3::Zero()),
+               LinkDef::rolling(wheel, -1),
+               LinkDef::attachment(body, Vec3(0, 0.1, 0))};
   const int c = cables.addCable(def);
   // Give the hanging span `slack` m more cable than its length.
-  world.distance(cables.cables()[c].joints[1].constraint).rest_length += slack;
+  cables.setRestLength(c, 1, cables.restLength(c, 1) + slack);
   const double y0 = world.body(body).x.y();
 
   const double taut_y = y0 - slack;

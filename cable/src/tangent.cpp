@@ -19,10 +19,11 @@ std::optional<TangentPoints> commonTangent(const CableCircle& from, const CableC
   // perp(t) . d = s_from - s_to.
   const Vec2 d = to.center - from.center;
   const double dist = d.norm();
+  if (dist == 0.0) return std::nullopt;
   const double s_from = -from.orientation * from.radius;
   const double s_to = -to.orientation * to.radius;
   const double sine = (s_from - s_to) / dist;
-  if (!(std::abs(sine) < 1.0)) return std::nullopt;  // also rejects dist == 0
+  if (!(std::abs(sine) < 1.0)) return std::nullopt;
   const double beta = angleOf(d) - std::asin(sine);
   const Vec2 n = perp(Vec2(std::cos(beta), std::sin(beta)));
   return TangentPoints{from.center + s_from * n, to.center + s_to * n};
@@ -41,6 +42,7 @@ double wrappedArc(const Vec2& arrival, const Vec2& departure, double radius, int
   double angle = orientation * (angleOf(departure) - angleOf(arrival));
   angle = std::fmod(angle, two_pi);
   if (angle < 0.0) angle += two_pi;
+  if (angle >= two_pi) angle = 0.0;  // -0 plus 2 pi rounds up to 2 pi
   return angle * radius;
 }
 

@@ -18,6 +18,10 @@ BodyState makeBodyState(const BodyDef& def) {
   s.inv_mass = 1.0 / m;
   s.inertia = principalInertia(def.shape, m);
   s.inv_inertia = s.inertia.cwiseInverse();
+  if (!(def.linear_damping >= 0.0) || !(def.angular_damping >= 0.0))
+    throw std::invalid_argument("body '" + def.name + "': damping must be >= 0 per second");
+  s.linear_damping = def.linear_damping;
+  s.angular_damping = def.angular_damping;
   return s;
 }
 

@@ -9,6 +9,7 @@ namespace reeve {
 void solveDistanceConstraint(DistanceConstraint& c, BodyState& a, BodyState& b,
                              double alpha_tilde) {
   // C = |p_b - p_a| - d,  n = dC/dp_b = (p_b - p_a) / |p_b - p_a|.
+  if (!c.enabled) return;
   const Vec3 r_a = a.q * c.local_a;
   const Vec3 r_b = b.q * c.local_b;
   const Vec3 d = (b.x + r_b) - (a.x + r_a);

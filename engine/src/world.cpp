@@ -1,6 +1,7 @@
 #include "reeve/engine/world.h"
 
 #include <cassert>
+#include <cmath>
 #include <stdexcept>
 
 namespace reeve {
@@ -11,6 +12,16 @@ BodyId World::addBody(const BodyDef& def) {
   bodies_.push_back(makeBodyState(def));
   defs_.push_back(def);
   return static_cast<BodyId>(bodies_.size() - 1);
+}
+
+void World::setMass(BodyId id, double mass) {
+  BodyState& b = body(id);
+  if (id == kWorldBody || b.inv_mass == 0.0 || !(mass > 0.0) || !std::isfinite(mass))
+    throw std::invalid_argument("setMass: needs a dynamic body and a finite mass > 0 kg");
+  const double scale = mass * b.inv_mass;
+  b.inv_mass = 1.0 / mass;
+  b.inertia *= scale;
+  b.inv_inertia /= scale;
 }
 
 HingeId World::addHinge(const HingeDef& def) {
@@ -26,6 +37,26 @@ DistanceId World::addDistance(const DistanceConstraint& c) {
   assert(c.a >= kWorldBody && c.a < bodyCount() && c.b >= kWorldBody && c.b < bodyCount());
   distances_.push_back(c);
   return static_cast<DistanceId>(distances_.size() - 1);
+}
+
+PathId World::addPath(PathConstraint path) {
+  assert(path.points.size() >= 2);
+  paths_.push_back(std::move(path));
+  return static_cast<PathId>(paths_.size() - 1);
+}
+
+double World::pathTension(PathId id) const {
+  const PathConstraint& p = paths_[id];
+  return p.enabled && last_h_ > 0.0 ? -p.lambda / (last_h_ * last_h_) : 0.0;
+}
+
+double World::pathLength(PathId id) const {
+  const std::vector<PathPoint>& points = paths_[id].points;
+  double length = 0.0;
+  for (size_t i = 0; i + 1 < points.size(); ++i)
+    length += (worldPoint(points[i + 1].body, points[i + 1].local) -
+               worldPoint(points[i].body, points[i].local)).norm();
+  return length;
 }
 
 void World::addSubstepHook(SubstepHook hook) { hooks_.push_back(std::move(hook)); }
@@ -77,11 +108,14 @@ void World::solvePositions(double h) {
     j.impulse_axis.setZero();
   }
   for (DistanceConstraint& c : distances_) c.lambda = 0.0;
+  for (PathConstraint& p : paths_) p.lambda = 0.0;
+  const BodyTable table{bodies_.data(), &world_frame_};
   for (int it = 0; it < settings_.iterations; ++it) {
     for (HingeJoint& j : hinges_)
       solveHingeJoint(j, body(j.a), body(j.b), j.compliance * inv_h2);
     for (DistanceConstraint& c : distances_)
       solveDistanceConstraint(c, body(c.a), body(c.b), c.compliance * inv_h2);
+    for (PathConstraint& p : paths_) solvePathConstraint(p, table, p.compliance * inv_h2);
   }
 }
 
@@ -90,6 +124,8 @@ void World::updateVelocities(double h) {
     if (b.inv_mass == 0.0) continue;
     b.v = (b.x - b.x_prev) / h;
     b.omega = rotationVector(b.q * b.q_prev.conjugate()) / h;
+    b.v *= std::exp(-b.linear_damping * h);
+    b.omega *= std::exp(-b.angular_damping * h);
   }
 }
 

@@ -1,5 +1,7 @@
-// Cables made of links joined by cable joints (paper sec. 3, Alg. 1 and the
-// stored-cable bookkeeping of Alg. 2 lines 8-9).
+// Cables made of links joined by cable joints: paper sec. 3 (Alg. 1:
+// rolling, attachment and pinhole links, 2D and 3D cable planes) and
+// sec. 4 (Alg. 2: stored cable, hybrid links and spools, merge and split),
+// open cables and closed ones (belts).
 #pragma once
 
 #include <optional>
@@ -7,69 +9,148 @@
 #include <utility>
 #include <vector>
 
-#include "reeve/cable/tangent.h"
+#include "reeve/cable/section.h"
 #include "reeve/engine/world.h"
 
 namespace reeve {
 
-/// How the cable meets a body (paper sec. 3.3).
+/// How the cable meets a body (paper sec. 3.3, 4.1).
 enum class LinkType {
-  Attachment,  ///< fixed to a body-local point
-  Rolling,     ///< wraps the body's circular cross-section in its cable plane
+  Attachment,  ///< tied to a fixed body-local point
+  Rolling,     ///< wraps the body's cross-section in its cable plane
+  Pinhole,     ///< slides through a fixed body-local point
+  Hybrid,      ///< an end on a spool: rolls while stored cable >= 0, else tied
 };
 
 /// One link as the user describes it.
-/// Attachment: `point` is the body-local point (m) the cable is tied to.
-/// Rolling: the body must have a circular cross-section (cylinder, sphere);
-/// its cable plane is the body-local z = 0 plane (a cylinder's axis is
-/// local z); `orientation` +1: the cable travels counter-clockwise about
-/// the plane normal as one walks along the cable, -1 clockwise (Fig. 3).
+/// - `point` (m, body-local): the tie point of attachments and pinholes.
+/// - Rolling and hybrid links wrap `section`, a circle or convex polygon in
+///   the body's cable plane: the plane z = `plane_offset` (m) of the body's
+///   local frame (a cylinder's axis is local z). `orientation` +1: the cable
+///   travels counter-clockwise about the plane normal (local +z) as one
+///   walks along the cable, -1 clockwise (paper Fig. 3).
+/// - `stored` (m): cable stored on the body at the start (Alg. 2 line 2);
+///   default: the wrapped arc for interior links, 0 for cable ends. A spool
+///   is a rolling or hybrid end link with stored cable.
+/// - `active` false: an interior rolling link the cable does not touch yet;
+///   it is split in when a span crosses its section (paper sec. 4.2).
 struct LinkDef {
   BodyId body = 0;
   LinkType type = LinkType::Attachment;
   int orientation = 1;
   Vec3 point = Vec3::Zero();
+  Section section;
+  double plane_offset = 0.0;
+  std::optional<double> stored;
+  bool active = true;
+
+  /// A tie point `point` (m, body-local) on `body`.
+  static LinkDef attachment(BodyId body, const Vec3& point) {
+    LinkDef d;
+    d.body = body;
+    d.point = point;
+    return d;
+  }
+  /// A hole at `point` (m, body-local) of `body` the cable slides through.
+  static LinkDef pinhole(BodyId body, const Vec3& point) {
+    LinkDef d = attachment(body, point);
+    d.type = LinkType::Pinhole;
+    return d;
+  }
+  /// Wraps `body`'s own section with `orientation` (+1 ccw, -1 cw).
+  static LinkDef rolling(BodyId body, int orientation) {
+    LinkDef d;
+    d.body = body;
+    d.type = LinkType::Rolling;
+    d.orientation = orientation;
+    return d;
+  }
+  /// A spool end: rolls with `stored` m of cable (m), then is tied.
+  static LinkDef hybrid(BodyId body, int orientation, double stored) {
+    LinkDef d = rolling(body, orientation);
+    d.type = LinkType::Hybrid;
+    d.stored = stored;
+    return d;
+  }
 };
 
-/// An open cable through `links` (at least two; the first and last are
-/// attachments). `rest_lengths` (m), if given, holds one value per joint
-/// (links - 1) and sets the initial slack; empty means taut at the start.
-/// `compliance` (m/N) applies to every span (0: inextensible).
+/// A cable through `links` in order. Open cables need at least two links
+/// and end in attachments, rolling links or hybrid links (spools); closed
+/// cables (belts) join the last link back to the first and need at least
+/// two links, none hybrid. `rest_lengths` (m), if given, has one value per
+/// joint (links - 1 open, links closed) and sets the initial slack; empty
+/// means taut at the start. `compliance` (m/N) is that of the whole cable
+/// at its initial total length; each span gets the share of its rest
+/// length, so strain, not span count, sets the stretch (0: inextensible).
 struct CableDef {
   std::string name;
   std::vector<LinkDef> links;
+  bool closed = false;
   double compliance = 0.0;
   std::vector<double> rest_lengths;
 };
 
-/// A link in the solver: the definition plus cached section radius (m) and
-/// stored cable s (m), the length wrapped on the body (Alg. 2).
+/// A link in the solver. `attached` marks a hybrid link that has run out of
+/// cable and acts as an attachment at `point`.
 struct Link {
   BodyId body = 0;
   LinkType type = LinkType::Attachment;
   int orientation = 1;
   Vec3 point = Vec3::Zero();
-  double radius = 0.0;
-  double stored = 0.0;
+  Section section;
+  double plane_offset = 0.0;
+  double stored = 0.0;  // m
+  bool active = true;
+  bool attached = false;
+
+  /// True when the cable wraps the body's section here (rolling, or a
+  /// hybrid that still has cable).
+  bool rolls() const {
+    return type == LinkType::Rolling || (type == LinkType::Hybrid && !attached);
+  }
 };
 
-/// The span between link j (where it leaves) and link j+1 (where it
-/// arrives): one unilateral distance constraint of the World, whose
-/// body-local anchors are the tangent points and whose rest length is the
-/// cable in the span.
+/// The span leaving link j and arriving at the next active link `to`, with
+/// body-local anchors (tangent points on rolling links, tie points
+/// otherwise) and the cable it holds (rest length). Spans joined through
+/// pinholes form a run that the World solves as one path constraint, so
+/// they share one tension; `path` is this span's path when it starts a run,
+/// `run` the joint whose path carries it. Disabled while link j is
+/// inactive.
 struct CableJoint {
-  DistanceId constraint = 0;
+  int to = 0;
+  Vec3 local_a = Vec3::Zero();
+  Vec3 local_b = Vec3::Zero();
+  double rest_length = 0.0;  // m
+  PathId path = 0;
+  int run = 0;
 };
+
+/// A link switch, merge or split (paper Alg. 2), for logs.
+struct CableEvent {
+  enum class Kind { HybridRunsOut, HybridRollsAgain, Merge, Split };
+  Kind kind;
+  double time_s;  // end of the substep in which it happened
+  int cable;
+  int link;
+  int orientation;  // the link's orientation after the event
+};
+
+/// Name of an event kind ("hybrid_runs_out", "hybrid_rolls_again", "merge",
+/// "split").
+const char* eventName(CableEvent::Kind kind);
 
 struct Cable {
   std::string name;
+  bool closed = false;
+  double compliance_per_m = 0.0;  // 1/N: span compliance = this x rest length
   std::vector<Link> links;
-  std::vector<CableJoint> joints;  // joints[j] joins links[j] and links[j+1]
+  std::vector<CableJoint> joints;  // joints[j] leaves links[j]
 };
 
 /// All cables of a World. Registers a substep hook on construction that
-/// moves tangent points and rest lengths before each position solve, so it
-/// must outlive the World's stepping and is neither copied nor moved.
+/// runs the cable update before each position solve, so it must outlive
+/// the World's stepping and is neither copied nor moved.
 class CableSystem {
  public:
   explicit CableSystem(World& world);
@@ -77,39 +158,55 @@ class CableSystem {
   CableSystem& operator=(const CableSystem&) = delete;
 
   /// Adds a cable at the World's current poses: tangent points, initial
-  /// rest lengths (taut unless given) and stored cable on rolling links.
-  /// Throws std::invalid_argument for a definition that cannot be built
-  /// (fewer than two links, rolling on a body without circular section,
-  /// rolling end link, orientation not +-1, wrong rest_lengths size,
-  /// no tangent between adjacent links).
+  /// rest lengths (taut unless given) and stored cable. Throws
+  /// std::invalid_argument, leaving the World untouched, for a definition
+  /// that cannot be built (too few links, unknown body, orientation not
+  /// +-1, a rolling link without a section, a pinhole or hybrid where it
+  /// cannot be, wrong rest_lengths size, negative values, no tangent
+  /// between adjacent links).
   int addCable(const CableDef& def);
 
-  /// Alg. 1 lines 2-7 and Alg. 2 lines 8-9 for every joint: new tangent
-  /// points, rest lengths and stored cable from the current poses.
-  void update();
+  /// One substep of bookkeeping from the current poses: tangent points,
+  /// rest lengths and stored cable (Alg. 1 l. 2-7, Alg. 2 l. 8-9), pinhole
+  /// sliding (Alg. 1 l. 8-16), hybrid switches (Alg. 2 l. 11-22), merges and
+  /// splits (Alg. 2 l. 23-28). `time_s` stamps the events.
+  void update(double time_s = 0.0);
 
   const std::vector<Cable>& cables() const { return cables_; }
   const World& world() const { return world_; }
+  /// Events since the last takeEvents().
+  std::vector<CableEvent> takeEvents();
 
   /// Tension (N), rest length (m) and current length (m) of joint j of
-  /// cable c.
+  /// cable c; all 0 for a disabled joint.
   double tension(int c, int j) const;
   double restLength(int c, int j) const;
   double length(int c, int j) const;
+  /// Whether joint j of cable c currently exists (its link is active).
+  bool jointEnabled(int c, int j) const;
   /// World positions (m) of the tangent points of joint j of cable c.
   Vec3 startPoint(int c, int j) const;
   Vec3 endPoint(int c, int j) const;
   /// Rest lengths plus stored cable of cable c (m): conserved by update().
   double totalLength(int c) const;
+  /// Sets the rest length (m, >= 0) of joint j of cable c: a winch paying
+  /// out or hauling in cable, or slack given after set-up.
+  void setRestLength(int c, int j, double rest_length_m);
 
  private:
-  /// New body-local anchors (a, b) of joint j: tangent points on rolling
-  /// links, the fixed points of attachments; nullopt if no tangent exists.
-  std::optional<std::pair<Vec3, Vec3>> tangentAnchors(const Cable& cable, int j) const;
   void updateJoint(Cable& cable, int j);
+  void switchHybrids(Cable& cable, int c, double time_s);
+  void mergeEmptyLinks(Cable& cable, int c, double time_s);
+  void splitAtCrossedLinks(Cable& cable, int c, double time_s);
+  void syncRuns(Cable& cable);
+  /// Current length (m) and world end points of joint j's straight span.
+  double spanLength(const Cable& cable, int j) const;
+  Vec3 startPointOf(const Cable& cable, int j) const;
+  Vec3 endPointOf(const Cable& cable, int j) const;
 
   World& world_;
   std::vector<Cable> cables_;
+  std::vector<CableEvent> events_;
 };
 
 }  // namespace reeve

@@ -26,6 +26,10 @@ struct BodyDef {
   Quat orientation = Quat::Identity();         // local -> world
   Vec3 linear_velocity = Vec3::Zero();         // m/s, world
   Vec3 angular_velocity = Vec3::Zero();        // rad/s, world
+  /// Velocity decay rates (1/s): v *= exp(-rate h) each substep, e.g. air
+  /// drag or bearing friction that lets a mechanism come to rest.
+  double linear_damping = 0.0;
+  double angular_damping = 0.0;
 };
 
 /// Solver state of one body (Müller et al. 2020, Alg. 2). Static bodies
@@ -41,6 +45,8 @@ struct BodyState {
   double inv_mass = 0.0;          // 1/kg
   Vec3 inv_inertia = Vec3::Zero();  // 1/(kg m^2), principal, local axes
   Vec3 inertia = Vec3::Zero();      // kg m^2, principal, local axes
+  double linear_damping = 0.0;      // 1/s
+  double angular_damping = 0.0;     // 1/s
 
   /// World point of the body-local point `local`.
   Vec3 toWorld(const Vec3& local) const { return x + q * local; }

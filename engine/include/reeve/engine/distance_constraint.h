@@ -16,6 +16,7 @@ struct DistanceConstraint {
   double rest_length = 0.0;                             // m
   double compliance = 0.0;                              // m/N
   bool unilateral = true;
+  bool enabled = true;  // a disabled constraint is skipped and exerts nothing
   double lambda = 0.0;  // accumulated this substep, kg m; <= 0 when pulling
 };
 

@@ -11,6 +11,7 @@
 #include "reeve/engine/body.h"
 #include "reeve/engine/distance_constraint.h"
 #include "reeve/engine/hinge_joint.h"
+#include "reeve/engine/path_constraint.h"
 
 namespace reeve {
 
@@ -27,6 +28,7 @@ struct SolverSettings {
 /// Id of a constraint in the World's per-type arrays.
 using HingeId = int;
 using DistanceId = int;
+using PathId = int;
 
 class World {
  public:
@@ -43,7 +45,11 @@ class World {
   /// Adds a hinge from the current poses; throws std::invalid_argument for
   /// unknown or identical bodies or a zero axis.
   HingeId addHinge(const HingeDef& def);
+  /// Gives dynamic body `id` a new mass (kg, > 0), scaling its inertia with
+  /// it; throws std::invalid_argument otherwise.
+  void setMass(BodyId id, double mass);
   DistanceId addDistance(const DistanceConstraint& c);
+  PathId addPath(PathConstraint path);
   void addSubstepHook(SubstepHook hook);
 
   /// Advances by dt (s) with the current settings.
@@ -73,6 +79,17 @@ class World {
   /// Tension (N) of a distance constraint over the last substep: -lambda/h^2.
   double tension(DistanceId id) const;
 
+  int pathCount() const { return static_cast<int>(paths_.size()); }
+  PathConstraint& path(PathId id) { return paths_[id]; }
+  const PathConstraint& path(PathId id) const { return paths_[id]; }
+  /// Tension (N) of a path over the last substep, the same in all its
+  /// segments: -lambda/h^2; 0 when disabled.
+  double pathTension(PathId id) const;
+  /// Current length (m) of a path: the sum of its segments.
+  double pathLength(PathId id) const;
+  /// World position (m) of a body-local point (kWorldBody allowed).
+  Vec3 worldPoint(BodyId id, const Vec3& local) const { return body(id).toWorld(local); }
+
   double time() const { return time_; }        // s simulated so far
   double lastSubstep() const { return last_h_; }  // s
 
@@ -87,6 +104,7 @@ class World {
   BodyState world_frame_;
   std::vector<HingeJoint> hinges_;
   std::vector<DistanceConstraint> distances_;
+  std::vector<PathConstraint> paths_;
   std::vector<SubstepHook> hooks_;
   double time_ = 0.0;
   double last_h_ = 0.0;

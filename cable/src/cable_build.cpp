@@ -1,0 +1,128 @@
+// Building cables: validation, initial tangent points, rest lengths,
+// stored cable and compliance (paper sec. 3, Alg. 2 line 2).
+#include <stdexcept>
+
+#include "link_geometry.h"
+#include "links.h"
+#include "reeve/cable/cable.h"
+
+namespace reeve {
+namespace {
+
+// The section a rolling link wraps when the user gives none: the body
+// shape's cross-section in its local z = 0 plane.
+Section defaultSection(const Shape& shape) {
+  switch (shape.type) {
+    case Shape::Type::Box: return boxSection(shape.half_extents.x(), shape.half_extents.y());
+    case Shape::Type::Cylinder:
+    case Shape::Type::Sphere: return Section::circle(shape.radius);
+  }
+  return Section::circle(shape.radius);
+}
+
+bool hasSection(const Section& s) {
+  return s.kind == Section::Kind::Polygon || s.radius > 0.0;
+}
+
+}  // namespace
+
+const char* eventName(CableEvent::Kind kind) {
+  switch (kind) {
+    case CableEvent::Kind::HybridRunsOut: return "hybrid_runs_out";
+    case CableEvent::Kind::HybridRollsAgain: return "hybrid_rolls_again";
+    case CableEvent::Kind::Merge: return "merge";
+    case CableEvent::Kind::Split: return "split";
+  }
+  return "?";
+}
+
+CableSystem::CableSystem(World& world) : world_(world) {
+  world_.addSubstepHook([this](World& w, double h) { update(w.time() + h); });
+}
+
+int CableSystem::addCable(const CableDef& def) {
+  const auto fail = [&](const std::string& what) {
+    throw std::invalid_argument("cable '" + def.name + "': " + what);
+  };
+  const int n = static_cast<int>(def.links.size());
+  const int joints = def.closed ? n : n - 1;
+  if (n < 2) fail("needs at least two links");
+  if (!def.rest_lengths.empty() && static_cast<int>(def.rest_lengths.size()) != joints)
+    fail("rest_lengths needs one value per joint (" + std::to_string(joints) + ")");
+  if (!(def.compliance >= 0.0)) fail("compliance must be >= 0");
+
+  Cable cable;
+  cable.name = def.name;
+  cable.closed = def.closed;
+  int active = 0;
+  for (int k = 0; k < n; ++k) {
+    const LinkDef& ld = def.links[k];
+    const std::string at = "link " + std::to_string(k) + ": ";
+    const bool end = !def.closed && (k == 0 || k == n - 1);
+    if (ld.body < 0 || ld.body >= world_.bodyCount()) fail(at + "no such body");
+    if (ld.type == LinkType::Pinhole && end) fail(at + "a pinhole cannot end a cable");
+    if (ld.type == LinkType::Hybrid && !end) fail(at + "hybrid links end open cables (spools)");
+    if (!ld.active && (end || ld.type != LinkType::Rolling))
+      fail(at + "only interior rolling links can start inactive");
+    if (ld.stored && !(*ld.stored >= 0.0)) fail(at + "stored cable must be >= 0");
+    Link link;
+    link.body = ld.body;
+    link.type = ld.type;
+    link.orientation = ld.orientation;
+    link.point = ld.point;
+    link.plane_offset = ld.plane_offset;
+    link.active = ld.active;
+    if (ld.type == LinkType::Rolling || ld.type == LinkType::Hybrid) {
+      link.section = hasSection(ld.section) ? ld.section : defaultSection(world_.bodyDef(ld.body).shape);
+      if (ld.orientation != 1 && ld.orientation != -1) fail(at + "orientation must be +1 or -1");
+    }
+    active += link.active;
+    cable.links.push_back(link);
+  }
+  if (active < 2) fail("needs at least two active links");
+  bool any_non_pinhole = false;
+  for (const Link& link : cable.links) any_non_pinhole |= link.type != LinkType::Pinhole;
+  if (!any_non_pinhole) fail("a closed cable needs a link that is not a pinhole");
+
+  // Everything is checked before the World is touched, so a failed cable
+  // leaves nothing behind.
+  cable.joints.resize(joints);
+  for (int j = 0; j < joints; ++j) {
+    CableJoint& joint = cable.joints[j];
+    joint.to = nextActive(cable, j);
+    if (!cable.links[j].active) continue;
+    const Link& from = cable.links[j];
+    const Link& to = cable.links[joint.to];
+    const auto anchors = spanAnchors(from, world_.body(from.body), to, world_.body(to.body), Vec3::Zero());
+    if (!anchors) fail("joint " + std::to_string(j) + ": no tangent between its links (do they overlap?)");
+    joint.local_a = anchors->first;
+    joint.local_b = anchors->second;
+    joint.rest_length = def.rest_lengths.empty() ? spanLength(cable, j) : def.rest_lengths[j];
+    if (!(joint.rest_length >= 0.0)) fail("joint " + std::to_string(j) + ": rest length must be >= 0");
+  }
+  double total = 0.0;
+  for (int k = 0; k < n; ++k) {
+    Link& link = cable.links[k];
+    if (link.active && link.rolls()) {
+      if (def.links[k].stored) {
+        link.stored = *def.links[k].stored;
+      } else if (!isEnd(cable, k)) {
+        link.stored = sectionWrappedArc(link.section, planePoint(cable.joints[previousActive(cable, k)].local_b),
+                                        planePoint(cable.joints[k].local_a), link.orientation);
+      }
+    }
+    total += link.stored;
+  }
+  for (int j = 0; j < joints; ++j) total += cable.links[j].active ? cable.joints[j].rest_length : 0.0;
+  cable.compliance_per_m = total > 0.0 ? def.compliance / total : 0.0;
+  for (CableJoint& joint : cable.joints) {
+    PathConstraint path;
+    path.points.resize(2);  // filled by syncRuns()
+    joint.path = world_.addPath(std::move(path));
+  }
+  syncRuns(cable);
+  cables_.push_back(std::move(cable));
+  return static_cast<int>(cables_.size() - 1);
+}
+
+}  // namespace reeve

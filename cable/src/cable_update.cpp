@@ -1,0 +1,223 @@
+// The per-substep cable update: paper Alg. 1 (tangent points, rest
+// lengths, pinholes) and Alg. 2 (stored cable, hybrid links, merge, split).
+#include "link_geometry.h"
+#include "links.h"
+#include "reeve/cable/cable.h"
+
+namespace reeve {
+namespace {
+
+// Splits wait until a span cuts this deep (m) into a section, so a span
+// that has just merged, grazing its link, does not split straight back.
+constexpr double kSplitMargin = 1e-6;
+
+// Arc (m) paid out into a span when its anchor on a rolling link moves
+// from `old_anchor` to `new_anchor` (body-local): Alg. 1 l. 4-5 with the
+// sign of the leaving side; the arriving side uses its negative.
+double payOut(const Link& link, const Vec3& old_anchor, const Vec3& new_anchor) {
+  return sectionSurfaceDistance(link.section, planePoint(old_anchor), planePoint(new_anchor),
+                                link.orientation);
+}
+
+}  // namespace
+
+void CableSystem::update(double time_s) {
+  for (int c = 0; c < static_cast<int>(cables_.size()); ++c) {
+    Cable& cable = cables_[c];
+    for (int j = 0; j < static_cast<int>(cable.joints.size()); ++j) updateJoint(cable, j);
+    switchHybrids(cable, c, time_s);
+    mergeEmptyLinks(cable, c, time_s);
+    splitAtCrossedLinks(cable, c, time_s);
+    syncRuns(cable);
+  }
+}
+
+void CableSystem::updateJoint(Cable& cable, int j) {
+  Link& from = cable.links[j];
+  CableJoint& joint = cable.joints[j];
+  Link& to = cable.links[joint.to];
+  if (!from.active || (!from.rolls() && !to.rolls())) return;
+  const auto anchors = spanAnchors(from, world_.body(from.body), to, world_.body(to.body), joint.local_b);
+  if (!anchors) return;  // overlapping sections: keep the old anchors
+  // Alg. 1 l. 4-5 and Alg. 2 l. 8-9: the anchors turned with their bodies
+  // since the last update; the arc from the new tangent point back to the
+  // old anchor is cable paid out into the span (leaving side) or taken up
+  // from it (arriving side).
+  if (from.rolls()) {
+    const double s = payOut(from, joint.local_a, anchors->first);
+    joint.rest_length += s;
+    from.stored -= s;
+  }
+  if (to.rolls()) {
+    const double s = payOut(to, joint.local_b, anchors->second);
+    joint.rest_length -= s;
+    to.stored += s;
+  }
+  joint.local_a = anchors->first;
+  joint.local_b = anchors->second;
+}
+
+void CableSystem::switchHybrids(Cable& cable, int c, double time_s) {
+  if (cable.closed) return;
+  const int last = static_cast<int>(cable.links.size()) - 1;
+  for (const int k : {0, last}) {
+    Link& link = cable.links[k];
+    if (link.type != LinkType::Hybrid) continue;
+    const bool leaving = k == 0;  // the span leaves the first link, arrives at the last
+    CableJoint& joint = cable.joints[leaving ? 0 : previousActive(cable, k)];
+    Vec3& anchor = leaving ? joint.local_a : joint.local_b;
+    if (!link.attached) {
+      if (link.stored >= 0.0) continue;
+      // Alg. 2 l. 12-13: the cable has run out; it is tied where it left.
+      link.attached = true;
+      link.point = anchor;
+      joint.rest_length += link.stored;  // the overdraft, so the total is kept
+      link.stored = 0.0;
+      events_.push_back({CableEvent::Kind::HybridRunsOut, time_s, c, k, link.orientation});
+      continue;
+    }
+    // Alg. 2 l. 14-20: the tie point is hidden from the span's other end
+    // once it has passed one of the two rolling tangent points a+ and a-;
+    // then the wraps from it to a+ and to a- add up to less than the whole
+    // boundary. Roll again the short way round.
+    const BodyState& body = world_.body(link.body);
+    const int j = leaving ? 0 : previousActive(cable, k);
+    const Vec2 seen_from = toPlane(body, leaving ? endPointOf(cable, j) : startPointOf(cable, j));
+    const Vec2 tie = planePoint(link.point);
+    double wrap[2] = {0.0, 0.0};
+    Vec2 tangent[2];
+    bool found = true;
+    for (int i = 0; i < 2; ++i) {
+      const int o = i == 0 ? 1 : -1;
+      const auto t = tangentFromPoint(link.section, seen_from, o, leaving);
+      if (!t) {
+        found = false;
+        break;
+      }
+      tangent[i] = *t;
+      wrap[i] = leaving ? sectionWrappedArc(link.section, tie, *t, o) : sectionWrappedArc(link.section, *t, tie, o);
+    }
+    if (!found || wrap[0] + wrap[1] >= link.section.perimeter()) continue;
+    const int i = wrap[0] <= wrap[1] ? 0 : 1;
+    link.attached = false;
+    link.orientation = i == 0 ? 1 : -1;
+    link.stored = wrap[i];
+    joint.rest_length -= wrap[i];
+    anchor = fromPlane(link, tangent[i]);
+    events_.push_back({CableEvent::Kind::HybridRollsAgain, time_s, c, k, link.orientation});
+  }
+}
+
+void CableSystem::mergeEmptyLinks(Cable& cable, int c, double time_s) {
+  // Alg. 2 l. 23-25, Fig. 11a: an interior rolling link whose stored cable
+  // went negative no longer touches the cable; its two spans become one.
+  const int n = static_cast<int>(cable.links.size());
+  for (int k = 0; k < n; ++k) {
+    Link& link = cable.links[k];
+    if (link.type != LinkType::Rolling || !link.active || isEnd(cable, k) || link.stored >= 0.0) continue;
+    const int p = previousActive(cable, k);
+    CableJoint& in = cable.joints[p];
+    const CableJoint& out = cable.joints[k];
+    if (p == out.to) continue;  // a belt keeps at least two links
+    in.to = out.to;
+    in.local_b = out.local_b;
+    in.rest_length += out.rest_length + link.stored;
+    link.stored = 0.0;
+    link.active = false;
+    events_.push_back({CableEvent::Kind::Merge, time_s, c, k, link.orientation});
+  }
+}
+
+void CableSystem::splitAtCrossedLinks(Cable& cable, int c, double time_s) {
+  // Alg. 2 l. 26-28, Fig. 11b: a span that cuts into the section of an
+  // inactive link lying between its ends in the cable is split there; the
+  // rest length is shared so both parts have the same strain.
+  const int n = static_cast<int>(cable.links.size());
+  for (int j = 0; j < static_cast<int>(cable.joints.size()); ++j) {
+    if (!cable.links[j].active) continue;
+    CableJoint& in = cable.joints[j];
+    for (int k = (j + 1) % n; k != in.to; k = (k + 1) % n) {
+      Link& mid = cable.links[k];
+      if (!spanCutsSection(mid, world_.body(mid.body), startPointOf(cable, j), endPointOf(cable, j),
+                           kSplitMargin))
+        continue;
+      Link& from = cable.links[j];
+      Link& to = cable.links[in.to];
+      mid.active = true;  // so that the tangents below see it rolling
+      const auto first = spanAnchors(from, world_.body(from.body), mid, world_.body(mid.body), Vec3::Zero());
+      const auto second = spanAnchors(mid, world_.body(mid.body), to, world_.body(to.body), in.local_b);
+      if (!first || !second) {
+        mid.active = false;
+        continue;
+      }
+      // Moving the span's ends to the new tangent points pays cable in or
+      // out of the end links, as in updateJoint().
+      double rest = in.rest_length;
+      if (from.rolls()) {
+        const double s = payOut(from, in.local_a, first->first);
+        rest += s;
+        from.stored -= s;
+      }
+      if (to.rolls()) {
+        const double s = payOut(to, in.local_b, second->second);
+        rest -= s;
+        to.stored += s;
+      }
+      mid.stored = sectionWrappedArc(mid.section, planePoint(first->second), planePoint(second->first),
+                                     mid.orientation);
+      rest -= mid.stored;
+      CableJoint& out = cable.joints[k];
+      out.to = in.to;
+      out.local_a = second->first;
+      out.local_b = second->second;
+      in.to = k;
+      in.local_a = first->first;
+      in.local_b = first->second;
+      const double l_in = spanLength(cable, j), l_out = spanLength(cable, k);
+      in.rest_length = l_in + l_out > 0.0 ? rest * l_in / (l_in + l_out) : 0.5 * rest;
+      out.rest_length = rest - in.rest_length;
+      events_.push_back({CableEvent::Kind::Split, time_s, c, k, mid.orientation});
+      break;  // the new spans are checked again next substep
+    }
+  }
+}
+
+void CableSystem::syncRuns(Cable& cable) {
+  // Spans joined through pinholes are one path constraint (equal tension,
+  // paper sec. 3.3). Their rest lengths are shared out in proportion to
+  // their lengths, equal strain as Alg. 1 l. 8-16 intends.
+  for (CableJoint& joint : cable.joints) world_.path(joint.path).enabled = false;
+  const int joints = static_cast<int>(cable.joints.size());
+  for (int j = 0; j < joints; ++j) {
+    if (!cable.links[j].active || cable.links[j].type == LinkType::Pinhole) continue;
+    PathConstraint& path = world_.path(cable.joints[j].path);
+    path.points.clear();
+    path.points.push_back({cable.links[j].body, cable.joints[j].local_a});
+    double rest = 0.0, length = 0.0;
+    int first_pinhole_span = -1;
+    for (int k = j;; k = cable.joints[k].to) {
+      CableJoint& span = cable.joints[k];
+      span.run = j;
+      rest += span.rest_length;
+      length += spanLength(cable, k);
+      const Link& to = cable.links[span.to];
+      if (to.type != LinkType::Pinhole) {
+        path.points.push_back({to.body, span.local_b});
+        break;
+      }
+      path.points.push_back({to.body, to.point});
+      if (first_pinhole_span < 0) first_pinhole_span = j;
+    }
+    if (first_pinhole_span >= 0 && length > 0.0) {
+      for (int k = j;; k = cable.joints[k].to) {
+        cable.joints[k].rest_length = rest * spanLength(cable, k) / length;
+        if (cable.links[cable.joints[k].to].type != LinkType::Pinhole) break;
+      }
+    }
+    path.rest_length = rest;
+    path.compliance = cable.compliance_per_m * rest;
+    path.enabled = true;
+  }
+}
+
+}  // namespace reeve

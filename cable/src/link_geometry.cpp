@@ -1,0 +1,141 @@
+#include "link_geometry.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "reeve/cable/tangent.h"
+
+namespace reeve {
+namespace {
+
+Vec3 planeNormal(const BodyState& body) { return body.q * Vec3::UnitZ(); }
+
+Vec3 planeOrigin(const BodyState& body, const Link& link) {
+  return body.toWorld(Vec3(0.0, 0.0, link.plane_offset));
+}
+
+bool coplanar(const Link& a, const BodyState& ba, const Link& b, const BodyState& bb) {
+  const Vec3 n = planeNormal(ba);
+  return std::abs(n.dot(planeNormal(bb))) > 1.0 - 1e-12 &&
+         std::abs((planeOrigin(bb, b) - planeOrigin(ba, a)).dot(n)) < 1e-9;
+}
+
+// Appendix A closed form for two circles in one plane, computed in the
+// plane of `from`; `to`'s orientation flips if its normal points the other way.
+std::optional<std::pair<Vec3, Vec3>> coplanarCircles(const Link& from, const BodyState& fb,
+                                                     const Link& to, const BodyState& tb) {
+  const int flip = planeNormal(fb).dot(planeNormal(tb)) < 0.0 ? -1 : 1;
+  const CableCircle a{Vec2::Zero(), from.section.radius, from.orientation};
+  const CableCircle b{toPlane(fb, planeOrigin(tb, to)), to.section.radius, flip * to.orientation};
+  const auto t = commonTangent(a, b);
+  if (!t) return std::nullopt;
+  const Vec3 on_to = fb.toWorld(fromPlane(from, t->on_to));
+  return std::pair{fromPlane(from, t->on_from), fromPlane(to, toPlane(tb, on_to))};
+}
+
+// Paper Fig. 6 in 3D: alternate tangent points, projecting each into the
+// other link's plane, until the point on `from` stops moving. nullopt if a
+// point falls inside the other section or the iteration does not settle.
+std::optional<std::pair<Vec3, Vec3>> alternate(const Link& from, const BodyState& fb, const Link& to,
+                                               const BodyState& tb, Vec3 on_to) {
+  const double tolerance = 1e-13 * std::max(from.section.perimeter(), to.section.perimeter());
+  Vec3 on_from = Vec3::Constant(std::numeric_limits<double>::infinity());
+  for (int round = 0; round < 100; ++round) {
+    const auto a = tangentFromPoint(from.section, toPlane(fb, tb.toWorld(on_to)), from.orientation, true);
+    if (!a) return std::nullopt;
+    const Vec3 new_from = fromPlane(from, *a);
+    const auto b = tangentFromPoint(to.section, toPlane(tb, fb.toWorld(new_from)), to.orientation, false);
+    if (!b) return std::nullopt;
+    on_to = fromPlane(to, *b);
+    const bool settled = (new_from - on_from).norm() <= tolerance;
+    on_from = new_from;
+    if (settled) return std::pair{on_from, on_to};
+  }
+  return std::nullopt;
+}
+
+// Two sections in one plane that the iteration could not settle (they
+// overlap): the full search of sectionTangent in the plane of `from`, with
+// `to`'s section carried over point by point. Rare, so it may allocate.
+std::optional<std::pair<Vec3, Vec3>> coplanarSearch(const Link& from, const BodyState& fb, const Link& to,
+                                                    const BodyState& tb) {
+  const int flip = planeNormal(fb).dot(planeNormal(tb)) < 0.0 ? -1 : 1;
+  const Vec2 c_to = toPlane(fb, planeOrigin(tb, to));
+  Section carried = to.section;
+  if (carried.kind == Section::Kind::Polygon) {
+    std::vector<Vec2> points;
+    for (const Vec2& v : to.section.vertices) points.push_back(toPlane(fb, tb.toWorld(fromPlane(to, v))) - c_to);
+    carried = Section::polygon(std::move(points));
+  }
+  const auto t = sectionTangent(from.section, Vec2::Zero(), from.orientation, carried, c_to, flip * to.orientation);
+  if (!t) return std::nullopt;
+  const Vec3 on_to = fb.toWorld(fromPlane(from, t->on_to));
+  return std::pair{fromPlane(from, t->on_from), fromPlane(to, toPlane(tb, on_to))};
+}
+
+}  // namespace
+
+Vec2 toPlane(const BodyState& body, const Vec3& p) {
+  const Vec3 local = body.toLocal(p);
+  return Vec2(local.x(), local.y());
+}
+
+Vec3 fromPlane(const Link& link, const Vec2& p) { return Vec3(p.x(), p.y(), link.plane_offset); }
+
+std::optional<std::pair<Vec3, Vec3>> spanAnchors(const Link& from, const BodyState& fb,
+                                                 const Link& to, const BodyState& tb,
+                                                 const Vec3& warm_to) {
+  const bool from_rolls = from.rolls(), to_rolls = to.rolls();
+  if (!from_rolls && !to_rolls) return std::pair{from.point, to.point};
+  if (!to_rolls) {
+    const auto a = tangentFromPoint(from.section, toPlane(fb, tb.toWorld(to.point)),
+                                    from.orientation, true);
+    if (!a) return std::nullopt;
+    return std::pair{fromPlane(from, *a), to.point};
+  }
+  if (!from_rolls) {
+    const auto b = tangentFromPoint(to.section, toPlane(tb, fb.toWorld(from.point)),
+                                    to.orientation, false);
+    if (!b) return std::nullopt;
+    return std::pair{from.point, fromPlane(to, *b)};
+  }
+  if (from.section.kind == Section::Kind::Circle && to.section.kind == Section::Kind::Circle &&
+      coplanar(from, fb, to, tb))
+    return coplanarCircles(from, fb, to, tb);
+  if (auto anchors = alternate(from, fb, to, tb, warm_to)) return anchors;
+  if (coplanar(from, fb, to, tb)) return coplanarSearch(from, fb, to, tb);
+  return std::nullopt;
+}
+
+bool spanCutsSection(const Link& link, const BodyState& body, const Vec3& p, const Vec3& q,
+                     double margin) {
+  const Vec2 a = toPlane(body, p), b = toPlane(body, q);
+  const Vec2 d = b - a;
+  if (link.section.kind == Section::Kind::Circle) {
+    const double len2 = d.squaredNorm();
+    const double t = len2 > 0.0 ? std::clamp(-a.dot(d) / len2, 0.0, 1.0) : 0.0;
+    return (a + t * d).norm() < link.section.radius - margin;
+  }
+  // Cyrus-Beck: clip the segment to the polygon shrunk by `margin`.
+  const auto& v = link.section.vertices;
+  double t0 = 0.0, t1 = 1.0;
+  for (size_t i = 0; i < v.size(); ++i) {
+    const Vec2 e = v[(i + 1) % v.size()] - v[i];
+    const Vec2 n = Vec2(e.y(), -e.x()).normalized();  // outward for a ccw polygon
+    const double dist = n.dot(a - v[i]) + margin;       // > 0: outside the shrunk edge
+    const double rate = n.dot(d);
+    if (rate == 0.0) {
+      if (dist > 0.0) return false;
+    } else if (rate > 0.0) {
+      t1 = std::min(t1, -dist / rate);
+    } else {
+      t0 = std::max(t0, -dist / rate);
+    }
+    if (t0 >= t1) return false;
+  }
+  return true;
+}
+
+}  // namespace reeve

@@ -1,0 +1,36 @@
+// Where a link's cable plane lies and where spans touch links: the
+// geometry the cable update needs, kept apart from its bookkeeping.
+#pragma once
+
+#include <optional>
+#include <utility>
+
+#include "reeve/cable/cable.h"
+
+namespace reeve {
+
+/// Coordinates (m) of the world point `p` in the link's cable plane
+/// (body-local x, y; the out-of-plane part is dropped: paper sec. 3.4).
+Vec2 toPlane(const BodyState& body, const Vec3& p);
+
+/// Body-local point (m) of the plane point `p`.
+Vec3 fromPlane(const Link& link, const Vec2& p);
+
+/// Body-local anchors (on `from`, on `to`) of the span leaving `from` and
+/// arriving at `to`: tangent points on links that roll, the tie points of
+/// the others. Coplanar circles use the closed form of Appendix A; other
+/// pairs of rolling links the alternating iteration of Fig. 6, each point
+/// projected into the other link's plane, started from `warm_to` (a
+/// body-local point of `to`, e.g. its current anchor). nullopt when no
+/// tangent exists (a point inside a section, overlapping sections).
+std::optional<std::pair<Vec3, Vec3>> spanAnchors(const Link& from, const BodyState& from_body,
+                                                 const Link& to, const BodyState& to_body,
+                                                 const Vec3& warm_to);
+
+/// Whether the straight span from world point `p` to `q` cuts into the
+/// link's section deeper than `margin` (m), seen in the link's plane: the
+/// split test of paper sec. 4.2.
+bool spanCutsSection(const Link& link, const BodyState& body, const Vec3& p, const Vec3& q,
+                     double margin);
+
+}  // namespace reeve

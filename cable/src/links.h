@@ -1,0 +1,24 @@
+// Walking a cable's links: which link a span reaches, which span arrives.
+#pragma once
+
+#include "reeve/cable/cable.h"
+
+namespace reeve {
+
+/// Index of the next active link after link k (cyclic for closed cables).
+int nextActive(const Cable& cable, int k);
+
+/// Index of the active link whose span arrives at link k: the previous
+/// active link (cyclic for closed cables). For the first link of an open
+/// cable, which no span reaches, returns 0.
+int previousActive(const Cable& cable, int k);
+
+/// Whether link k ends an open cable.
+inline bool isEnd(const Cable& cable, int k) {
+  return !cable.closed && (k == 0 || k + 1 == static_cast<int>(cable.links.size()));
+}
+
+/// The in-plane part (m) of a body-local anchor on a rolling link.
+inline Vec2 planePoint(const Vec3& local) { return Vec2(local.x(), local.y()); }
+
+}  // namespace reeve

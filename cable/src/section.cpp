@@ -1,0 +1,189 @@
+// Sections: construction (convex hull), area moments and distances along
+// the boundary (paper sec. 3.2 and 3.4, Alg. 1 surfaceDist, Alg. 2 line 2).
+// Tangents are in section_tangent.cpp.
+#include "reeve/cable/section.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+#include <utility>
+
+namespace reeve {
+namespace {
+
+double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+// `length` reduced into [0, period).
+double wrapPositive(double length, double period) {
+  double r = std::fmod(length, period);
+  if (r < 0.0) r += period;
+  return r < period ? r : 0.0;  // a tiny negative r rounds up to period
+}
+
+}  // namespace
+
+Section Section::circle(double radius) {
+  if (!(radius > 0.0 && std::isfinite(radius)))
+    throw std::invalid_argument("circle section: radius must be > 0 and finite");
+  Section s;
+  s.radius = radius;
+  return s;
+}
+
+Section Section::polygon(std::vector<Vec2> points) {
+  for (const Vec2& p : points)
+    if (!std::isfinite(p.x()) || !std::isfinite(p.y()))
+      throw std::invalid_argument("polygon section: a point is not finite");
+  std::sort(points.begin(), points.end(), [](const Vec2& a, const Vec2& b) {
+    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+  });
+  points.erase(std::unique(points.begin(), points.end()), points.end());
+  const auto zero_area = [] {
+    return std::invalid_argument("polygon section: the convex hull has zero area");
+  };
+  if (points.size() < 3) throw zero_area();
+  // Andrew's monotone chain: lower hull left to right, upper hull back.
+  // `push` pops while the stack holds at least `keep` points (two make a
+  // turn; the upper hull never pops the lower one); popping on cross <= 0
+  // drops collinear points.
+  const std::size_t n = points.size();
+  std::vector<Vec2> hull(2 * n);
+  std::size_t k = 0;
+  const auto push = [&](const Vec2& p, std::size_t keep) {
+    while (k >= keep && cross(hull[k - 1] - hull[k - 2], p - hull[k - 2]) <= 0.0) --k;
+    hull[k++] = p;
+  };
+  for (std::size_t i = 0; i < n; ++i) push(points[i], 2);
+  for (std::size_t i = n - 1, lower = k + 1; i-- > 0;) push(points[i], lower);
+  hull.resize(k - 1);  // the last point repeats the first
+  if (hull.size() < 3) throw zero_area();
+  Section s;
+  s.kind = Kind::Polygon;
+  s.vertices = std::move(hull);
+  return s;
+}
+
+Section boxSection(double hx, double hy) {
+  if (!(hx > 0.0 && hy > 0.0 && std::isfinite(hx) && std::isfinite(hy)))
+    throw std::invalid_argument("box section: half extents must be > 0 and finite");
+  return Section::polygon({Vec2(-hx, -hy), Vec2(hx, -hy), Vec2(hx, hy), Vec2(-hx, hy)});
+}
+
+double Section::perimeter() const {
+  if (kind == Kind::Circle) return 2.0 * std::numbers::pi * radius;
+  double length = 0.0;
+  for (std::size_t i = 0; i < vertices.size(); ++i)
+    length += (vertices[(i + 1) % vertices.size()] - vertices[i]).norm();
+  return length;
+}
+
+double Section::area() const {
+  if (kind == Kind::Circle) return std::numbers::pi * radius * radius;
+  double twice = 0.0;
+  for (std::size_t i = 0; i < vertices.size(); ++i)
+    twice += cross(vertices[i], vertices[(i + 1) % vertices.size()]);
+  return 0.5 * twice;
+}
+
+Vec2 Section::centroid() const {
+  if (kind == Kind::Circle) return Vec2::Zero();
+  // Sum over the triangles (0, v_i, v_i+1): signed area times centroid.
+  Vec2 sum = Vec2::Zero();
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    const Vec2& a = vertices[i];
+    const Vec2& b = vertices[(i + 1) % vertices.size()];
+    sum += (a + b) * cross(a, b);
+  }
+  return sum / (6.0 * area());
+}
+
+AreaMoments Section::secondMoments() const {
+  if (kind == Kind::Circle) {
+    const double i = std::numbers::pi * std::pow(radius, 4) / 4.0;
+    return {i, i, 0.0};
+  }
+  // Green's theorem over the edges (a, b), with c = cross(a, b).
+  AreaMoments m;
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    const Vec2& a = vertices[i];
+    const Vec2& b = vertices[(i + 1) % vertices.size()];
+    const double c = cross(a, b);
+    m.Ixx += (a.y() * a.y() + a.y() * b.y() + b.y() * b.y()) * c / 12.0;
+    m.Iyy += (a.x() * a.x() + a.x() * b.x() + b.x() * b.x()) * c / 12.0;
+    m.Ixy += (a.x() * b.y() + 2.0 * a.x() * a.y() + 2.0 * b.x() * b.y() + b.x() * a.y()) * c / 24.0;
+  }
+  return m;
+}
+
+double boundaryPosition(const Section& section, const Vec2& p) {
+  if (section.kind == Section::Kind::Circle)
+    return wrapPositive(section.radius * std::atan2(p.y(), p.x()), section.perimeter());
+  // Nearest point edge by edge; `along` is the position of edge i's start.
+  const std::vector<Vec2>& v = section.vertices;
+  double along = 0.0, best = 0.0, best_d2 = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const Vec2 edge = v[(i + 1) % v.size()] - v[i];
+    const double length = edge.norm();
+    const double t = std::clamp((p - v[i]).dot(edge) / (length * length), 0.0, 1.0);
+    const double d2 = (v[i] + t * edge - p).squaredNorm();
+    if (d2 < best_d2) {
+      best_d2 = d2;
+      best = along + t * length;
+    }
+    along += length;
+  }
+  return wrapPositive(best, along);
+}
+
+double sectionSurfaceDistance(const Section& section, const Vec2& old_point, const Vec2& new_point,
+                              int orientation) {
+  const double perimeter = section.perimeter();
+  // Counter-clockwise length from new to old, then the shorter way round.
+  double ccw = wrapPositive(
+      boundaryPosition(section, old_point) - boundaryPosition(section, new_point), perimeter);
+  if (ccw > 0.5 * perimeter) ccw -= perimeter;
+  return orientation * ccw;
+}
+
+double sectionWrappedArc(const Section& section, const Vec2& arrival, const Vec2& departure,
+                         int orientation) {
+  return wrapPositive(
+      orientation * (boundaryPosition(section, departure) - boundaryPosition(section, arrival)),
+      section.perimeter());
+}
+
+std::vector<Vec2> sectionArcPoints(const Section& section, const Vec2& arrival,
+                                   const Vec2& departure, int orientation, double max_step_rad) {
+  if (!(max_step_rad > 0.0))
+    throw std::invalid_argument("sectionArcPoints: max_step_rad must be > 0");
+  const double arc = sectionWrappedArc(section, arrival, departure, orientation);
+  std::vector<Vec2> points{arrival};
+  if (section.kind == Section::Kind::Circle) {
+    const double angle = arc / section.radius;
+    const int steps = std::max(1, static_cast<int>(std::ceil(angle / max_step_rad)));
+    const double start = std::atan2(arrival.y(), arrival.x());
+    for (int k = 1; k < steps; ++k) {
+      const double a = start + orientation * angle * k / steps;
+      points.push_back(section.radius * Vec2(std::cos(a), std::sin(a)));
+    }
+  } else {
+    // Vertices strictly between the ends, ordered by the length travelled.
+    const double perimeter = section.perimeter(), eps = 1e-12 * perimeter;
+    const double start = boundaryPosition(section, arrival);
+    std::vector<std::pair<double, Vec2>> passed;
+    for (const Vec2& vertex : section.vertices) {
+      const double travelled =
+          wrapPositive(orientation * (boundaryPosition(section, vertex) - start), perimeter);
+      if (travelled > eps && travelled < arc - eps) passed.emplace_back(travelled, vertex);
+    }
+    std::sort(passed.begin(), passed.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (const auto& [travelled, vertex] : passed) points.push_back(vertex);
+  }
+  points.push_back(departure);
+  return points;
+}
+
+}  // namespace reeve

@@ -1,0 +1,19 @@
+// Loading and stepping the shipped scenes in tests.
+#pragma once
+
+#include <string>
+
+#include "reeve/scene/scene.h"
+
+namespace reeve::test {
+
+/// Loads scenes/NAME.json from the source tree.
+inline Scene scene(const std::string& name) { return loadScene(std::string(REEVE_SCENES_DIR) + "/" + name + ".json"); }
+
+/// The id of the body named `name` (the scene must have it).
+inline BodyId body(const Scene& s, const std::string& name) { return *s.world->findBody(name); }
+
+/// One frame of the scene.
+inline void frame(Scene& s) { s.world->step(1.0 / s.frame_rate_hz); }
+
+}  // namespace reeve::test

@@ -1,0 +1,76 @@
+// Pinhole links (paper sec. 3.3): the cable slides freely through a fixed
+// point, so the tension is the same on both sides.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "reeve/cable/cable.h"
+#include "scene_fixture.h"
+
+namespace reeve {
+namespace {
+
+TEST(Pinhole, ARingOnACableComesToRestWithEqualAnglesAndTensions) {
+  // A ring of mass m on a cable of length S between posts a horizontal
+  // distance D apart rests where both sides make the same angle a with
+  // the horizontal, cos a = D / S, with tension m g / (2 sin a) on each.
+  Scene s = test::scene("pinhole");
+  const Vec3 left = s.world->body(test::body(s, "post_left")).x;
+  const Vec3 right = s.world->body(test::body(s, "post_right")).x;
+  const double S = s.cables->totalLength(0), D = right.x() - left.x(), g = 9.81;
+  const double a = std::acos(D / S);
+  // Left span l1, right span l2: l1 + l2 = S, (l2 - l1) sin a = rise.
+  const double l1 = 0.5 * (S - (right.y() - left.y()) / std::sin(a));
+  const Vec3 rest = left + l1 * Vec3(std::cos(a), -std::sin(a), 0.0);
+  for (int f = 0; f < s.frameCount(); ++f) test::frame(s);
+  const BodyState& ring = s.world->body(test::body(s, "ring"));
+  EXPECT_LT(ring.v.norm(), 1e-3);
+  EXPECT_NEAR((ring.x - rest).norm(), 0.0, 0.005) << ring.x.transpose() << " vs " << rest.transpose();
+  const double T = 1.0 * g / (2.0 * std::sin(a));
+  EXPECT_NEAR(s.cables->tension(0, 0), T, 0.01 * T);
+  EXPECT_NEAR(s.cables->tension(0, 1), T, 0.01 * T);
+  EXPECT_NEAR(s.cables->totalLength(0), S, 1e-9 * S);
+  // Equal strain: both spans at their rest lengths.
+  for (int j = 0; j < 2; ++j)
+    EXPECT_NEAR(s.cables->length(0, j), s.cables->restLength(0, j), 1e-6);
+}
+
+TEST(Pinhole, CableSlidesThroughTwoHolesLikeAMasslessPulley) {
+  // m1 and m2 hang from one cable through two holes in a fixed bar: an
+  // Atwood machine with a massless, frictionless pulley:
+  // a = (m2 - m1) g / (m1 + m2), T = 2 m1 m2 g / (m1 + m2) on every span.
+  const double m1 = 1.0, m2 = 3.0, g = 10.0;
+  World world;
+  world.settings().gravity = Vec3(0, -g, 0);
+  CableSystem cables(world);
+  BodyDef bar;
+  bar.is_static = true;
+  const BodyId b = world.addBody(bar);
+  BodyDef box;
+  box.shape = Shape::box(Vec3(0.1, 0.1, 0.1));
+  box.mass = m1;
+  box.position = Vec3(-0.5, -2.0, 0);
+  const BodyId light = world.addBody(box);
+  box.mass = m2;
+  box.position = Vec3(0.5, -2.0, 0);
+  const BodyId heavy = world.addBody(box);
+  CableDef def;
+  def.links = {LinkDef::attachment(light, Vec3(0, 0.1, 0)),
+               LinkDef::pinhole(b, Vec3(-0.5, 0, 0)),
+               LinkDef::pinhole(b, Vec3(0.5, 0, 0)),
+               LinkDef::attachment(heavy, Vec3(0, 0.1, 0))};
+  const int c = cables.addCable(def);
+  const double total = cables.totalLength(c);
+  for (int f = 0; f < 30; ++f) world.step(1.0 / 60.0);
+  const double t = world.time(), a = (m2 - m1) * g / (m1 + m2), T = 2.0 * m1 * m2 * g / (m1 + m2);
+  EXPECT_NEAR(-world.body(heavy).v.y() / t, a, 0.01 * a);
+  EXPECT_NEAR(world.body(light).v.y() / t, a, 0.01 * a);
+  for (int j = 0; j < 3; ++j) EXPECT_NEAR(cables.tension(c, j), T, 0.01 * T) << "span " << j;
+  // Cable moved from the light side to the heavy side through both holes.
+  const double moved = 0.5 * a * t * t;
+  EXPECT_NEAR(cables.restLength(c, 2) - cables.restLength(c, 0), 2.0 * moved, 0.01 * moved);
+  EXPECT_NEAR(cables.totalLength(c), total, 1e-9 * total);
+}
+
+}  // namespace
+}  // namespace reeve

@@ -1,0 +1,89 @@
+// Stored cable, spools and hybrid links (paper sec. 4.1, Alg. 2, Fig. 10,
+// Fig. 17 right).
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "reeve/cable/cable.h"
+#include "scene_fixture.h"
+
+namespace reeve {
+namespace {
+
+TEST(Spool, AWeightUnwindingASpoolFallsWithTheAnalyticAcceleration) {
+  // a = g / (1 + I / (m r^2)), I = M r^2 / 2 for the 2 kg spool, m = 1 kg.
+  Scene s = test::scene("spool");
+  const BodyId weight = test::body(s, "weight");
+  const double g = 9.81, a = g / (1.0 + 0.5 * 2.0 / 1.0);
+  for (int f = 0; f < 30; ++f) test::frame(s);  // 0.5 s, 0.6 m of the 4 m
+  EXPECT_NEAR(-s.world->body(weight).v.y() / s.world->time(), a, 0.01 * a);
+  EXPECT_NEAR(s.cables->tension(0, 0), 1.0 * (g - a), 0.01 * (g - a));
+  const double paid = 0.5 * a * s.world->time() * s.world->time();
+  EXPECT_NEAR(s.cables->cables()[0].links[0].stored, 4.0 - paid, 0.01 * paid);
+}
+
+// Runs a scene and returns, per cable, how far its last link's body fell
+// at most below where it started.
+std::vector<double> maxDrops(Scene& s, int frames) {
+  const int n = static_cast<int>(s.cables->cables().size());
+  std::vector<double> start(n), drop(n, 0.0);
+  for (int c = 0; c < n; ++c) start[c] = s.world->body(s.cables->cables()[c].links.back().body).x.y();
+  for (int f = 0; f < frames; ++f) {
+    test::frame(s);
+    for (int c = 0; c < n; ++c)
+      drop[c] = std::max(drop[c], start[c] - s.world->body(s.cables->cables()[c].links.back().body).x.y());
+  }
+  return drop;
+}
+
+TEST(Spool, WhenTheCableRunsOutTheWeightStopsAfterDroppingTheStoredLength) {
+  // Paper Fig. 17 right: 1, 2 and 3 m stored give drops of 1, 2 and 3 m.
+  // The tie point then rides round the 2 cm spool, adding at most r.
+  Scene s = test::scene("hybrid");
+  const std::vector<double> drop = maxDrops(s, s.frameCount());
+  for (int c = 0; c < 3; ++c) {
+    const double stored = c + 1.0;
+    EXPECT_NEAR(drop[c], stored, 0.01 * stored) << "spool " << c + 1;
+  }
+  int runs_out = 0;
+  for (const CableEvent& e : s.cables->takeEvents())
+    runs_out += e.kind == CableEvent::Kind::HybridRunsOut && e.link == 0;
+  EXPECT_GE(runs_out, 3);
+}
+
+TEST(Spool, ThePaidOutSpoolWindsBackTheOtherWayRound) {
+  // Fig. 10: after the cable runs out (cw), the spool's own spin carries
+  // the tie point round until it passes a rolling tangent; the link rolls
+  // again with the opposite orientation and winds the weight back up.
+  Scene s = test::scene("spool");
+  const BodyId weight = test::body(s, "weight");
+  std::vector<CableEvent> events;
+  double lowest = 0.0;
+  for (int f = 0; f < s.frameCount(); ++f) {
+    test::frame(s);
+    for (const CableEvent& e : s.cables->takeEvents()) events.push_back(e);
+    lowest = std::min(lowest, s.world->body(weight).x.y());
+  }
+  ASSERT_GE(events.size(), 2u);
+  EXPECT_EQ(events[0].kind, CableEvent::Kind::HybridRunsOut);
+  EXPECT_EQ(events[0].orientation, -1);
+  // Time to unwind 4 m at a = g/2 from rest.
+  EXPECT_NEAR(events[0].time_s, std::sqrt(2.0 * 4.0 / (9.81 / 2.0)), 0.02);
+  EXPECT_EQ(events[1].kind, CableEvent::Kind::HybridRollsAgain);
+  EXPECT_EQ(events[1].orientation, +1);
+  const Link& spool = s.cables->cables()[0].links[0];
+  EXPECT_GT(spool.stored, 0.5);  // wound back on
+  EXPECT_GT(s.world->body(weight).x.y(), lowest + 0.5);  // and lifted
+}
+
+TEST(Spool, TotalCableLengthIsConservedThroughSwitches) {
+  Scene s = test::scene("spool");
+  const double total = s.cables->totalLength(0);
+  for (int f = 0; f < s.frameCount(); ++f) {
+    test::frame(s);
+    ASSERT_NEAR(s.cables->totalLength(0), total, 1e-9 * total) << "frame " << f;
+  }
+}
+
+}  // namespace
+}  // namespace reeve

@@ -113,6 +113,25 @@ TEST_F(Cli, RunOfTheDefaultSceneWritesFramesAndCsv) {
   EXPECT_EQ(rows, 3);
 }
 
+TEST_F(Cli, EventsAreLoggedAsJsonLinesAndStoredCableIsInTheCsv) {
+  // The pendulum with a peg meets the peg near 0.74 s and leaves it near 1.9 s.
+  const Result r = reeve(std::string("run ") + REEVE_SCENES_DIR + "/merge_split.json --frames 150 --events " +
+                         path("events.jsonl") + " --csv " + path("peg.csv"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::ifstream events(path("events.jsonl"));
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(events, line);) lines.push_back(line);
+  ASSERT_EQ(lines.size(), 2u);
+  EXPECT_NE(lines[0].find(R"("event":"split")"), std::string::npos) << lines[0];
+  EXPECT_NE(lines[0].find(R"("cable":"string")"), std::string::npos) << lines[0];
+  EXPECT_NE(lines[0].find(R"("link":1)"), std::string::npos) << lines[0];
+  EXPECT_NE(lines[1].find(R"("event":"merge")"), std::string::npos) << lines[1];
+  std::ifstream csv(path("peg.csv"));
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_NE(header.find("string.link1.stored_m"), std::string::npos) << header;
+}
+
 TEST_F(Cli, ExistingOutputsAreNotOverwrittenWithoutForce) {
   const std::string csv = write("keep.csv", "my data\n");
   const Result r = reeve("run --frames 2 --csv " + csv);

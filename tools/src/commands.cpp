@@ -9,6 +9,7 @@
 #include <string>
 
 #include "csv_writer.h"
+#include "event_log.h"
 #include "progress.h"
 #include "reeve/render/renderer.h"
 #include "reeve/render/video.h"
@@ -38,6 +39,7 @@ fs::path framePath(const fs::path& dir, int frame) {
 // a later output turns out to be refused.
 void checkOutputs(const RunOptions& o, int frames) {
   if (!o.csv.empty()) refuseOverwrite(o.csv, o.force);
+  if (!o.events.empty()) refuseOverwrite(o.events, o.force);
   if (!o.video.empty()) {
     if (o.video.extension() != ".mp4")
       throw std::runtime_error(o.video.string() + ": expected a file name ending in .mp4");
@@ -84,6 +86,11 @@ int simulate(const RunOptions& o) {
     createParent(o.csv);
     csv = std::make_unique<CsvWriter>(o.csv, *scene.cables);
   }
+  std::unique_ptr<EventLog> events;
+  if (!o.events.empty()) {
+    createParent(o.events);
+    events = std::make_unique<EventLog>(o.events);
+  }
   const bool draw = !o.png_dir.empty() || !o.video.empty();
   std::unique_ptr<Renderer> renderer;
   std::unique_ptr<VideoWriter> video;
@@ -111,6 +118,8 @@ int simulate(const RunOptions& o) {
                                scene.world->bodyDef(bad).name +
                                "'; try more substeps or iterations");
     if (csv) csv->writeRow();
+    if (events) events->drain(*scene.cables);
+    else scene.cables->takeEvents();  // nobody asked: do not let them pile up
     if (draw) {
       const Image image = renderer->render(*scene.world, *scene.cables, camera);
       if (!o.png_dir.empty()) writePng(framePath(o.png_dir, f), image);
@@ -128,8 +137,9 @@ int simulate(const RunOptions& o) {
                 framePath(o.png_dir, frames - 1).filename().c_str());
   if (!o.video.empty()) std::printf("  video:      %s\n", o.video.c_str());
   if (!o.csv.empty()) std::printf("  CSV:        %s\n", o.csv.c_str());
-  if (o.png_dir.empty() && o.video.empty() && o.csv.empty())
-    std::printf("  (no output requested: add --png DIR, --video FILE.mp4 or --csv FILE)\n");
+  if (!o.events.empty()) std::printf("  events:     %s\n", o.events.c_str());
+  if (o.png_dir.empty() && o.video.empty() && o.csv.empty() && o.events.empty())
+    std::printf("  (no output requested: add --png DIR, --video FILE.mp4, --csv FILE or --events FILE)\n");
   return 0;
 }
 

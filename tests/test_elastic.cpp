@@ -17,8 +17,8 @@ TEST(Elastic, HangingWeightsStretchTheirCablesByComplianceTimesTension) {
   // shared by length, so its free spans stretch by their share of it.
   const double total_right = s.cables->totalLength(1);
   for (int f = 0; f < s.frameCount(); ++f) test::frame(s);
-  EXPECT_LT(s.world->body(test::body(s, "light")).v.norm(), 1e-4);
-  EXPECT_LT(s.world->body(test::body(s, "heavy")).v.norm(), 1e-4);
+  EXPECT_LT(s.world->body(test::body(s, "light")).v.norm(), 1e-3);  // at rest
+  EXPECT_LT(s.world->body(test::body(s, "heavy")).v.norm(), 1e-3);
   const double T_light = 1.0 * g, T_heavy = 2.0 * g;
   EXPECT_NEAR(s.cables->tension(0, 0), T_light, 0.01 * T_light);
   EXPECT_NEAR(s.cables->length(0, 0) - s.cables->restLength(0, 0), compliance * T_light, 0.01 * compliance * T_light);

@@ -29,14 +29,14 @@ double quarterPeriod(double L, double theta, double g) {
   return std::sqrt(L / g) * ellipticK(std::sin(0.5 * theta));
 }
 
-struct Run {
+struct PendulumRun {
   std::vector<CableEvent> events;
   double max_total_error = 0.0;
   double highest_right = -1e9;  // highest bob point right of the peg
 };
 
-Run run(Scene& s) {
-  Run r;
+PendulumRun run(Scene& s) {
+  PendulumRun r;
   const double total = s.cables->totalLength(0);
   const BodyId bob = test::body(s, "bob");
   for (int f = 0; f < s.frameCount(); ++f) {
@@ -54,7 +54,7 @@ TEST(MergeSplit, PendulumWithAPegSplitsAndMergesOnTime) {
   // pivot as it passes the vertical (split), swings round the peg on 1 m
   // and leaves it on the way back (merge), then swings out on 2 m again.
   Scene s = test::scene("merge_split");
-  const Run r = run(s);
+  const PendulumRun r = run(s);
   ASSERT_GE(r.events.size(), 4u);
   const CableEvent::Kind expected[] = {CableEvent::Kind::Split, CableEvent::Kind::Merge,
                                        CableEvent::Kind::Split, CableEvent::Kind::Merge};
@@ -72,7 +72,7 @@ TEST(MergeSplit, PendulumWithAPegSplitsAndMergesOnTime) {
 
 TEST(MergeSplit, TotalLengthIsConservedAcrossEventsAndTheBobRegainsItsHeight) {
   Scene s = test::scene("merge_split");
-  const Run r = run(s);
+  const PendulumRun r = run(s);
   EXPECT_LT(r.max_total_error, 1e-9);
   // Energy: on the short swing the bob rises to its release height, 2 cos 45 below the pivot.
   EXPECT_NEAR(r.highest_right, -2.0 * std::cos(std::numbers::pi / 4), 0.02);

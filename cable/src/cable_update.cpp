@@ -68,9 +68,15 @@ void CableSystem::switchHybrids(Cable& cable, int c, double time_s) {
     Vec3& anchor = leaving ? joint.local_a : joint.local_b;
     if (!link.attached) {
       if (link.stored >= 0.0) continue;
-      // Alg. 2 l. 12-13: the cable has run out; it is tied where it left.
+      // Alg. 2 l. 12-13: the cable has run out; it is tied where it ends.
+      // Within this substep it ran out |stored| before the tangent point was
+      // reached, so its end has turned that far past it, on towards the
+      // span; tying it at the tangent point instead would leave the span
+      // too long by |stored| and the solver would yank the spool round.
+      const double end = boundaryPosition(link.section, planePoint(anchor)) - link.orientation * link.stored;
       link.attached = true;
-      link.point = anchor;
+      link.point = fromPlane(link, boundaryPoint(link.section, end));
+      anchor = link.point;
       joint.rest_length += link.stored;  // the overdraft, so the total is kept
       link.stored = 0.0;
       events_.push_back({CableEvent::Kind::HybridRunsOut, time_s, c, k, link.orientation});

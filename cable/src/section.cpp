@@ -137,6 +137,22 @@ double boundaryPosition(const Section& section, const Vec2& p) {
   return wrapPositive(best, along);
 }
 
+Vec2 boundaryPoint(const Section& section, double position) {
+  position = wrapPositive(position, section.perimeter());
+  if (section.kind == Section::Kind::Circle) {
+    const double angle = position / section.radius;
+    return section.radius * Vec2(std::cos(angle), std::sin(angle));
+  }
+  const std::vector<Vec2>& v = section.vertices;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const Vec2 edge = v[(i + 1) % v.size()] - v[i];
+    const double length = edge.norm();
+    if (position <= length) return v[i] + (position / length) * edge;
+    position -= length;
+  }
+  return v.front();
+}
+
 double sectionSurfaceDistance(const Section& section, const Vec2& old_point, const Vec2& new_point,
                               int orientation) {
   const double perimeter = section.perimeter();

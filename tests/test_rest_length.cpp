@@ -121,3 +121,34 @@ TEST(CableSetup, ACableThatCannotBeBuiltLeavesTheWorldUntouched) {
 
 }  // namespace
 }  // namespace reeve
+
+namespace reeve {
+namespace {
+
+TEST(CableSetup, DefaultSectionsAreTheShapesCutByTheCablePlane) {
+  // A sphere of radius 0.5 cut 0.3 off its centre is a circle of radius
+  // 0.4; a plane beyond a box's half height misses it.
+  World world;
+  CableSystem cables(world);
+  BodyDef def;
+  def.is_static = true;
+  def.position = Vec3(-2, 0, 0.3);
+  const BodyId post = world.addBody(def);
+  def.position = Vec3(2, -1, 0.3);
+  const BodyId end = world.addBody(def);
+  def.position = Vec3::Zero();
+  def.shape = Shape::sphere(0.5);
+  const BodyId ball = world.addBody(def);
+  CableDef cable;
+  LinkDef over = LinkDef::rolling(ball, -1);
+  over.plane_offset = 0.3;
+  cable.links = {LinkDef::attachment(post, Vec3::Zero()), over, LinkDef::attachment(end, Vec3::Zero())};
+  const int c = cables.addCable(cable);
+  EXPECT_NEAR(cables.cables()[c].links[1].section.radius, 0.4, 1e-15);
+  def.shape = Shape::box(Vec3(0.5, 0.5, 0.2));
+  cable.links[1].body = world.addBody(def);
+  EXPECT_THROW(cables.addCable(cable), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace reeve

@@ -1,5 +1,7 @@
 // Building cables: validation, initial tangent points, rest lengths,
 // stored cable and compliance (paper sec. 3, Alg. 2 line 2).
+#include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include "link_geometry.h"
@@ -10,14 +12,21 @@ namespace reeve {
 namespace {
 
 // The section a rolling link wraps when the user gives none: the body
-// shape's cross-section in its local z = 0 plane.
-Section defaultSection(const Shape& shape) {
+// shape's cross-section in its local plane z = `offset`; nullopt when that
+// plane misses the shape.
+std::optional<Section> defaultSection(const Shape& shape, double offset) {
   switch (shape.type) {
-    case Shape::Type::Box: return boxSection(shape.half_extents.x(), shape.half_extents.y());
+    case Shape::Type::Box:
+      if (std::abs(offset) >= shape.half_extents.z()) return std::nullopt;
+      return boxSection(shape.half_extents.x(), shape.half_extents.y());
     case Shape::Type::Cylinder:
-    case Shape::Type::Sphere: return Section::circle(shape.radius);
+      if (std::abs(offset) >= shape.half_length) return std::nullopt;
+      return Section::circle(shape.radius);
+    case Shape::Type::Sphere:
+      if (std::abs(offset) >= shape.radius) return std::nullopt;
+      return Section::circle(std::sqrt(shape.radius * shape.radius - offset * offset));
   }
-  return Section::circle(shape.radius);
+  return std::nullopt;
 }
 
 bool hasSection(const Section& s) {
@@ -73,7 +82,13 @@ int CableSystem::addCable(const CableDef& def) {
     link.plane_offset = ld.plane_offset;
     link.active = ld.active;
     if (ld.type == LinkType::Rolling || ld.type == LinkType::Hybrid) {
-      link.section = hasSection(ld.section) ? ld.section : defaultSection(world_.bodyDef(ld.body).shape);
+      if (hasSection(ld.section)) {
+        link.section = ld.section;
+      } else if (auto own = defaultSection(world_.bodyDef(ld.body).shape, ld.plane_offset)) {
+        link.section = *own;
+      } else {
+        fail(at + "the cable plane misses the body; give the link a section");
+      }
       if (ld.orientation != 1 && ld.orientation != -1) fail(at + "orientation must be +1 or -1");
     }
     active += link.active;
@@ -82,7 +97,7 @@ int CableSystem::addCable(const CableDef& def) {
   if (active < 2) fail("needs at least two active links");
   bool any_non_pinhole = false;
   for (const Link& link : cable.links) any_non_pinhole |= link.type != LinkType::Pinhole;
-  if (!any_non_pinhole) fail("a closed cable needs a link that is not a pinhole");
+  if (def.closed && !any_non_pinhole) fail("a closed cable needs a link that is not a pinhole");
 
   // Everything is checked before the World is touched, so a failed cable
   // leaves nothing behind.

@@ -158,20 +158,18 @@ void CableSystem::splitAtCrossedLinks(Cable& cable, int c, double time_s) {
       }
       // Moving the span's ends to the new tangent points pays cable in or
       // out of the end links, as in updateJoint().
-      double rest = in.rest_length;
-      if (from.rolls()) {
-        const double s = payOut(from, in.local_a, first->first);
-        rest += s;
-        from.stored -= s;
+      const double from_shift = from.rolls() ? payOut(from, in.local_a, first->first) : 0.0;
+      const double to_shift = to.rolls() ? payOut(to, in.local_b, second->second) : 0.0;
+      const double wrap = sectionWrappedArc(mid.section, planePoint(first->second), planePoint(second->first),
+                                            mid.orientation);
+      const double rest = in.rest_length + from_shift - to_shift - wrap;
+      if (rest < 0.0) {  // a slack span swept deep into the section: not enough cable to wrap it
+        mid.active = false;
+        continue;
       }
-      if (to.rolls()) {
-        const double s = payOut(to, in.local_b, second->second);
-        rest -= s;
-        to.stored += s;
-      }
-      mid.stored = sectionWrappedArc(mid.section, planePoint(first->second), planePoint(second->first),
-                                     mid.orientation);
-      rest -= mid.stored;
+      from.stored -= from_shift;
+      to.stored += to_shift;
+      mid.stored = wrap;
       CableJoint& out = cable.joints[k];
       out.to = in.to;
       out.local_a = second->first;

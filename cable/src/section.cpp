@@ -79,44 +79,6 @@ double Section::perimeter() const {
   return length;
 }
 
-double Section::area() const {
-  if (kind == Kind::Circle) return std::numbers::pi * radius * radius;
-  double twice = 0.0;
-  for (std::size_t i = 0; i < vertices.size(); ++i)
-    twice += cross(vertices[i], vertices[(i + 1) % vertices.size()]);
-  return 0.5 * twice;
-}
-
-Vec2 Section::centroid() const {
-  if (kind == Kind::Circle) return Vec2::Zero();
-  // Sum over the triangles (0, v_i, v_i+1): signed area times centroid.
-  Vec2 sum = Vec2::Zero();
-  for (std::size_t i = 0; i < vertices.size(); ++i) {
-    const Vec2& a = vertices[i];
-    const Vec2& b = vertices[(i + 1) % vertices.size()];
-    sum += (a + b) * cross(a, b);
-  }
-  return sum / (6.0 * area());
-}
-
-AreaMoments Section::secondMoments() const {
-  if (kind == Kind::Circle) {
-    const double i = std::numbers::pi * std::pow(radius, 4) / 4.0;
-    return {i, i, 0.0};
-  }
-  // Green's theorem over the edges (a, b), with c = cross(a, b).
-  AreaMoments m;
-  for (std::size_t i = 0; i < vertices.size(); ++i) {
-    const Vec2& a = vertices[i];
-    const Vec2& b = vertices[(i + 1) % vertices.size()];
-    const double c = cross(a, b);
-    m.Ixx += (a.y() * a.y() + a.y() * b.y() + b.y() * b.y()) * c / 12.0;
-    m.Iyy += (a.x() * a.x() + a.x() * b.x() + b.x() * b.x()) * c / 12.0;
-    m.Ixy += (a.x() * b.y() + 2.0 * a.x() * a.y() + 2.0 * b.x() * b.y() + b.x() * a.y()) * c / 24.0;
-  }
-  return m;
-}
-
 double boundaryPosition(const Section& section, const Vec2& p) {
   if (section.kind == Section::Kind::Circle)
     return wrapPositive(section.radius * std::atan2(p.y(), p.x()), section.perimeter());

@@ -26,7 +26,8 @@ enum class LinkType {
 /// - `point` (m, body-local): the tie point of attachments and pinholes.
 /// - Rolling and hybrid links wrap `section`, a circle or convex polygon in
 ///   the body's cable plane: the plane z = `plane_offset` (m) of the body's
-///   local frame (a cylinder's axis is local z). `orientation` +1: the cable
+///   local frame (a cylinder's axis is local z). Without a section the
+///   body shape's own cross-section in that plane is used. `orientation` +1: the cable
 ///   travels counter-clockwise about the plane normal (local +z) as one
 ///   walks along the cable, -1 clockwise (paper Fig. 3).
 /// - `stored` (m): cable stored on the body at the start (Alg. 2 line 2);
@@ -80,8 +81,10 @@ struct LinkDef {
 /// two links, none hybrid. `rest_lengths` (m), if given, has one value per
 /// joint (links - 1 open, links closed) and sets the initial slack; empty
 /// means taut at the start. `compliance` (m/N) is that of the whole cable
-/// at its initial total length; each span gets the share of its rest
-/// length, so strain, not span count, sets the stretch (0: inextensible).
+/// at its initial total length (spans plus stored cable, all of which
+/// would stretch if it hung free); each free span gets the share of its
+/// rest length, so strain, not span count, sets the stretch; cable stored
+/// on a body does not stretch (0: inextensible).
 struct CableDef {
   std::string name;
   std::vector<LinkDef> links;

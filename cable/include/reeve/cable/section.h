@@ -2,7 +2,7 @@
 // coordinates of a body's cable plane, centred on the body origin. Tangents
 // from a point and between two sections (paper sec. 3.1, 3.2 with Fig. 5-6,
 // 3.4), distances along the boundary (Alg. 1 surfaceDist, Alg. 2 stored
-// cable) and the area moments a prism of this section needs.
+// cable).
 #pragma once
 
 #include <optional>
@@ -11,17 +11,6 @@
 #include "reeve/cable/tangent.h"
 
 namespace reeve {
-
-/// Second moments of an area about the section origin (m^4):
-/// Ixx = integral of y^2 dA, Iyy = integral of x^2 dA, Ixy = integral of
-/// x y dA. A right prism of this section over z in [-h, h] at density 1 has
-/// the inertia tensor (about the origin) [[2h Ixx + A (2h)^3/12, -2h Ixy, 0],
-/// [-2h Ixy, 2h Iyy + A (2h)^3/12, 0], [0, 0, 2h (Ixx + Iyy)]], A the area.
-struct AreaMoments {
-  double Ixx = 0.0;
-  double Iyy = 0.0;
-  double Ixy = 0.0;
-};
 
 /// The cross-section of a body in its cable plane (paper sec. 3.2, 3.4):
 /// a circle of `radius` (m) centred on the origin, or a convex polygon with
@@ -46,12 +35,6 @@ struct Section {
 
   /// Boundary length (m): 2 pi r, or the sum of the edge lengths.
   double perimeter() const;
-  /// Area (m^2).
-  double area() const;
-  /// Centroid of the area (m), in section coordinates.
-  Vec2 centroid() const;
-  /// Second moments of the area about the section origin (m^4).
-  AreaMoments secondMoments() const;
 };
 
 /// Section of a box with half extents `hx`, `hy` (m, > 0) in its local

@@ -34,7 +34,9 @@ double niceStep(double raw) {
 ShapeMeshes::ShapeMeshes()
     : box(unitBox()),
       cylinder(unitCylinder(kBodySegments)),
-      sphere(unitSphere(kBodySegments, kBodySegments / 2)) {
+      sphere(unitSphere(kBodySegments, kBodySegments / 2)),
+      ring(unitTorus(style::kHybridRingTube / style::kHybridRingRadius, 2 * kTubeSides,
+                     kTubeSides / 2)) {
   const TwoToneMesh coarse = unitSphere(kTubeSides, kTubeSides / 2);
   appendTransformed(ball, coarse.main, Eigen::Affine3d::Identity());
   appendTransformed(ball, coarse.accent, Eigen::Affine3d::Identity());
@@ -76,6 +78,13 @@ void drawBall(const ShapeMeshes& meshes, const Vec3& centre, double radius) {
   glPushMatrix();
   transform(centre, Quat::Identity(), Vec3::Constant(radius));
   drawMesh(meshes.ball);
+  glPopMatrix();
+}
+
+void drawRing(const ShapeMeshes& meshes, const Vec3& centre, const Vec3& axis, double radius) {
+  glPushMatrix();
+  transform(centre, Quat::FromTwoVectors(Vec3::UnitZ(), axis), Vec3::Constant(radius));
+  drawMesh(meshes.ring);
   glPopMatrix();
 }
 

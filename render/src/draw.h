@@ -16,6 +16,7 @@ struct ShapeMeshes {
   Mesh box;
   TwoToneMesh cylinder, sphere;  // bodies
   Mesh ball;                     // cable ends and markers, coarser
+  Mesh ring;                     // hybrid markers: torus of radius 1
   ShapeMeshes();
 };
 
@@ -31,6 +32,11 @@ void drawMesh(const Mesh& mesh);
 
 /// A ball of `radius` (m) at `centre` (m, world), in the current colour.
 void drawBall(const ShapeMeshes& meshes, const Vec3& centre, double radius);
+
+/// A ring (torus) of centre-line radius `radius` (m) about `centre` (m,
+/// world), its axis along `axis` (unit), in the current colour; the tube's
+/// radius is style::kHybridRingTube / style::kHybridRingRadius of it.
+void drawRing(const ShapeMeshes& meshes, const Vec3& centre, const Vec3& axis, double radius);
 
 /// The floor: a square at height `y` (m) centred under (`centre_x`,
 /// `centre_z`) with half side `half` (m), filled and ruled by a 1-2-5 grid

@@ -82,6 +82,22 @@ TwoToneMesh unitSphere(int slices, int stacks) {
   return mesh;
 }
 
+Mesh unitTorus(double tube, int segments, int sides) {
+  Mesh mesh;
+  const auto vertex = [&](int i, int k) {
+    const Vec3 radial = onCircle(kTwoPi * i / segments, 0.0);
+    const double a = kTwoPi * k / sides;
+    const Vec3 normal = std::cos(a) * radial + std::sin(a) * Vec3::UnitZ();
+    mesh.addVertex(radial + tube * normal, normal);
+  };
+  for (int i = 0; i < segments; ++i)
+    for (int k = 0; k < sides; ++k) {
+      vertex(i, k), vertex(i + 1, k), vertex(i + 1, k + 1);
+      vertex(i, k), vertex(i + 1, k + 1), vertex(i, k + 1);
+    }
+  return mesh;
+}
+
 void appendTransformed(Mesh& mesh, const Mesh& unit, const Eigen::Affine3d& pose) {
   const Eigen::Matrix3d normal_matrix = pose.linear().inverse().transpose();
   for (int v = 0; v < unit.vertexCount(); ++v) {

@@ -34,6 +34,11 @@ TwoToneMesh unitCylinder(int segments);
 /// quarter lunes about local z.
 TwoToneMesh unitSphere(int slices, int stacks);
 
+/// Torus about local z: centre line of radius 1 in the z = 0 plane, tube
+/// of radius `tube`, `segments` facets round the axis and `sides` round the
+/// tube.
+Mesh unitTorus(double tube, int segments, int sides);
+
 /// Appends `unit` moved by `pose` (translation * rotation * scaling):
 /// positions transformed, normals by the inverse transpose, renormalized.
 void appendTransformed(Mesh& mesh, const Mesh& unit, const Eigen::Affine3d& pose);

@@ -9,6 +9,7 @@
 #include <GL/osmesa.h>
 
 #include "draw.h"
+#include "markers.h"
 #include "reeve/render/cable_path.h"
 #include "scene_points.h"
 #include "supersample.h"
@@ -81,8 +82,11 @@ void loadCamera(const Camera& camera, const Layout& l, double aspect) {
   glLoadMatrixd(viewMatrix(camera).data());
 }
 
-// The floor, unlit, fading into the background with distance.
+// The floor, unlit, fading into the background with distance. Not drawn
+// when the camera is below it: seen from underneath it would only hide the
+// bodies above it.
 void drawGround(const Camera& camera, const Layout& l, float line_px) {
+  if (camera.eye.y() <= l.floor_centre.y()) return;
   const double eye_to_floor = (camera.eye - l.floor_centre).norm();
   const GLfloat fog_colour[] = {style::kBackground.x(), style::kBackground.y(),
                                 style::kBackground.z(), 1.0f};
@@ -107,11 +111,11 @@ void drawBodies(const ShapeMeshes& meshes, const World& world) {
   }
 }
 
-void drawCables(const Mesh& tubes) {
-  setColour(style::kCable);
-  drawMesh(tubes);
-  // Cable hidden behind bodies, faintly through them: front faces only,
-  // each pixel blended once (stencil).
+// `mesh` in `colour`, then where it is hidden behind bodies faintly
+// through them: front faces only, each pixel blended once (stencil).
+void drawSeeThrough(const Mesh& mesh, const style::Colour& colour) {
+  setColour(colour);
+  drawMesh(mesh);
   glDepthFunc(GL_GREATER);
   glDepthMask(GL_FALSE);
   glEnable(GL_BLEND);
@@ -119,30 +123,72 @@ void drawCables(const Mesh& tubes) {
   glEnable(GL_STENCIL_TEST);
   glStencilFunc(GL_EQUAL, 0, 0xff);
   glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
-  setColour(style::kCable, style::kHiddenCableAlpha);
-  drawMesh(tubes);
+  setColour(colour, style::kHiddenCableAlpha);
+  drawMesh(mesh);
   glDisable(GL_STENCIL_TEST);
   glDisable(GL_BLEND);
   glDepthMask(GL_TRUE);
   glDepthFunc(GL_LESS);
 }
 
-// Link markers in the paper's colours, over everything: red at the tangent
-// points of rolling links, green at attachments. Back faces are culled, so
-// a ball needs no depth test to cover itself correctly.
-void drawMarkers(const ShapeMeshes& meshes, const CableSystem& cables, double radius) {
+// Outlines of the sections rolling links wrap where the body's shape does
+// not show them, thin tubes in a dark shade of the body's colour, one per
+// body and section.
+void drawSectionOutlines(const ShapeMeshes& meshes, const CableSystem& cables, double radius) {
+  const World& world = cables.world();
+  std::vector<std::pair<BodyId, const Link*>> drawn;
+  for (const Cable& cable : cables.cables())
+    for (const Link& link : cable.links) {
+      const BodyDef& def = world.bodyDef(link.body);
+      if ((link.type != LinkType::Rolling && link.type != LinkType::Hybrid) ||
+          sectionMatchesShape(link, def.shape))
+        continue;
+      const bool seen = std::any_of(drawn.begin(), drawn.end(), [&](const auto& d) {
+        return d.first == link.body && d.second->plane_offset == link.plane_offset &&
+               d.second->section.kind == link.section.kind &&
+               d.second->section.radius == link.section.radius &&
+               d.second->section.vertices == link.section.vertices;
+      });
+      if (seen) continue;
+      drawn.emplace_back(link.body, &link);
+      Mesh outline;
+      appendTube(outline, sectionOutline(link, world.body(link.body), kArcStepRad), radius,
+                 kTubeSides / 2, meshes.ball);
+      drawSeeThrough(outline, style::bodyColour(link.body, def.is_static) *
+                                  style::kSectionOutlineShade);
+    }
+}
+
+// Link markers in the paper's colours (see style.h), over everything.
+// Back faces are culled, so a ball needs no depth test to cover itself
+// correctly; hybrid rings face the camera.
+void drawMarkers(const ShapeMeshes& meshes, const CableSystem& cables, const Camera& camera,
+                 double radius) {
   glDisable(GL_DEPTH_TEST);
-  const auto mark = [&](const Link& link, const Vec3& point) {
-    setColour(link.type == LinkType::Rolling ? style::kRollingMarker : style::kAttachmentMarker);
-    drawBall(meshes, point, radius);
-  };
-  for (int c = 0; c < static_cast<int>(cables.cables().size()); ++c) {
-    const Cable& cable = cables.cables()[c];
-    for (int j = 0; j < static_cast<int>(cable.joints.size()); ++j) {
-      mark(cable.links[j], cables.startPoint(c, j));
-      mark(cable.links[j + 1], cables.endPoint(c, j));
+  for (const Marker& m : linkMarkers(cables)) {
+    const auto ball = [&](const style::Colour& colour) {
+      setColour(colour);
+      drawBall(meshes, m.at, radius);
+    };
+    const auto ring = [&](const style::Colour& colour) {
+      setColour(colour);
+      drawRing(meshes, m.at, (camera.eye - m.at).normalized(), style::kHybridRingRadius * radius);
+    };
+    switch (m.kind) {
+      case MarkerKind::Rolling: ball(style::kRollingMarker); break;
+      case MarkerKind::Attachment: ball(style::kAttachmentMarker); break;
+      case MarkerKind::Pinhole: ball(style::kPinholeMarker); break;
+      case MarkerKind::HybridRolling:
+        ball(style::kRollingMarker);
+        ring(style::kAttachmentMarker);
+        break;
+      case MarkerKind::HybridAttached:
+        ball(style::kAttachmentMarker);
+        ring(style::kRollingMarker);
+        break;
     }
   }
+  glEnable(GL_DEPTH_TEST);
 }
 
 }  // namespace
@@ -197,7 +243,17 @@ Image Renderer::render(const World& world, const CableSystem& cables, const Came
   const int w = width_ * factor, h = height_ * factor;
   context_->makeCurrent(w, h);
   const ShapeMeshes& meshes = context_->meshes;
-  const Layout l = layout(world, cables);
+  Layout l = layout(world, cables);
+  // The floor only ever moves down and grows, so it does not jump about in
+  // a video as weights rise and fall.
+  if (floor_) {
+    l.floor_centre = Vec3(floor_->x(), std::min(floor_->y(), l.floor_centre.y()), floor_->z());
+    l.floor_half = std::max(floor_half_, l.floor_half);
+    l.all.extend(l.floor_centre - Vec3(l.floor_half, 0.0, l.floor_half));
+    l.all.extend(l.floor_centre + Vec3(l.floor_half, 0.0, l.floor_half));
+  }
+  floor_ = l.floor_centre;
+  floor_half_ = l.floor_half;
 
   glViewport(0, 0, w, h);
   glClearColor(style::kBackground.x(), style::kBackground.y(), style::kBackground.z(), 1.0f);
@@ -215,12 +271,20 @@ Image Renderer::render(const World& world, const CableSystem& cables, const Came
   const double pixel = 2.0 * (camera.target - camera.eye).norm() *
                        std::tan(camera.fov_y_deg * std::numbers::pi / 360.0) / height_;
   const double cable_radius = style::kCableRadiusPx * pixel;
+  drawSectionOutlines(meshes, cables, style::kSectionOutlineScale * cable_radius);
   Mesh tubes;
-  for (int c = 0; c < static_cast<int>(cables.cables().size()); ++c)
+  for (int c = 0; c < static_cast<int>(cables.cables().size()); ++c) {
     appendTube(tubes, cablePath(cables, c, kArcStepRad), cable_radius, kTubeSides,
                meshes.ball);
-  drawCables(tubes);
-  drawMarkers(meshes, cables, style::kMarkerScale * cable_radius);
+    const int last = static_cast<int>(cables.cables()[c].links.size()) - 1;
+    for (int k : {0, last})
+      appendTube(tubes,
+                 spoolCoil(cables, c, k, style::kCoilPitchScale * cable_radius, kArcStepRad,
+                           style::kCoilMinBandScale * cable_radius),
+                 style::kCoilTubeScale * cable_radius, kTubeSides / 2, meshes.ball);
+  }
+  drawSeeThrough(tubes, style::kCable);
+  drawMarkers(meshes, cables, camera, style::kMarkerScale * cable_radius);
 
   glFinish();
   return downsample(context_->buffer, width_, height_, factor);

@@ -1,6 +1,10 @@
 #include "scene_points.h"
 
 #include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "reeve/render/cable_path.h"
 
 namespace reeve {
 
@@ -27,11 +31,23 @@ std::vector<Vec3> scenePoints(const World& world, const CableSystem& cables) {
                                      corner & 2 ? half.y() : -half.y(),
                                      corner & 4 ? half.z() : -half.z()));
   }
-  for (int c = 0; c < static_cast<int>(cables.cables().size()); ++c)
-    for (int j = 0; j < static_cast<int>(cables.cables()[c].joints.size()); ++j) {
-      points.push_back(cables.startPoint(c, j));
-      points.push_back(cables.endPoint(c, j));
+  constexpr double kStepRad = 2.0 * std::numbers::pi / 16.0;  // coarse: an outline will do
+  for (int c = 0; c < static_cast<int>(cables.cables().size()); ++c) {
+    const auto path = cablePath(cables, c, kStepRad);
+    points.insert(points.end(), path.begin(), path.end());
+    const Cable& cable = cables.cables()[c];
+    for (const Link& link : cable.links)
+      if (link.type == LinkType::Rolling || link.type == LinkType::Hybrid) {
+        const auto outline = sectionOutline(link, world.body(link.body), kStepRad);
+        points.insert(points.end(), outline.begin(), outline.end());
+      }
+    // Spool coils at their widest, whatever the cable's drawn thickness.
+    const int last = static_cast<int>(cable.links.size()) - 1;
+    for (int k : {0, last}) {
+      const auto coil = spoolCoil(cables, c, k, std::numeric_limits<double>::infinity(), kStepRad);
+      points.insert(points.end(), coil.begin(), coil.end());
     }
+  }
   return points;
 }
 

@@ -63,8 +63,10 @@ Scene buildScene(const nlohmann::json& document, const std::string& source) {
   const BodyNames names = addBodies(document.at("bodies"), *scene.world, source);
   if (const auto hinges = document.find("hinges"); hinges != document.end())
     addHinges(*hinges, names, *scene.world, source);
+  if (const auto joints = document.find("joints"); joints != document.end())
+    addJoints(*joints, names, *scene.world, source);
   if (const auto cables = document.find("cables"); cables != document.end())
-    addCables(*cables, names, *scene.world, *scene.cables, source);
+    addCables(*cables, names, *scene.cables, source);
   if (const auto camera = document.find("camera"); camera != document.end())
     scene.camera = cameraOf(*camera, source);
   return scene;

@@ -29,19 +29,39 @@ struct BodyNames {
 
 /// Adds "bodies" (build_bodies.cpp): unique names other than "world",
 /// exactly one of density or mass when dynamic, nothing of either and no
-/// velocity when static, non-zero orientation axes.
+/// velocity or damping when static, non-zero orientation axes.
 BodyNames addBodies(const nlohmann::json& bodies, World& world, const std::string& source);
 
 /// Adds "hinges" (build_hinges.cpp): known bodies, two different ones,
-/// non-zero axes.
+/// non-zero axes, limits and drives as angleLimit and hingeDrive check them.
 void addHinges(const nlohmann::json& hinges, const BodyNames& names, World& world,
                const std::string& source);
 
-/// Adds "cables" (build_cables.cpp): unique names, known bodies, rolling
-/// links on circular sections, attachments at both ends, one rest length
-/// per joint; CableSystem::addCable's own refusals at the cable's path.
-void addCables(const nlohmann::json& cables, const BodyNames& names, const World& world,
-               CableSystem& system, const std::string& source);
+/// Adds "joints" (build_joints.cpp): prismatic, spherical and fixed joints
+/// between known bodies, two different ones; non-zero axes, limits with
+/// lower <= upper, angles in [-pi, pi] (a swing limit in [0, pi]), and an
+/// axis for a spherical joint's limits.
+void addJoints(const nlohmann::json& joints, const BodyNames& names, World& world,
+               const std::string& source);
+
+/// The angle limit {"lower_rad", "upper_rad"} at `pointer` (build_joints.cpp):
+/// both in [-pi, pi], lower <= upper.
+JointLimit angleLimit(const nlohmann::json& limit, const std::string& pointer,
+                      const std::string& source);
+
+/// The hinge drive at `pointer` (build_joints.cpp): velocity or angle mode,
+/// an angle target in [-pi, pi]; max_torque_N_m omitted means unlimited.
+HingeDrive hingeDrive(const nlohmann::json& drive, const std::string& pointer,
+                      const std::string& source);
+
+/// Adds "cables" (build_cables.cpp): unique names, known bodies, polygon
+/// sections of non-zero area, no pinhole ends of open cables, hybrid links
+/// only there, active ends, no stored cable on inactive links, not only
+/// pinholes in a closed cable, one rest length per joint (0 for joints
+/// leaving inactive links); CableSystem::addCable's own refusals at the
+/// cable's path.
+void addCables(const nlohmann::json& cables, const BodyNames& names, CableSystem& system,
+               const std::string& source);
 
 /// [x, y, z] (schema-checked) as a vector.
 Vec3 vec3(const nlohmann::json& xyz);

@@ -71,6 +71,9 @@ BodyNames addBodies(const nlohmann::json& bodies, World& world, const std::strin
       for (const char* key : {"linear_velocity_m_per_s", "angular_velocity_rad_per_s"})
         if (b.contains(key))
           fail(key, "no velocity for a static body (it never moves)", literal(b.at(key)));
+      for (const char* key : {"linear_damping_per_s", "angular_damping_per_s"})
+        if (b.contains(key))
+          fail(key, "no damping for a static body (it never moves)", literal(b.at(key)));
     } else {
       if (has_density == has_mass)
         fail("", "exactly one of density_kg_per_m3 or mass_kg for a dynamic body",
@@ -83,6 +86,8 @@ BodyNames addBodies(const nlohmann::json& bodies, World& world, const std::strin
         def.linear_velocity = vec3(*v);
       if (const auto w = b.find("angular_velocity_rad_per_s"); w != b.end())
         def.angular_velocity = vec3(*w);
+      def.linear_damping = b.value("linear_damping_per_s", 0.0);
+      def.angular_damping = b.value("angular_damping_per_s", 0.0);
     }
     const BodyId id = world.addBody(def);
     names.ids.emplace(def.name, id);

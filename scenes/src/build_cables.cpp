@@ -7,41 +7,95 @@
 namespace reeve::scene_detail {
 namespace {
 
-const char* shapeName(Shape::Type type) {
-  switch (type) {
-    case Shape::Type::Box:
-      return "box";
-    case Shape::Type::Cylinder:
-      return "cylinder";
-    case Shape::Type::Sphere:
-      return "sphere";
+// The "section" object of a rolling or hybrid link at `path`: {radius_m} or
+// {polygon_m} (schema-checked), the polygon's convex hull taken.
+Section sectionOf(const nlohmann::json& section, const std::string& path,
+                  const std::string& source) {
+  if (const auto radius = section.find("radius_m"); radius != section.end()) {
+    try {
+      return Section::circle(radius->get<double>());
+    } catch (const std::invalid_argument&) {
+      throw SceneError(source, path + "/radius_m", "a finite radius > 0", literal(*radius));
+    }
   }
-  return "shape";
+  const nlohmann::json& polygon = section.at("polygon_m");
+  std::vector<Vec2> points;
+  for (const nlohmann::json& p : polygon)
+    points.emplace_back(p.at(0).get<double>(), p.at(1).get<double>());
+  try {
+    return Section::polygon(std::move(points));
+  } catch (const std::invalid_argument&) {
+    throw SceneError(source, path + "/polygon_m", "a polygon with non-zero area",
+                     literal(polygon) + " (its convex hull has zero area: the points lie on one line)");
+  }
+}
+
+LinkType linkTypeOf(const nlohmann::json& type) {
+  if (type == "rolling") return LinkType::Rolling;
+  if (type == "pinhole") return LinkType::Pinhole;
+  if (type == "hybrid") return LinkType::Hybrid;
+  return LinkType::Attachment;
 }
 
 LinkDef linkOf(const nlohmann::json& link, const std::string& path, const BodyNames& names,
-               const World& world, const std::string& source) {
+               const std::string& source) {
   LinkDef def;
   def.body = names.find(link.at("body"), path + "/body", source, false);
-  if (link.at("type") == "attachment") {
-    def.type = LinkType::Attachment;
+  def.type = linkTypeOf(link.at("type"));
+  if (def.type == LinkType::Attachment || def.type == LinkType::Pinhole) {
     def.point = vec3(link.at("point_m"));
     return def;
   }
-  const Shape& shape = world.bodyDef(def.body).shape;
-  if (circularSectionRadius(shape) <= 0.0)
-    throw SceneError(source, path + "/body",
-                     "a body with a circular cross-section (cylinder or sphere) for a rolling link",
-                     std::string(shapeName(shape.type)) + " " + literal(link.at("body")));
-  def.type = LinkType::Rolling;
+  // Rolling and hybrid links. Without "section" CableSystem::addCable takes
+  // the body shape's own (cylinder, sphere: circle of its radius; box: its
+  // x-y rectangle).
   def.orientation = link.at("orientation") == "ccw" ? 1 : -1;
+  if (const auto stored = link.find("stored_m"); stored != link.end())
+    def.stored = stored->get<double>();
+  if (const auto section = link.find("section"); section != link.end())
+    def.section = sectionOf(*section, path + "/section", source);
+  def.plane_offset = link.value("plane_offset_m", 0.0);
+  def.active = link.value("active", true);
   return def;
+}
+
+// Where link k of a cable of n links may be what it is: no pinhole ends of
+// open cables, hybrid links only there, ends active, no stored cable on a
+// link the cable does not touch yet.
+void checkLinkPlace(const nlohmann::json& link, const LinkDef& def, std::size_t k, std::size_t n,
+                    bool closed, const std::string& path, const std::string& source) {
+  const bool end = !closed && (k == 0 || k + 1 == n);
+  const std::string which = k == 0 ? "first" : "last";
+  if (def.type == LinkType::Pinhole && end)
+    throw SceneError(source, path + "/type",
+                     "\"attachment\", \"rolling\" or \"hybrid\" as the " + which +
+                         " link of an open cable (a cable slides through a pinhole, so a pinhole "
+                         "cannot end it)",
+                     literal(link.at("type")));
+  if (def.type == LinkType::Hybrid && !end)
+    throw SceneError(source, path + "/type",
+                     closed ? std::string("\"attachment\", \"rolling\" or \"pinhole\" in a closed "
+                                          "cable (hybrid links are spool ends of open cables)")
+                            : std::string("\"attachment\", \"rolling\" or \"pinhole\" for an "
+                                          "interior link (hybrid links are only the first or "
+                                          "last link of an open cable)"),
+                     literal(link.at("type")));
+  if (!def.active && end)
+    throw SceneError(source, path + "/active",
+                     "true for the " + which +
+                         " link of an open cable (only interior rolling links can start inactive)",
+                     "false");
+  if (!def.active && link.contains("stored_m"))
+    throw SceneError(source, path + "/stored_m",
+                     "no stored_m on an inactive link (the cable does not touch it yet; it is "
+                     "split in with the arc it then wraps)",
+                     literal(link.at("stored_m")));
 }
 
 }  // namespace
 
-void addCables(const nlohmann::json& cables, const BodyNames& names, const World& world,
-               CableSystem& system, const std::string& source) {
+void addCables(const nlohmann::json& cables, const BodyNames& names, CableSystem& system,
+               const std::string& source) {
   std::set<std::string> cable_names;
   for (std::size_t c = 0; c < cables.size(); ++c) {
     const nlohmann::json& cable = cables[c];
@@ -50,25 +104,38 @@ void addCables(const nlohmann::json& cables, const BodyNames& names, const World
     def.name = cable.at("name").get<std::string>();
     if (!cable_names.insert(def.name).second)
       throw SceneError(source, path + "/name", "a cable name not already used", quote(def.name));
+    def.closed = cable.value("closed", false);
 
     const nlohmann::json& links = cable.at("links");
-    for (std::size_t k = 0; k < links.size(); ++k)
-      def.links.push_back(
-          linkOf(links[k], path + "/links/" + std::to_string(k), names, world, source));
-    for (const std::size_t end : {std::size_t{0}, links.size() - 1})
-      if (links[end].at("type") != "attachment")
-        throw SceneError(source, path + "/links/" + std::to_string(end) + "/type",
-                         "\"attachment\" (a cable starts and ends at an attachment)",
-                         literal(links[end].at("type")));
+    for (std::size_t k = 0; k < links.size(); ++k) {
+      const std::string link_path = path + "/links/" + std::to_string(k);
+      def.links.push_back(linkOf(links[k], link_path, names, source));
+      checkLinkPlace(links[k], def.links.back(), k, links.size(), def.closed, link_path, source);
+    }
+    bool only_pinholes = true;
+    for (const LinkDef& link : def.links) only_pinholes &= link.type == LinkType::Pinhole;
+    if (def.closed && only_pinholes)
+      throw SceneError(source, path + "/links",
+                       "a link other than a pinhole in a closed cable (attachment or rolling: "
+                       "something the cable holds on to)",
+                       "only pinhole links (" + std::to_string(links.size()) + ")");
 
     if (const auto rest = cable.find("rest_length_m"); rest != cable.end()) {
-      const std::size_t joints = links.size() - 1;
+      const std::size_t joints = def.closed ? links.size() : links.size() - 1;
       if (rest->size() != joints)
         throw SceneError(source, path + "/rest_length_m",
                          "an array of " + std::to_string(joints) +
-                             " numbers (one rest length per cable joint: links - 1)",
+                             " numbers (one rest length per cable joint: " +
+                             (def.closed ? "links, for a closed cable)"
+                                         : "links - 1, for an open cable)"),
                          describe(*rest));
       def.rest_lengths = rest->get<std::vector<double>>();
+      for (std::size_t j = 0; j < joints; ++j)
+        if (!def.links[j].active && def.rest_lengths[j] != 0.0)
+          throw SceneError(source, path + "/rest_length_m/" + std::to_string(j),
+                           "0 for the joint leaving inactive link " + std::to_string(j) +
+                               " (it has no span until the link is split in)",
+                           literal(rest->at(j)));
     }
     def.compliance = cable.value("compliance_m_per_N", 0.0);
 

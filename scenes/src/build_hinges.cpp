@@ -21,6 +21,10 @@ void addHinges(const nlohmann::json& hinges, const BodyNames& names, World& worl
     if (def.axis.squaredNorm() == 0.0)
       throw SceneError(source, path + "/axis", "a non-zero hinge axis", literal(h.at("axis")));
     def.compliance = h.value("compliance", 0.0);
+    if (const auto limit = h.find("limit"); limit != h.end())
+      def.limit = angleLimit(*limit, path + "/limit", source);
+    if (const auto drive = h.find("drive"); drive != h.end())
+      def.drive = hingeDrive(*drive, path + "/drive", source);
     world.addHinge(def);
   }
 }

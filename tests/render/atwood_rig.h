@@ -42,9 +42,14 @@ struct AtwoodRig {
     box.position = Vec3(kRadius, -1.2, 0.0);
     heavy_box = world.addBody(box);
     CableDef def;
-    def.links = {{light_box, LinkType::Attachment, 1, Vec3(0.0, 0.12, 0.0)},
-                 {wheel, LinkType::Rolling, -1, Vec3::Zero()},
-                 {heavy_box, LinkType::Attachment, 1, Vec3(0.0, 0.15, 0.0)}};
+    def.links.resize(3);
+    def.links[0].body = light_box;
+    def.links[0].point = Vec3(0.0, 0.12, 0.0);
+    def.links[1].body = wheel;
+    def.links[1].type = LinkType::Rolling;
+    def.links[1].orientation = -1;
+    def.links[2].body = heavy_box;
+    def.links[2].point = Vec3(0.0, 0.15, 0.0);
     cable = cables.addCable(def);
   }
 

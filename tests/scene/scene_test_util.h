@@ -42,14 +42,18 @@ inline constexpr const char* kBase = R"({
     {"body": "ball", "type": "attachment", "point_m": [0, 0.2, 0]}]}]
 })";
 
-/// kBase with the one occurrence of `from` replaced by `to`.
-inline std::string baseWith(const std::string& from, const std::string& to) {
-  std::string text = kBase;
+/// `text` with the one occurrence of `from` replaced by `to`.
+inline std::string with(std::string text, const std::string& from, const std::string& to) {
   const std::size_t at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << "not in kBase: " << from;
-  EXPECT_EQ(text.find(from, at + 1), std::string::npos) << "twice in kBase: " << from;
+  EXPECT_NE(at, std::string::npos) << "not in the scene: " << from;
+  EXPECT_EQ(text.find(from, at + 1), std::string::npos) << "twice in the scene: " << from;
   if (at != std::string::npos) text.replace(at, from.size(), to);
   return text;
+}
+
+/// kBase with the one occurrence of `from` replaced by `to`.
+inline std::string baseWith(const std::string& from, const std::string& to) {
+  return with(kBase, from, to);
 }
 
 /// The SceneError parseScene(text, "test.json") throws; nullopt (and a test

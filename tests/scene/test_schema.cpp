@@ -100,9 +100,15 @@ TEST(SceneSchema, DefaultsAreWhatTheLoaderApplies) {
   EXPECT_EQ(s.world->hinges()[0].b, kWorldBody);
   EXPECT_EQ(s.world->hinges()[0].compliance, hinge.at("compliance").at("default").get<double>());
 
+  EXPECT_EQ(s.world->body(1).linear_damping,
+            body.at("linear_damping_per_s").at("default").get<double>());
+  EXPECT_EQ(s.world->body(1).angular_damping,
+            body.at("angular_damping_per_s").at("default").get<double>());
+
   const json& cable = defs.at("cable").at("properties");
-  EXPECT_EQ(s.world->distance(s.cables->cables()[0].joints[0].constraint).compliance,
+  EXPECT_EQ(s.world->path(s.cables->cables()[0].joints[0].path).compliance,
             cable.at("compliance_m_per_N").at("default").get<double>());
+  EXPECT_EQ(s.cables->cables()[0].closed, cable.at("closed").at("default").get<bool>());
   EXPECT_NEAR(s.cables->restLength(0, 0), 0.5, 1e-12);  // taut: from y = -1 to y = -1.5
 
   const json& camera = defs.at("camera").at("properties");
@@ -110,6 +116,16 @@ TEST(SceneSchema, DefaultsAreWhatTheLoaderApplies) {
   EXPECT_DOUBLE_EQ(s.camera->fov_y_deg, camera.at("fov_y_deg").at("default").get<double>());
   const auto up = camera.at("up").at("default").get<std::vector<double>>();
   EXPECT_EQ(s.camera->up, Vec3(up[0], up[1], up[2]));
+}
+
+TEST(SceneSchema, LinkDefaultsAreWhatTheLoaderApplies) {
+  const json rolling = schemaFile().at("definitions").at("rolling_link").at("properties");
+  const Scene s = parseScene(kBase, "base.json");
+  const Link& wheel = s.cables->cables()[0].links[1];
+  ASSERT_EQ(wheel.type, LinkType::Rolling);
+  EXPECT_EQ(wheel.plane_offset, rolling.at("plane_offset_m").at("default").get<double>());
+  EXPECT_EQ(wheel.active, rolling.at("active").at("default").get<bool>());
+  EXPECT_FALSE(rolling.at("stored_m").contains("default"));  // depends on the link: see README
 }
 
 TEST(SceneSchema, BaseTestSceneBuilds) {

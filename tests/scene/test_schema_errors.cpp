@@ -18,7 +18,7 @@ TEST(SchemaErrors, UnknownFieldListsTheAllowedOnes) {
   expectError(baseWith(R"("mass_kg": 2,)", R"("mass_kg": 2, "colour": "red",)"), "/bodies/1/colour",
               "no property \"colour\" (allowed: name, shape, density_kg_per_m3, mass_kg, "
               "position_m, orientation, static, linear_velocity_m_per_s, "
-              "angular_velocity_rad_per_s)",
+              "angular_velocity_rad_per_s, linear_damping_per_s, angular_damping_per_s)",
               "\"colour\"");
 }
 
@@ -32,7 +32,9 @@ TEST(SchemaErrors, FieldOfAnotherShapeIsUnknown) {
 TEST(SchemaErrors, PointOnARollingLinkIsUnknown) {
   expectError(baseWith(R"("orientation": "cw"})", R"("orientation": "cw", "point_m": [0, 0, 0]})"),
               "/cables/0/links/1/point_m",
-              "no property \"point_m\" (allowed: body, type, orientation)", "\"point_m\"");
+              "no property \"point_m\" (allowed: body, type, orientation, stored_m, section, "
+              "plane_offset_m, active)",
+              "\"point_m\"");
 }
 
 TEST(SchemaErrors, AttachmentWithoutPoint) {
@@ -129,6 +131,94 @@ TEST(SchemaErrors, CableWithOneLink) {
     "cables": [{"name": "c", "links": [
       {"body": "b", "type": "attachment", "point_m": [0, 0, 0]}]}]})",
               "/cables/0/links", "an array of at least 2 items", "an array of 1 item");
+}
+
+TEST(SchemaErrors, UnknownLinkType) {
+  expectError(baseWith(R"("type": "rolling")", R"("type": "sliding")"),
+              "/cables/0/links/1/type",
+              "one of \"attachment\", \"rolling\", \"pinhole\", \"hybrid\"", "\"sliding\"");
+}
+
+TEST(SchemaErrors, PinholeWithoutPoint) {
+  expectError(baseWith(R"({"body": "wheel", "type": "rolling", "orientation": "cw"})",
+                       R"({"body": "wheel", "type": "pinhole"})"),
+              "/cables/0/links/1", "required property \"point_m\"", "nothing");
+}
+
+TEST(SchemaErrors, OrientationOnAPinholeIsUnknown) {
+  expectError(baseWith(R"({"body": "wheel", "type": "rolling", "orientation": "cw"})",
+                       R"({"body": "wheel", "type": "pinhole", "point_m": [0, 1, 0],
+                           "orientation": "cw"})"),
+              "/cables/0/links/1/orientation",
+              "no property \"orientation\" (allowed: body, type, point_m)", "\"orientation\"");
+}
+
+TEST(SchemaErrors, ActiveOnAHybridLinkIsUnknown) {
+  expectError(baseWith(R"({"body": "ball", "type": "attachment", "point_m": [0, 0.2, 0]})",
+                       R"({"body": "ball", "type": "hybrid", "orientation": "cw", "active": true})"),
+              "/cables/0/links/2/active",
+              "no property \"active\" (allowed: body, type, orientation, stored_m, section, "
+              "plane_offset_m)",
+              "\"active\"");
+}
+
+TEST(SchemaErrors, NegativeStoredCable) {
+  expectError(baseWith(R"("orientation": "cw"})", R"("orientation": "cw", "stored_m": -1})"),
+              "/cables/0/links/1/stored_m", "a number >= 0", "-1");
+}
+
+TEST(SchemaErrors, ActiveMustBeABoolean) {
+  expectError(baseWith(R"("orientation": "cw"})", R"("orientation": "cw", "active": "no"})"),
+              "/cables/0/links/1/active", "true or false", "a string (\"no\")");
+}
+
+TEST(SchemaErrors, ClosedMustBeABoolean) {
+  expectError(baseWith(R"({"name": "rope",)", R"({"name": "rope", "closed": 1,)"),
+              "/cables/0/closed", "true or false", "an integer (1)");
+}
+
+TEST(SchemaErrors, SectionWithRadiusAndPolygon) {
+  expectError(baseWith(R"("orientation": "cw"})",
+                       R"("orientation": "cw",
+                           "section": {"radius_m": 0.2, "polygon_m": [[0, 0], [1, 0], [0, 1]]}})"),
+              "/cables/0/links/1/section/radius_m",
+              "no property \"radius_m\" (allowed: polygon_m)", "\"radius_m\"");
+}
+
+TEST(SchemaErrors, EmptySectionNeedsARadius) {
+  expectError(baseWith(R"("orientation": "cw"})", R"("orientation": "cw", "section": {}})"),
+              "/cables/0/links/1/section", "required property \"radius_m\"", "nothing");
+}
+
+TEST(SchemaErrors, ZeroSectionRadius) {
+  expectError(baseWith(R"("orientation": "cw"})",
+                       R"("orientation": "cw", "section": {"radius_m": 0}})"),
+              "/cables/0/links/1/section/radius_m", "a number > 0", "0");
+}
+
+TEST(SchemaErrors, PolygonOfTwoPoints) {
+  expectError(baseWith(R"("orientation": "cw"})",
+                       R"("orientation": "cw", "section": {"polygon_m": [[0, 0], [1, 0]]}})"),
+              "/cables/0/links/1/section/polygon_m", "an array of at least 3 items",
+              "an array of 2 items");
+}
+
+TEST(SchemaErrors, PolygonPointOfThreeNumbers) {
+  expectError(
+      baseWith(R"("orientation": "cw"})",
+               R"("orientation": "cw", "section": {"polygon_m": [[0, 0], [1, 0], [0, 1, 0]]}})"),
+      "/cables/0/links/1/section/polygon_m/2", "an array of 2 numbers", "an array of 3 items");
+}
+
+TEST(SchemaErrors, PlaneOffsetMustBeANumber) {
+  expectError(baseWith(R"("orientation": "cw"})",
+                       R"("orientation": "cw", "plane_offset_m": "0.1"})"),
+              "/cables/0/links/1/plane_offset_m", "a number", "a string (\"0.1\")");
+}
+
+TEST(SchemaErrors, NegativeDamping) {
+  expectError(baseWith(R"("mass_kg": 2,)", R"("mass_kg": 2, "angular_damping_per_s": -0.1,)"),
+              "/bodies/1/angular_damping_per_s", "a number >= 0", "-0.1");
 }
 
 }  // namespace

@@ -70,24 +70,111 @@ TEST(SemanticErrors, StaticBodyWithVelocity) {
               "/bodies/0/angular_velocity_rad_per_s", "no velocity for a static body", "[0,0,1]");
 }
 
-TEST(SemanticErrors, RollingLinkOnABox) {
-  expectError(
-      baseWith(R"({"body": "wheel", "type": "rolling")", R"({"body": "crate", "type": "rolling")"),
-      "/cables/0/links/1/body",
-      "a body with a circular cross-section (cylinder or sphere) for a rolling link",
-      "box \"crate\"");
+TEST(SemanticErrors, PolygonSectionWithZeroArea) {
+  expectError(baseWith(R"("orientation": "cw"})",
+                       R"("orientation": "cw", "section": {"polygon_m": [[0, 0], [1, 1], [2, 2]]}})"),
+              "/cables/0/links/1/section/polygon_m", "a polygon with non-zero area",
+              "[[0,0],[1,1],[2,2]] (its convex hull has zero area");
 }
 
-TEST(SemanticErrors, CableMustStartWithAnAttachment) {
+TEST(SemanticErrors, PolygonSectionOfOnePointRepeated) {
+  expectError(baseWith(R"("orientation": "cw"})",
+                       R"("orientation": "cw", "section": {"polygon_m": [[1, 1], [1, 1], [1, 1]]}})"),
+              "/cables/0/links/1/section/polygon_m", "a polygon with non-zero area",
+              "[[1,1],[1,1],[1,1]]");
+}
+
+TEST(SemanticErrors, PinholeStartsAnOpenCable) {
   expectError(baseWith(R"({"body": "crate", "type": "attachment", "point_m": [0, 0.2, 0]},)",
-                       R"({"body": "ball", "type": "rolling", "orientation": "ccw"},)"),
-              "/cables/0/links/0/type", "\"attachment\" (a cable starts and ends at an attachment)",
-              "\"rolling\"");
+                       R"({"body": "crate", "type": "pinhole", "point_m": [0, 0.2, 0]},)"),
+              "/cables/0/links/0/type",
+              "\"attachment\", \"rolling\" or \"hybrid\" as the first link of an open cable",
+              "\"pinhole\"");
+}
+
+TEST(SemanticErrors, PinholeEndsAnOpenCable) {
+  expectError(baseWith(R"({"body": "ball", "type": "attachment", "point_m": [0, 0.2, 0]})",
+                       R"({"body": "ball", "type": "pinhole", "point_m": [0, 0.2, 0]})"),
+              "/cables/0/links/2/type",
+              "\"attachment\", \"rolling\" or \"hybrid\" as the last link of an open cable",
+              "\"pinhole\"");
+}
+
+TEST(SemanticErrors, HybridInsideAnOpenCable) {
+  expectError(baseWith(R"({"body": "wheel", "type": "rolling")", R"({"body": "wheel", "type": "hybrid")"),
+              "/cables/0/links/1/type",
+              "\"attachment\", \"rolling\" or \"pinhole\" for an interior link (hybrid links "
+              "are only the first or last link of an open cable)",
+              "\"hybrid\"");
+}
+
+TEST(SemanticErrors, HybridInAClosedCable) {
+  // A belt around the wheel and the ball; link 0 is an end only if open.
+  expectError(baseWith(R"({"name": "rope", "links": [
+    {"body": "crate", "type": "attachment", "point_m": [0, 0.2, 0]},)",
+                       R"({"name": "rope", "closed": true, "links": [
+    {"body": "crate", "type": "hybrid", "orientation": "cw"},)"),
+              "/cables/0/links/0/type", "\"attachment\", \"rolling\" or \"pinhole\" in a closed cable",
+              "\"hybrid\"");
+}
+
+TEST(SemanticErrors, InactiveEndLink) {
+  expectError(baseWith(R"({"body": "ball", "type": "attachment", "point_m": [0, 0.2, 0]})",
+                       R"({"body": "ball", "type": "rolling", "orientation": "cw", "active": false})"),
+              "/cables/0/links/2/active",
+              "true for the last link of an open cable (only interior rolling links can start "
+              "inactive)",
+              "false");
+}
+
+TEST(SemanticErrors, StoredCableOnAnInactiveLink) {
+  expectError(baseWith(R"("orientation": "cw"})",
+                       R"("orientation": "cw", "active": false, "stored_m": 0.5})"),
+              "/cables/0/links/1/stored_m", "no stored_m on an inactive link", "0.5");
+}
+
+TEST(SemanticErrors, RestLengthOfAJointLeavingAnInactiveLink) {
+  // Joint 1 leaves the inactive wheel: the crate's span runs to the ball.
+  expectError(with(baseWith(R"({"name": "rope", "links": [)",
+                            R"({"name": "rope", "rest_length_m": [3, 1], "links": [)"),
+                   R"("orientation": "cw"})", R"("orientation": "cw", "active": false})"),
+              "/cables/0/rest_length_m/1",
+              "0 for the joint leaving inactive link 1 (it has no span until the link is split in)",
+              "1");
+}
+
+TEST(SemanticErrors, WrongRestLengthCountOfAClosedCable) {
+  expectError(baseWith(R"({"name": "rope",)",
+                       R"({"name": "rope", "closed": true, "rest_length_m": [1, 2],)"),
+              "/cables/0/rest_length_m",
+              "an array of 3 numbers (one rest length per cable joint: links, for a closed cable)",
+              "an array of 2 items");
+}
+
+TEST(SemanticErrors, ClosedCableOfPinholesOnly) {
+  expectError(baseWith(R"({"name": "rope", "links": [
+    {"body": "crate", "type": "attachment", "point_m": [0, 0.2, 0]},
+    {"body": "wheel", "type": "rolling", "orientation": "cw"},
+    {"body": "ball", "type": "attachment", "point_m": [0, 0.2, 0]}]})",
+                       R"({"name": "rope", "closed": true, "links": [
+    {"body": "crate", "type": "pinhole", "point_m": [0, 0.2, 0]},
+    {"body": "wheel", "type": "pinhole", "point_m": [0, 0.5, 0]},
+    {"body": "ball", "type": "pinhole", "point_m": [0, 0.2, 0]}]})"),
+              "/cables/0/links", "a link other than a pinhole in a closed cable",
+              "only pinhole links (3)");
+}
+
+TEST(SemanticErrors, StaticBodyWithDamping) {
+  expectError(baseWith(R"("density_kg_per_m3": 1000,)",
+                       R"("static": true, "linear_damping_per_s": 0.5,)"),
+              "/bodies/0/linear_damping_per_s", "no damping for a static body", "0.5");
 }
 
 TEST(SemanticErrors, WrongRestLengthCount) {
   expectError(baseWith(R"({"name": "rope",)", R"({"name": "rope", "rest_length_m": [1, 2, 3],)"),
-              "/cables/0/rest_length_m", "an array of 2 numbers (one rest length per cable joint",
+              "/cables/0/rest_length_m",
+              "an array of 2 numbers (one rest length per cable joint: links - 1, for an open "
+              "cable)",
               "an array of 3 items");
 }
 

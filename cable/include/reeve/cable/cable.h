@@ -187,7 +187,8 @@ class CableSystem {
   double length(int c, int j) const;
   /// Whether joint j of cable c currently exists (its link is active).
   bool jointEnabled(int c, int j) const;
-  /// World positions (m) of the tangent points of joint j of cable c.
+  /// World positions (m) of the tangent points of joint j of cable c;
+  /// meaningless while the joint is disabled (see jointEnabled()).
   Vec3 startPoint(int c, int j) const;
   Vec3 endPoint(int c, int j) const;
   /// Rest lengths plus stored cable of cable c (m): conserved by update().

@@ -80,15 +80,15 @@ std::optional<TangentPoints> sectionTangent(const Section& from, const Vec2& c_f
 /// from the +x axis (circle).
 double boundaryPosition(const Section& section, const Vec2& p);
 
+/// The boundary point (m, section coordinates) at `position` (m) measured
+/// counter-clockwise as in boundaryPosition(); any real position, wrapped.
+Vec2 boundaryPoint(const Section& section, double position);
+
 /// surfaceDist(a, a') of Alg. 1 on the section's boundary (the hull for
 /// polygons, sec. 3.2): the length (m) from `new_point` to `old_point` along
 /// the boundary, positive when that way runs in the sense of `orientation`.
 /// The shorter way is taken (|result| <= perimeter / 2), so the points must
 /// be less than half the boundary apart (one substep). Points off the
-/// The boundary point (m, section coordinates) at `position` (m) measured
-/// counter-clockwise as in boundaryPosition(); any real position, wrapped.
-Vec2 boundaryPoint(const Section& section, double position);
-
 /// boundary count as their nearest boundary point.
 double sectionSurfaceDistance(const Section& section, const Vec2& old_point, const Vec2& new_point,
                               int orientation);

@@ -1,5 +1,6 @@
 // Scenes: JSON files (scenes/README.md, schema scenes/scene.schema.json)
-// turned into a World with its hinges and a CableSystem with its cables.
+// turned into a World with its hinges and joints and a CableSystem with its
+// cables.
 // Bad input gives a SceneError naming the file, the JSON path, what was
 // expected and what was found; never a crash, never a silent default.
 #pragma once
@@ -89,8 +90,10 @@ Scene loadScene(const std::filesystem::path& path);
 /// Builds the scene in `json_text`; `source_name` names it in errors (a file
 /// name, "<stdin>", ...). Checks, in order: JSON syntax (and duplicate keys),
 /// the schema sceneSchemaJson(), then what a schema cannot say (unique and
-/// known body names, density or mass, rolling links on circular sections,
-/// rest length counts, non-zero axes, cables the solver can build).
+/// known body names, density or mass, where each link type may be in a
+/// cable, polygon sections of non-zero area, rest length counts, non-zero
+/// axes, joint limits with lower <= upper and angles in [-pi, pi], cables
+/// the solver can build).
 /// Throws SceneError at the first problem.
 Scene parseScene(const std::string& json_text, const std::string& source_name);
 

@@ -25,10 +25,13 @@ struct Result {
   std::string out, err;
 };
 
-// Runs `reeve ARGS` through the shell with stdout and stderr captured.
+// Runs `reeve ARGS` through the shell with stdout and stderr captured in
+// files named after the running test, so tests may run in parallel.
 Result reeve(const std::string& args, const std::string& env = "") {
+  const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
   const fs::path dir = fs::temp_directory_path();
-  const std::string out = (dir / "reeve_cli_out.txt").string(), err = (dir / "reeve_cli_err.txt").string();
+  const std::string out = (dir / ("reeve_cli_out_" + test + ".txt")).string();
+  const std::string err = (dir / ("reeve_cli_err_" + test + ".txt")).string();
   const std::string cmd = env + " " REEVE_BINARY " " + args + " >" + out + " 2>" + err;
   const int status = std::system(cmd.c_str());
   const auto slurp = [](const std::string& p) {
@@ -37,7 +40,10 @@ Result reeve(const std::string& args, const std::string& env = "") {
     s << f.rdbuf();
     return s.str();
   };
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+  Result r{WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+  fs::remove(out);
+  fs::remove(err);
+  return r;
 }
 
 class Cli : public ::testing::Test {

@@ -64,7 +64,8 @@ void CableSystem::switchHybrids(Cable& cable, int c, double time_s) {
     Link& link = cable.links[k];
     if (link.type != LinkType::Hybrid) continue;
     const bool leaving = k == 0;  // the span leaves the first link, arrives at the last
-    CableJoint& joint = cable.joints[leaving ? 0 : previousActive(cable, k)];
+    const int j = leaving ? 0 : previousActive(cable, k);
+    CableJoint& joint = cable.joints[j];
     Vec3& anchor = leaving ? joint.local_a : joint.local_b;
     if (!link.attached) {
       if (link.stored >= 0.0) continue;
@@ -87,7 +88,6 @@ void CableSystem::switchHybrids(Cable& cable, int c, double time_s) {
     // then the wraps from it to a+ and to a- add up to less than the whole
     // boundary. Roll again the short way round.
     const BodyState& body = world_.body(link.body);
-    const int j = leaving ? 0 : previousActive(cable, k);
     const Vec2 seen_from = toPlane(body, leaving ? endPointOf(cable, j) : startPointOf(cable, j));
     const Vec2 tie = planePoint(link.point);
     double wrap[2] = {0.0, 0.0};
@@ -198,7 +198,7 @@ void CableSystem::syncRuns(Cable& cable) {
     path.points.clear();
     path.points.push_back({cable.links[j].body, cable.joints[j].local_a});
     double rest = 0.0, length = 0.0;
-    int first_pinhole_span = -1;
+    bool through_pinhole = false;
     for (int k = j;; k = cable.joints[k].to) {
       CableJoint& span = cable.joints[k];
       span.run = j;
@@ -210,9 +210,9 @@ void CableSystem::syncRuns(Cable& cable) {
         break;
       }
       path.points.push_back({to.body, to.point});
-      if (first_pinhole_span < 0) first_pinhole_span = j;
+      through_pinhole = true;
     }
-    if (first_pinhole_span >= 0 && length > 0.0) {
+    if (through_pinhole && length > 0.0) {
       for (int k = j;; k = cable.joints[k].to) {
         cable.joints[k].rest_length = rest * spanLength(cable, k) / length;
         if (cable.links[cable.joints[k].to].type != LinkType::Pinhole) break;

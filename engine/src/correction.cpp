@@ -35,4 +35,30 @@ void applyAngularImpulse(BodyState& a, BodyState& b, const Vec3& P) {
   rotateBy(a.q, -a.applyInvInertia(P));
 }
 
+Eigen::Matrix3d inverseInertiaWorld(const BodyState& body) {
+  const Eigen::Matrix3d R = body.q.toRotationMatrix();
+  return R * body.inv_inertia.asDiagonal() * R.transpose();
+}
+
+namespace {
+
+Eigen::Matrix3d cross(const Vec3& r) {
+  Eigen::Matrix3d m;
+  m << 0.0, -r.z(), r.y(), r.z(), 0.0, -r.x(), -r.y(), r.x(), 0.0;
+  return m;
+}
+
+}  // namespace
+
+Eigen::Matrix3d pointInverseMass(const BodyState& a, const BodyState& b, const Vec3& r_a,
+                                 const Vec3& r_b) {
+  const Eigen::Matrix3d ra = cross(r_a), rb = cross(r_b);
+  return (a.inv_mass + b.inv_mass) * Eigen::Matrix3d::Identity() -
+         ra * inverseInertiaWorld(a) * ra - rb * inverseInertiaWorld(b) * rb;
+}
+
+Eigen::Matrix3d angularInverseMass(const BodyState& a, const BodyState& b) {
+  return inverseInertiaWorld(a) + inverseInertiaWorld(b);
+}
+
 }  // namespace reeve

@@ -1,10 +1,20 @@
 #include "reeve/engine/hinge_joint.h"
 
-#include <cmath>
-
-#include "reeve/engine/correction.h"
+#include "joint_rows.h"
 
 namespace reeve {
+namespace {
+
+joint_rows::DriveKind kindOf(HingeDrive::Mode mode) {
+  switch (mode) {
+    case HingeDrive::Mode::Velocity: return joint_rows::DriveKind::Velocity;
+    case HingeDrive::Mode::Angle: return joint_rows::DriveKind::Position;
+    case HingeDrive::Mode::None: break;
+  }
+  return joint_rows::DriveKind::None;
+}
+
+}  // namespace
 
 HingeJoint makeHingeJoint(const HingeDef& def, const BodyState& a, const BodyState& b) {
   HingeJoint j;
@@ -15,39 +25,94 @@ HingeJoint makeHingeJoint(const HingeDef& def, const BodyState& a, const BodySta
   const Vec3 axis = def.axis.normalized();
   j.axis_a = a.q.conjugate() * axis;
   j.axis_b = b.q.conjugate() * axis;
+  const Vec3 ref = joint_rows::anyPerpendicular(axis);
+  j.ref_a = a.q.conjugate() * ref;
+  j.ref_b = b.q.conjugate() * ref;
   j.compliance = def.compliance;
+  j.limit = def.limit;
+  j.drive = def.drive;
   return j;
 }
 
-void solveHingeJoint(HingeJoint& j, BodyState& a, BodyState& b, double alpha_tilde) {
-  // Axis row: C = angle(axis_a, axis_b), n = axis_a x axis_b / |.|; turning
-  // b about +n opens the angle, so dC/dtheta_b = n.
-  {
+double hingeAngle(const HingeJoint& j, const Quat& q_a, const Quat& q_b) {
+  // The angle turning b's reference direction into a's about a's axis.
+  return joint_rows::signedAngle(q_b * j.ref_b, q_a * j.ref_a, q_a * j.axis_a);
+}
+
+void prepareHingeJoint(HingeJoint& j, const BodyState& a, const BodyState& b, double h) {
+  j.impulse_point.setZero();
+  j.impulse_axis.setZero();
+  const joint_rows::DriveKind kind = kindOf(j.drive.mode);
+  if (kind == joint_rows::DriveKind::None) {
+    joint_rows::prepareCoordinate(j.angle, kind, 0.0, 0.0, 0.0, 0.0, true, h);
+    return;
+  }
+  // An angle drive brakes in time for the inertia of both bodies about the
+  // axis through the anchor (exact for one body on a world hinge).
+  const Vec3 u = a.q * j.axis_a;
+  const double inverse_inertia = joint_rows::inverseInertiaAbout(a, j.anchor_a, u) +
+                                 joint_rows::inverseInertiaAbout(b, j.anchor_b, u);
+  joint_rows::prepareCoordinate(j.angle, kind, j.drive.target, j.drive.max_torque,
+                                hingeAngle(j, a.q_prev, b.q_prev), inverse_inertia, true, h);
+}
+
+void solveHingeJoint(HingeJoint& j, BodyState& a, BodyState& b, double h) {
+  // Rows (joint_rows.h: positional C_p = p_b - p_a, angular = rotation of a
+  // relative to b), u = q_a axis_a, T = [t1 t2] normal to u:
+  //   point (3, compliant):  C_p = p_b - p_a;
+  //   axes (2, compliant):   C = T^T phi, phi = alignment(u_b, u_a), the
+  //                          rotation turning b's axis into a's;
+  //   angle (at most one at a time, rigid, clamped), theta = hingeAngle (a
+  //   relative to b about u), direction u: lambda > 0 turns a about +u and
+  //   pushes theta up (torque lambda u / h^2 on a), in order:
+  //     drive, velocity: C = [theta - theta_0] - w* h, theta_0 the angle at
+  //       the start of the substep (from q_prev), [.] wrapped to (-pi, pi]:
+  //       afterwards a turned w* h relative to b over the substep, so the
+  //       velocity read out, [theta - theta_0] / h, is w*;
+  //     drive, angle: w* h replaced by the step toward the target that
+  //       max_torque can still stop (joint_rows::prepareCoordinate);
+  //       |lambda_drive| <= max_torque h^2 either way, so the drive adds at
+  //       most max_torque h of angular momentum per substep: a wheel spins
+  //       up at max_torque / I;
+  //     lower limit: C = theta - lower, lambda >= 0; upper: C = theta -
+  //       upper, lambda <= 0; each only while violated or already pushing.
+  // Each angle row is solved with the point and axis rows as one block
+  // (joint_rows::solveRows), so it turns the bodies about the hinge, not
+  // about their centres; with no angle row active, the block alone.
+  const double alpha_tilde = j.compliance / (h * h);
+  const auto block = [&](const joint_rows::ClampedRow* clamped) {
+    const Vec3 r_a = a.q * j.anchor_a, r_b = b.q * j.anchor_b;
     const Vec3 u = a.q * j.axis_a;
-    const Vec3 v = b.q * j.axis_b;
-    const Vec3 cross = u.cross(v);
-    const double s = cross.norm();
-    if (s > 1e-12) {
-      const Vec3 n = cross / s;
-      const double C = std::atan2(s, u.dot(v));
-      const double dl = angularDeltaLambda(a, b, n, C, alpha_tilde, j.lambda_axis);
-      j.lambda_axis += dl;
-      j.impulse_axis -= dl * n;
-      applyAngularImpulse(a, b, dl * n);
-    }
+    const Vec3 t1 = joint_rows::anyPerpendicular(u), t2 = u.cross(t1);
+    const Vec3 phi = joint_rows::alignment(b.q * j.axis_b, u);
+    joint_rows::BilateralRows rows;
+    rows.addPoint((b.x + r_b) - (a.x + r_a));
+    rows.addAngular(t1, t1.dot(phi));
+    rows.addAngular(t2, t2.dot(phi));
+    joint_rows::solveRows(a, b, r_a, r_b, rows, alpha_tilde, clamped, j.impulse_point,
+                          j.impulse_axis);
+  };
+  const bool driven = j.drive.mode != HingeDrive::Mode::None;
+  bool solved = false;
+  if (driven || j.limit.enabled) {
+    const auto value = [&] { return hingeAngle(j, a.q, b.q); };
+    const auto row = [&](double C, double lo, double hi, double& lambda) {
+      joint_rows::ClampedRow clamped;
+      clamped.dir.tail<3>() = a.q * j.axis_a;
+      clamped.C = C;
+      clamped.lo = lo;
+      clamped.hi = hi;
+      clamped.lambda = &lambda;
+      block(&clamped);
+    };
+    solved = joint_rows::solveCoordinateRows(j.angle, j.limit, driven, true, value, row);
   }
-  // Point row: C = |p_b - p_a|, n = (p_b - p_a) / C.
-  const Vec3 r_a = a.q * j.anchor_a;
-  const Vec3 r_b = b.q * j.anchor_b;
-  const Vec3 d = (b.x + r_b) - (a.x + r_a);
-  const double C = d.norm();
-  if (C > 1e-15) {
-    const Vec3 n = d / C;
-    const double dl = positionalDeltaLambda(a, b, r_a, r_b, n, C, alpha_tilde, j.lambda_point);
-    j.lambda_point += dl;
-    j.impulse_point -= dl * n;
-    applyPositionalImpulse(a, b, r_a, r_b, dl * n);
-  }
+  if (!solved) block(nullptr);
+}
+
+JointWrench hingeWrench(const HingeJoint& j, double h) {
+  if (!(h > 0.0)) return {};
+  return {j.impulse_point / (h * h), j.impulse_axis / (h * h)};
 }
 
 }  // namespace reeve

@@ -2,9 +2,50 @@
 
 #include <cassert>
 #include <cmath>
+#include <limits>
+#include <numbers>
 #include <stdexcept>
+#include <string>
 
 namespace reeve {
+namespace {
+
+// Checks of joint definitions at the boundary (World::add...): a clear
+// std::invalid_argument naming the joint type, never a NaN in the solver.
+[[noreturn]] void reject(const char* kind, const std::string& what) {
+  throw std::invalid_argument(std::string(kind) + ": " + what);
+}
+
+void checkVector(const char* kind, const char* name, const Vec3& v, bool nonzero) {
+  if (!v.allFinite()) reject(kind, std::string("the ") + name + " must be finite");
+  if (nonzero && !(v.norm() > 0.0)) reject(kind, std::string("the ") + name + " must be a non-zero vector");
+}
+
+void checkCompliance(const char* kind, double compliance) {
+  if (!(compliance >= 0.0) || !std::isfinite(compliance))
+    reject(kind, "the compliance must be finite and >= 0");
+}
+
+// `bound`: the largest |lower|, |upper| allowed (pi for angles).
+void checkLimit(const char* kind, const JointLimit& limit, double bound) {
+  if (!limit.enabled) return;
+  if (!std::isfinite(limit.lower) || !std::isfinite(limit.upper))
+    reject(kind, "the limit bounds must be finite");
+  if (limit.lower > limit.upper) reject(kind, "the limit needs lower <= upper");
+  if (std::abs(limit.lower) > bound || std::abs(limit.upper) > bound)
+    reject(kind, "angle limits must lie within [-pi, pi] rad");
+}
+
+void checkDrive(const char* kind, double target, double max_effort, double target_bound) {
+  if (!std::isfinite(target)) reject(kind, "the drive target must be finite");
+  if (std::abs(target) > target_bound) reject(kind, "an angle drive target must lie within [-pi, pi] rad");
+  if (std::isnan(max_effort)) reject(kind, "the drive's maximum force or torque must be a number");
+}
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kAny = std::numeric_limits<double>::infinity();
+
+}  // namespace
 
 World::World(SolverSettings settings) : settings_(settings) {}
 
@@ -24,13 +65,81 @@ void World::setMass(BodyId id, double mass) {
   b.inv_inertia /= scale;
 }
 
-HingeId World::addHinge(const HingeDef& def) {
+void World::checkJointBodies(const char* kind, BodyId a, BodyId b) const {
   const auto valid = [&](BodyId id) { return id == kWorldBody || (id >= 0 && id < bodyCount()); };
-  if (!valid(def.body) || !valid(def.other) || def.body == def.other)
-    throw std::invalid_argument("hinge: needs two different existing bodies");
-  if (!(def.axis.norm() > 0.0)) throw std::invalid_argument("hinge: the axis must be a non-zero vector");
+  if (!valid(a) || !valid(b) || a == b) reject(kind, "needs two different existing bodies");
+}
+
+HingeId World::addHinge(const HingeDef& def) {
+  checkJointBodies("hinge", def.body, def.other);
+  checkVector("hinge", "axis", def.axis, true);
+  checkVector("hinge", "anchor", def.anchor, false);
+  checkCompliance("hinge", def.compliance);
+  checkLimit("hinge", def.limit, kPi);
+  checkDrive("hinge", def.drive.target, def.drive.max_torque,
+             def.drive.mode == HingeDrive::Mode::Angle ? kPi : kAny);
   hinges_.push_back(makeHingeJoint(def, body(def.body), body(def.other)));
   return static_cast<HingeId>(hinges_.size() - 1);
+}
+
+PrismaticId World::addPrismatic(const PrismaticDef& def) {
+  checkJointBodies("prismatic joint", def.body, def.other);
+  checkVector("prismatic joint", "axis", def.axis, true);
+  checkVector("prismatic joint", "anchor", def.anchor, false);
+  checkCompliance("prismatic joint", def.compliance);
+  checkLimit("prismatic joint", def.limit, kAny);
+  checkDrive("prismatic joint", def.drive.target, def.drive.max_force, kAny);
+  prismatics_.push_back(makePrismaticJoint(def, body(def.body), body(def.other)));
+  return static_cast<PrismaticId>(prismatics_.size() - 1);
+}
+
+SphericalId World::addSpherical(const SphericalDef& def) {
+  checkJointBodies("spherical joint", def.body, def.other);
+  checkVector("spherical joint", "axis", def.axis, true);
+  checkVector("spherical joint", "anchor", def.anchor, false);
+  checkCompliance("spherical joint", def.compliance);
+  checkLimit("spherical joint", def.twist_limit, kPi);
+  if (def.swing_limit.enabled && !(def.swing_limit.max >= 0.0 && def.swing_limit.max <= kPi))
+    reject("spherical joint", "the swing limit must lie within [0, pi] rad");
+  sphericals_.push_back(makeSphericalJoint(def, body(def.body), body(def.other)));
+  return static_cast<SphericalId>(sphericals_.size() - 1);
+}
+
+FixedId World::addFixed(const FixedDef& def) {
+  checkJointBodies("fixed joint", def.body, def.other);
+  checkVector("fixed joint", "anchor", def.anchor, false);
+  checkCompliance("fixed joint", def.compliance);
+  fixeds_.push_back(makeFixedJoint(def, body(def.body), body(def.other)));
+  return static_cast<FixedId>(fixeds_.size() - 1);
+}
+
+double World::hingeAngle(HingeId id) const {
+  const HingeJoint& j = hinges_.at(id);
+  return reeve::hingeAngle(j, body(j.a).q, body(j.b).q);
+}
+
+double World::hingeDriveTorque(HingeId id) const {
+  return last_h_ > 0.0 ? hinges_.at(id).angle.lambda_drive / (last_h_ * last_h_) : 0.0;
+}
+
+double World::prismaticSlide(PrismaticId id) const {
+  const PrismaticJoint& j = prismatics_.at(id);
+  const BodyState &a = body(j.a), &b = body(j.b);
+  return reeve::prismaticSlide(j, a.x, a.q, b.x, b.q);
+}
+
+double World::prismaticDriveForce(PrismaticId id) const {
+  return last_h_ > 0.0 ? prismatics_.at(id).slide.lambda_drive / (last_h_ * last_h_) : 0.0;
+}
+
+double World::swingAngle(SphericalId id) const {
+  const SphericalJoint& j = sphericals_.at(id);
+  return reeve::swingAngle(j, body(j.a).q, body(j.b).q);
+}
+
+double World::twistAngle(SphericalId id) const {
+  const SphericalJoint& j = sphericals_.at(id);
+  return reeve::twistAngle(j, body(j.a).q, body(j.b).q);
 }
 
 DistanceId World::addDistance(const DistanceConstraint& c) {
@@ -102,17 +211,19 @@ void World::integrate(double h) {
 
 void World::solvePositions(double h) {
   const double inv_h2 = 1.0 / (h * h);
-  for (HingeJoint& j : hinges_) {
-    j.lambda_point = j.lambda_axis = 0.0;
-    j.impulse_point.setZero();
-    j.impulse_axis.setZero();
-  }
+  for (HingeJoint& j : hinges_) prepareHingeJoint(j, body(j.a), body(j.b), h);
+  for (PrismaticJoint& j : prismatics_) preparePrismaticJoint(j, body(j.a), body(j.b), h);
+  for (SphericalJoint& j : sphericals_) prepareSphericalJoint(j);
+  for (FixedJoint& j : fixeds_) prepareFixedJoint(j);
   for (DistanceConstraint& c : distances_) c.lambda = 0.0;
   for (PathConstraint& p : paths_) p.lambda = 0.0;
   const BodyTable table{bodies_.data(), &world_frame_};
   for (int it = 0; it < settings_.iterations; ++it) {
-    for (HingeJoint& j : hinges_)
-      solveHingeJoint(j, body(j.a), body(j.b), j.compliance * inv_h2);
+    // Joints first (all types), then distances and paths (cables).
+    for (HingeJoint& j : hinges_) solveHingeJoint(j, body(j.a), body(j.b), h);
+    for (PrismaticJoint& j : prismatics_) solvePrismaticJoint(j, body(j.a), body(j.b), h);
+    for (SphericalJoint& j : sphericals_) solveSphericalJoint(j, body(j.a), body(j.b), h);
+    for (FixedJoint& j : fixeds_) solveFixedJoint(j, body(j.a), body(j.b), h);
     for (DistanceConstraint& c : distances_)
       solveDistanceConstraint(c, body(c.a), body(c.b), c.compliance * inv_h2);
     for (PathConstraint& p : paths_) solvePathConstraint(p, table, p.compliance * inv_h2);

@@ -36,4 +36,21 @@ double angularDeltaLambda(const BodyState& a, const BodyState& b, const Vec3& n,
 /// Rotates b by I_b^-1 P and a by -I_a^-1 P (SCA 2020, eq. 13-14).
 void applyAngularImpulse(BodyState& a, BodyState& b, const Vec3& P);
 
+/// The 3x3 generalized inverse mass of a point constraint, SCA 2020 eq. 2
+/// for all directions at once: an impulse P (kg m) on b at world arm r_b
+/// and -P on a at r_a changes p_b - p_a by K P (m), with
+/// K = (1/m_a + 1/m_b) 1 - [r_a]x I_a^-1 [r_a]x - [r_b]x I_b^-1 [r_b]x
+/// (1/kg), symmetric positive semi-definite; n^T K n is the scalar w of
+/// generalizedInverseMass along n.
+Eigen::Matrix3d pointInverseMass(const BodyState& a, const BodyState& b, const Vec3& r_a,
+                                 const Vec3& r_b);
+
+/// I^-1 of `body` in world axes, R diag(1/I) R^T (1/(kg m^2)); 0 when static.
+Eigen::Matrix3d inverseInertiaWorld(const BodyState& body);
+
+/// The 3x3 angular counterpart, K = I_a^-1 + I_b^-1 (world, 1/(kg m^2)): an
+/// angular impulse P on b and -P on a changes b's rotation relative to a
+/// by K P (rad).
+Eigen::Matrix3d angularInverseMass(const BodyState& a, const BodyState& b);
+
 }  // namespace reeve

@@ -1,37 +1,87 @@
 // Hinge (revolute) joint: two body points coincide and two body axes stay
-// aligned; rotation about the axis is free. SCA 2020 sec. 3.3.1-3.3.2.
+// aligned; rotation about the axis is free, within an optional angle limit
+// and under an optional drive (motor). SCA 2020 sec. 3.3.1-3.3.2 and its
+// Appendix (hinge limits).
 #pragma once
 
 #include "reeve/engine/body.h"
+#include "reeve/engine/joint_common.h"
 
 namespace reeve {
 
-/// A hinge between `body` and `other` (kWorldBody: the fixed world frame),
-/// given in world space at the moment it is added.
+/// A motor on a hinge's angle (a relative to b about the axis).
+/// Velocity: turns at `target` rad/s; Angle: turns to and holds `target`
+/// rad (in [-pi, pi]), braking in time for the inertia about the hinge.
+/// Either way with at most `max_torque` N m (<= 0 or infinity: unlimited,
+/// a rigid drive), so a loaded or inert hinge spins up at torque / inertia
+/// rather than snapping to its target (formulas above solveHingeJoint).
+struct HingeDrive {
+  enum class Mode { None, Velocity, Angle };
+  Mode mode = Mode::None;
+  double target = 0.0;      // rad/s (Velocity) or rad (Angle)
+  double max_torque = 0.0;  // N m; <= 0 or infinity: unlimited
+};
+
+/// A hinge between `body` (a) and `other` (b; kWorldBody: the fixed world
+/// frame), given in world space at the moment it is added. Its angle is
+/// that of a relative to b about `axis`, measured from a reference
+/// direction perpendicular to the axis fixed in each body at creation: 0
+/// when added, in (-pi, pi], positive counter-clockwise about `axis`.
 struct HingeDef {
+  HingeDef() = default;
+  /// The original five-field form, `{body, other, anchor, axis,
+  /// compliance}`, optionally followed by a limit and a drive.
+  HingeDef(BodyId body_, BodyId other_, const Vec3& anchor_, const Vec3& axis_,
+           double compliance_ = 0.0, const JointLimit& limit_ = {}, const HingeDrive& drive_ = {})
+      : body(body_), other(other_), anchor(anchor_), axis(axis_), compliance(compliance_),
+        limit(limit_), drive(drive_) {}
+
   BodyId body = 0;
   BodyId other = kWorldBody;
   Vec3 anchor = Vec3::Zero();    // m, world: the axle point
   Vec3 axis = Vec3::UnitZ();     // world, normalized on use
   double compliance = 0.0;       // m/N for the point, rad/(N m) for the axis
+  JointLimit limit;              // rad, within [-pi, pi]; rigid
+  HingeDrive drive;
 };
 
-/// Solver form of a hinge: anchors and axes body-local.
+/// Solver form of a hinge: anchors, axes and reference directions
+/// body-local, and what the rows did this substep.
 struct HingeJoint {
   BodyId a = 0, b = kWorldBody;
   Vec3 anchor_a = Vec3::Zero(), anchor_b = Vec3::Zero();  // m, local
   Vec3 axis_a = Vec3::UnitZ(), axis_b = Vec3::UnitZ();    // local
+  Vec3 ref_a = Vec3::UnitX(), ref_b = Vec3::UnitX();      // local, normal to the axis
   double compliance = 0.0;
-  double lambda_point = 0.0, lambda_axis = 0.0;           // this substep
-  Vec3 impulse_point = Vec3::Zero();  // kg m on body a, this substep
-  Vec3 impulse_axis = Vec3::Zero();   // kg m^2 on body a, this substep
+  JointLimit limit;
+  HingeDrive drive;
+  // Accumulated over this substep's sweeps: the limit and drive rows on the
+  // angle; the impulse of the point rows on body a at the anchor (kg m),
+  // and the angular impulse of the axis, limit and drive rows on a (kg m^2).
+  JointCoordinate angle;
+  Vec3 impulse_point = Vec3::Zero();
+  Vec3 impulse_axis = Vec3::Zero();
 };
 
 /// Converts `def` to body-local form from the current poses of a and b.
 HingeJoint makeHingeJoint(const HingeDef& def, const BodyState& a, const BodyState& b);
 
-/// One Gauss-Seidel visit: align axes (angular row), then join anchors
-/// (positional row). `alpha_tilde` = compliance / h^2.
-void solveHingeJoint(HingeJoint& joint, BodyState& a, BodyState& b, double alpha_tilde);
+/// Starts a substep of `h` s, after integration: clears the lambdas and
+/// impulses and sets up the drive from the poses at the start of the
+/// substep (x_prev, q_prev; see JointCoordinate and joint_rows.h).
+void prepareHingeJoint(HingeJoint& joint, const BodyState& a, const BodyState& b, double h);
+
+/// One Gauss-Seidel visit over a substep of `h` s: the point and axis rows
+/// (alpha~ = compliance / h^2) as one block, solved together with each
+/// active drive and limit row on the angle in turn (rigid, clamped).
+void solveHingeJoint(HingeJoint& joint, BodyState& a, BodyState& b, double h);
+
+/// Angle (rad, in (-pi, pi]) of a relative to b about the axis, 0 when the
+/// hinge was made; from orientations q_a, q_b (world).
+double hingeAngle(const HingeJoint& joint, const Quat& q_a, const Quat& q_b);
+
+/// Force and torque the hinge exerted on body a over the last substep of
+/// `h` s (JointWrench).
+JointWrench hingeWrench(const HingeJoint& joint, double h);
 
 }  // namespace reeve

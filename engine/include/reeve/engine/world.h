@@ -10,8 +10,11 @@
 
 #include "reeve/engine/body.h"
 #include "reeve/engine/distance_constraint.h"
+#include "reeve/engine/fixed_joint.h"
 #include "reeve/engine/hinge_joint.h"
 #include "reeve/engine/path_constraint.h"
+#include "reeve/engine/prismatic_joint.h"
+#include "reeve/engine/spherical_joint.h"
 
 namespace reeve {
 
@@ -27,6 +30,9 @@ struct SolverSettings {
 
 /// Id of a constraint in the World's per-type arrays.
 using HingeId = int;
+using PrismaticId = int;
+using SphericalId = int;
+using FixedId = int;
 using DistanceId = int;
 using PathId = int;
 
@@ -43,8 +49,21 @@ class World {
   /// a finite positive mass.
   BodyId addBody(const BodyDef& def);
   /// Adds a hinge from the current poses; throws std::invalid_argument for
-  /// unknown or identical bodies or a zero axis.
+  /// unknown or identical bodies, a zero axis, a negative compliance, a
+  /// limit with lower > upper or outside [-pi, pi], an angle drive target
+  /// outside [-pi, pi], or anything not finite (but an infinite max torque).
   HingeId addHinge(const HingeDef& def);
+  /// Adds a prismatic joint from the current poses; throws
+  /// std::invalid_argument as addHinge (limits in m, any finite range).
+  PrismaticId addPrismatic(const PrismaticDef& def);
+  /// Adds a spherical joint from the current poses; throws
+  /// std::invalid_argument as addHinge, and for a swing limit outside
+  /// [0, pi].
+  SphericalId addSpherical(const SphericalDef& def);
+  /// Adds a fixed joint keeping the current relative pose; throws
+  /// std::invalid_argument for unknown or identical bodies, a negative
+  /// compliance or anything not finite.
+  FixedId addFixed(const FixedDef& def);
   /// Gives dynamic body `id` a new mass (kg, > 0), scaling its inertia with
   /// it; throws std::invalid_argument otherwise.
   void setMass(BodyId id, double mass);
@@ -72,7 +91,48 @@ class World {
   /// Body named `name`, if any.
   std::optional<BodyId> findBody(const std::string& name) const;
 
+  // Joints, by type, in the order added. Changing a joint's drive or limit
+  // between steps is allowed (a drive's target, max torque); its body-local
+  // geometry is what it was made with. Forces and torques are those of the
+  // last substep, on the joint's body a (JointWrench).
   const std::vector<HingeJoint>& hinges() const { return hinges_; }
+  HingeJoint& hinge(HingeId id) { return hinges_.at(id); }
+  const HingeJoint& hinge(HingeId id) const { return hinges_.at(id); }
+  JointWrench hingeWrench(HingeId id) const { return reeve::hingeWrench(hinges_.at(id), last_h_); }
+  /// Hinge angle (rad, in (-pi, pi]) of body a relative to b, 0 when added.
+  double hingeAngle(HingeId id) const;
+  /// Torque (N m) the hinge's drive put on body a about the axis over the
+  /// last substep: lambda_drive / h^2.
+  double hingeDriveTorque(HingeId id) const;
+
+  const std::vector<PrismaticJoint>& prismatics() const { return prismatics_; }
+  PrismaticJoint& prismatic(PrismaticId id) { return prismatics_.at(id); }
+  const PrismaticJoint& prismatic(PrismaticId id) const { return prismatics_.at(id); }
+  JointWrench prismaticWrench(PrismaticId id) const {
+    return reeve::prismaticWrench(prismatics_.at(id), last_h_);
+  }
+  /// Slide (m) of body a relative to b along the axis, 0 when added.
+  double prismaticSlide(PrismaticId id) const;
+  /// Force (N) the drive put on body a along the axis over the last
+  /// substep: lambda_drive / h^2.
+  double prismaticDriveForce(PrismaticId id) const;
+
+  const std::vector<SphericalJoint>& sphericals() const { return sphericals_; }
+  SphericalJoint& spherical(SphericalId id) { return sphericals_.at(id); }
+  const SphericalJoint& spherical(SphericalId id) const { return sphericals_.at(id); }
+  JointWrench sphericalWrench(SphericalId id) const {
+    return reeve::sphericalWrench(sphericals_.at(id), last_h_);
+  }
+  /// Swing (rad, in [0, pi]) and twist (rad, in (-pi, pi]) of a spherical
+  /// joint (spherical_joint.h).
+  double swingAngle(SphericalId id) const;
+  double twistAngle(SphericalId id) const;
+
+  const std::vector<FixedJoint>& fixedJoints() const { return fixeds_; }
+  FixedJoint& fixedJoint(FixedId id) { return fixeds_.at(id); }
+  const FixedJoint& fixedJoint(FixedId id) const { return fixeds_.at(id); }
+  JointWrench fixedWrench(FixedId id) const { return reeve::fixedWrench(fixeds_.at(id), last_h_); }
+
   int distanceCount() const { return static_cast<int>(distances_.size()); }
   DistanceConstraint& distance(DistanceId id) { return distances_[id]; }
   const DistanceConstraint& distance(DistanceId id) const { return distances_[id]; }
@@ -94,6 +154,9 @@ class World {
   double lastSubstep() const { return last_h_; }  // s
 
  private:
+  /// Throws std::invalid_argument unless a and b are two different
+  /// existing bodies (kWorldBody allowed).
+  void checkJointBodies(const char* kind, BodyId a, BodyId b) const;
   void integrate(double h);
   void solvePositions(double h);
   void updateVelocities(double h);
@@ -103,6 +166,9 @@ class World {
   std::vector<BodyDef> defs_;
   BodyState world_frame_;
   std::vector<HingeJoint> hinges_;
+  std::vector<PrismaticJoint> prismatics_;
+  std::vector<SphericalJoint> sphericals_;
+  std::vector<FixedJoint> fixeds_;
   std::vector<DistanceConstraint> distances_;
   std::vector<PathConstraint> paths_;
   std::vector<SubstepHook> hooks_;

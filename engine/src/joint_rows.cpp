@@ -1,0 +1,154 @@
+#include "joint_rows.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Cholesky>
+
+#include "reeve/engine/correction.h"
+
+namespace reeve::joint_rows {
+namespace {
+
+// [r]x: the matrix of r x (.).
+Eigen::Matrix3d crossMatrix(const Vec3& r) {
+  Eigen::Matrix3d m;
+  m << 0.0, -r.z(), r.y(), r.z(), 0.0, -r.x(), -r.y(), r.x(), 0.0;
+  return m;
+}
+
+using Matrix6 = Eigen::Matrix<double, 6, 6>;
+using Matrix7 = Eigen::Matrix<double, 7, 7>;
+using Vec7 = Eigen::Matrix<double, 7, 1>;
+
+// The joint's 6x6 generalized inverse mass M (joint_rows.h).
+Matrix6 jointInverseMass(const BodyState& a, const BodyState& b, const Vec3& r_a,
+                         const Vec3& r_b) {
+  const Eigen::Matrix3d inv_a = inverseInertiaWorld(a), inv_b = inverseInertiaWorld(b);
+  const Eigen::Matrix3d coupling = crossMatrix(r_a) * inv_a + crossMatrix(r_b) * inv_b;
+  Matrix6 M;
+  M.topLeftCorner<3, 3>() = pointInverseMass(a, b, r_a, r_b);
+  M.topRightCorner<3, 3>() = coupling;
+  M.bottomLeftCorner<3, 3>() = coupling.transpose();
+  M.bottomRightCorner<3, 3>() = inv_a + inv_b;
+  return M;
+}
+
+}  // namespace
+
+void BilateralRows::addPoint(const Vec3& separation) {
+  for (int i = 0; i < 3; ++i) addPositional(Vec3::Unit(i), separation[i]);
+}
+
+void BilateralRows::addPositional(const Vec3& n, double C) {
+  dirs.col(count).setZero();
+  dirs.col(count).head<3>() = n;
+  values[count++] = C;
+}
+
+void BilateralRows::addAngular(const Vec3& n, double C) {
+  dirs.col(count).setZero();
+  dirs.col(count).tail<3>() = n;
+  values[count++] = C;
+}
+
+void solveRows(BodyState& a, BodyState& b, const Vec3& r_a, const Vec3& r_b,
+               const BilateralRows& rows, double alpha_tilde, const ClampedRow* clamped,
+               Vec3& linear_a, Vec3& angular_a) {
+  if (a.inv_mass == 0.0 && b.inv_mass == 0.0) return;  // nothing can move
+  const int m = rows.count;
+  if (!clamped && (m == 0 || (alpha_tilde == 0.0 &&
+                              !(rows.values.head(m).cwiseAbs().maxCoeff() > 1e-15))))
+    return;  // nothing to do, or already met
+  // Directions D (6 x 7): the bilateral rows, then the clamped one at m.
+  Eigen::Matrix<double, 6, 7> D = Eigen::Matrix<double, 6, 7>::Zero();
+  D.leftCols<6>() = rows.dirs;
+  Vec7 rhs = Vec7::Zero();
+  rhs.head<6>() = -rows.values;
+  if (clamped) {
+    D.col(m) = clamped->dir;
+    rhs[m] = -clamped->C;
+  }
+  const int n = m + (clamped ? 1 : 0);
+  // A = D^T M D, plus alpha~ on the bilateral rows; unused rows: A_ii = 1,
+  // rhs_i = 0, so their x_i = 0.
+  Matrix7 A = D.transpose() * jointInverseMass(a, b, r_a, r_b) * D;
+  Vec6 accumulated;
+  accumulated << -linear_a, angular_a;
+  for (int i = 0; i < m; ++i) {
+    A(i, i) += alpha_tilde;
+    rhs[i] -= alpha_tilde * D.col(i).dot(accumulated);
+  }
+  for (int i = n; i < 7; ++i) A(i, i) = 1.0;
+  Vec7 x = A.ldlt().solve(rhs);
+  if (clamped) {
+    const double y = std::clamp(*clamped->lambda + x[m], clamped->lo, clamped->hi) -
+                     *clamped->lambda;
+    if (y != x[m]) {  // clamped: the bilateral rows again, with y fixed
+      rhs -= A.col(m) * y;
+      A.row(m).setZero();
+      A.col(m).setZero();
+      A(m, m) = 1.0;
+      rhs[m] = y;
+      x = A.ldlt().solve(rhs);
+      x[m] = y;
+    }
+    *clamped->lambda += x[m];
+  }
+  const Vec6 J = D * x;
+  const Vec3 P = J.head<3>(), L = J.tail<3>();
+  linear_a -= P;
+  angular_a += L;
+  applyPositionalImpulse(a, b, r_a, r_b, P);
+  applyAngularImpulse(a, b, -L);  // a turns by I_a^-1 L, b by -I_b^-1 L
+}
+
+double signedAngle(const Vec3& from, const Vec3& to, const Vec3& axis) {
+  const Vec3 f = from - axis * axis.dot(from);
+  const Vec3 t = to - axis * axis.dot(to);
+  return std::atan2(axis.dot(f.cross(t)), f.dot(t));
+}
+
+Vec3 anyPerpendicular(const Vec3& v) {
+  const Vec3 helper = std::abs(v.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+  return v.cross(helper).normalized();
+}
+
+Vec3 alignment(const Vec3& from, const Vec3& to) {
+  const Vec3 cross = from.cross(to);
+  const double s = cross.norm();
+  if (!(s > 1e-15)) return Vec3::Zero();
+  return std::atan2(s, from.dot(to)) / s * cross;
+}
+
+void prepareCoordinate(JointCoordinate& c, DriveKind kind, double target, double max_effort,
+                       double start, double inverse_inertia, bool angle, double h) {
+  c.lambda_lower = c.lambda_upper = c.lambda_drive = 0.0;
+  c.start = start;
+  c.drive_step = 0.0;
+  const bool unlimited = isUnlimited(max_effort);
+  c.max_drive_lambda = unlimited ? kInf : max_effort * h * h;
+  switch (kind) {
+    case DriveKind::None: break;
+    case DriveKind::Velocity: c.drive_step = target * h; break;
+    case DriveKind::Position: {
+      const double e = angle ? wrapAngle(target - start) : target - start;
+      double speed = std::abs(e) / h;
+      if (!unlimited)
+        speed = std::min(speed, std::sqrt(2.0 * max_effort * inverse_inertia * std::abs(e)));
+      c.drive_step = std::copysign(speed * h, e);
+      break;
+    }
+  }
+}
+
+double inverseInertiaAbout(const BodyState& body, const Vec3& local, const Vec3& u) {
+  if (body.inv_mass == 0.0) return 0.0;
+  const Vec3 u_local = body.q.conjugate() * u;
+  const Vec3 r = body.q * local;
+  const double about_centre = u_local.dot(body.inertia.cwiseProduct(u_local));
+  const double shift = body.mass() * (r.squaredNorm() - r.dot(u) * r.dot(u));
+  return 1.0 / (about_centre + shift);
+}
+
+}  // namespace reeve::joint_rows

@@ -1,0 +1,147 @@
+// The joint solve every joint type shares, built on the generalized inverse
+// masses of correction.h (SCA 2020 sec. 3.3.1 positional, 3.3.2 angular).
+// Private to reeve_engine.
+//
+// A joint's rows live in a 6-D space: a positional part, C_p = p_b - p_a
+// (the anchors, m), and an angular part, the rotation of a relative to b
+// (rad, world). A row is a unit direction s in that space and a value C.
+// The unknowns are the impulse J = [P; L]: P (kg m) on b at its anchor and
+// -P on a at its anchor; L (kg m^2) on a and -L on b. J changes the rows by
+// M J, M the joint's 6x6 generalized inverse mass (SCA 2020 eq. 2-4 for all
+// directions at once):
+//   M = [ K                              [r_a]x I_a^-1 + [r_b]x I_b^-1 ]
+//       [ (the top right)^T              I_a^-1 + I_b^-1              ]
+// with K = pointInverseMass (correction.h) and I^-1 in world axes.
+//
+// Every visit solves a joint's bilateral rows together, as one block, with
+// at most one clamped row (a drive or a limit), exactly to first order.
+// Solving the rows one by one, as the paper does, converges slowly when
+// they are coupled through an arm: a motor or limit row turns a bob hung
+// far from its hinge about the bob's own centre, and the point row then
+// turns most of it back (a 1 kg ball 1 m from a hinge with an unlimited
+// velocity drive took seconds, not one substep, to reach its target).
+#pragma once
+
+#include <limits>
+
+#include "reeve/engine/body.h"
+#include "reeve/engine/joint_common.h"
+
+namespace reeve::joint_rows {
+
+inline constexpr double kInf = std::numeric_limits<double>::infinity();
+
+using Vec6 = Eigen::Matrix<double, 6, 1>;
+
+/// Up to six bilateral rows of a joint, with compliance (alpha~ for all).
+struct BilateralRows {
+  Eigen::Matrix<double, 6, 6> dirs = Eigen::Matrix<double, 6, 6>::Zero();  // columns
+  Vec6 values = Vec6::Zero();
+  int count = 0;
+
+  /// The three rows C_p = p_b - p_a (point coincidence).
+  void addPoint(const Vec3& separation);
+  /// A positional row along the unit n: C = n . (p_b - p_a).
+  void addPositional(const Vec3& n, double C);
+  /// An angular row about the unit n: C = rotation of a relative to b
+  /// about n (rad).
+  void addAngular(const Vec3& n, double C);
+};
+
+/// One clamped row (drive or limit), rigid: direction `dir` (unit, 6-D),
+/// value `C`, accumulated lambda kept in [lo, hi].
+struct ClampedRow {
+  Vec6 dir = Vec6::Zero();
+  double C = 0.0;
+  double lo = -kInf, hi = kInf;
+  double* lambda = nullptr;
+};
+
+/// Solves `rows` (compliant, alpha~ = `alpha_tilde`) together with
+/// `clamped` (if any) for the bodies a, b with world anchor arms r_a, r_b:
+///   [M_s + alpha~ 1   S^T M c] [x]     [C_s + alpha~ S^T Lambda]
+///   [c^T M S          c^T M c] [y] = - [C_c                    ],
+/// S the bilateral directions, c the clamped one, Lambda the joint's
+/// accumulated bilateral impulse (for the compliance term); then clamps
+/// lambda_c + y to [lo, hi] and, if it was clamped, solves the bilateral
+/// rows again with y fixed. Applies J = S x + c y and adds it to the
+/// joint's accumulated impulses on a: `linear_a` -= P, `angular_a` += L.
+/// Lambda is taken as [-linear_a; angular_a]: the clamped rows of a joint
+/// must not share directions with its bilateral rows (they do not: they act
+/// along the free directions).
+void solveRows(BodyState& a, BodyState& b, const Vec3& r_a, const Vec3& r_b,
+               const BilateralRows& rows, double alpha_tilde, const ClampedRow* clamped,
+               Vec3& linear_a, Vec3& angular_a);
+
+/// Signed angle (rad, in (-pi, pi]) that turns `from` into `to` about the
+/// unit `axis`, both first projected onto the plane normal to `axis`.
+double signedAngle(const Vec3& from, const Vec3& to, const Vec3& axis);
+
+/// A unit vector perpendicular to the unit vector `v`.
+Vec3 anyPerpendicular(const Vec3& v);
+
+/// Rotation vector (rad, world) of the smallest rotation turning the unit
+/// `from` into the unit `to`: angle x (from x to) / |from x to|.
+Vec3 alignment(const Vec3& from, const Vec3& to);
+
+/// What a drive targets: nothing, a velocity, or a position (an angle for
+/// hinges, a slide for prismatic joints).
+enum class DriveKind { None, Velocity, Position };
+
+/// Sets up a coordinate's drive for one substep of `h` s: clears the
+/// lambdas, records the coordinate `start` at the beginning of the substep
+/// (from the bodies' x_prev, q_prev) and the change `drive_step` the drive
+/// asks for:
+///   velocity drive, target v* (rad/s or m/s):  drive_step = v* h;
+///   position drive, target x* (rad or m): with e = x* - start (wrapped
+///   for angles) and a_max = max_effort x `inverse_inertia` (the joint's
+///   largest acceleration), the drive asks for the largest speed from which
+///   it can still stop at x*,  v = sign(e) min(|e| / h, sqrt(2 a_max |e|)),
+///   and drive_step = v h. Unlimited effort gives v = e / h: x* at once.
+///   Loads are not anticipated: one pulling toward x* (a servo lowering
+///   an arm) carries the joint past it, and the drive then brings it back.
+/// max_drive_lambda = max_effort h^2 (infinite when unlimited).
+void prepareCoordinate(JointCoordinate& c, DriveKind kind, double target, double max_effort,
+                       double start, double inverse_inertia, bool angle, double h);
+
+/// The drive row and then the limit rows of a coordinate, so that a limit
+/// wins over a drive pushing into it. `value()` is the current coordinate
+/// (rad or m); `row(C, lo, hi, lambda)` solves the joint with one clamped
+/// row of value C along the coordinate (lambda > 0 pushes it up), its
+/// lambda clamped to [lo, hi]:
+///   drive:  C = (x - start) - drive_step  (the change since the substep
+///           began, wrapped for angles, minus the asked change),
+///           |lambda_drive| <= max_drive_lambda;
+///   lower:  C = x - lower, only while C < 0 or lambda_lower > 0, lambda >= 0;
+///   upper:  C = x - upper, only while C > 0 or lambda_upper < 0, lambda <= 0.
+/// Returns whether any row was solved.
+template <class Value, class Row>
+bool solveCoordinateRows(JointCoordinate& c, const JointLimit& limit, bool driven, bool angle,
+                         Value value, Row row) {
+  bool solved = false;
+  if (driven) {
+    double moved = value() - c.start;
+    if (angle) moved = wrapAngle(moved);
+    row(moved - c.drive_step, -c.max_drive_lambda, c.max_drive_lambda, c.lambda_drive);
+    solved = true;
+  }
+  if (limit.enabled) {
+    const double below = value() - limit.lower;
+    if (below < 0.0 || c.lambda_lower > 0.0) {
+      row(below, 0.0, kInf, c.lambda_lower);
+      solved = true;
+    }
+    const double above = value() - limit.upper;
+    if (above > 0.0 || c.lambda_upper < 0.0) {
+      row(above, -kInf, 0.0, c.lambda_upper);
+      solved = true;
+    }
+  }
+  return solved;
+}
+
+/// 1 / (moment of inertia, kg m^2) of `body` about the axis through its
+/// body-local point `local` along the world unit `u`: 0 for a static body.
+double inverseInertiaAbout(const BodyState& body, const Vec3& local, const Vec3& u);
+
+}  // namespace reeve::joint_rows

@@ -1,0 +1,111 @@
+#include "reeve/engine/prismatic_joint.h"
+
+#include "joint_rows.h"
+
+namespace reeve {
+namespace {
+
+joint_rows::DriveKind kindOf(PrismaticDrive::Mode mode) {
+  switch (mode) {
+    case PrismaticDrive::Mode::Velocity: return joint_rows::DriveKind::Velocity;
+    case PrismaticDrive::Mode::Position: return joint_rows::DriveKind::Position;
+    case PrismaticDrive::Mode::None: break;
+  }
+  return joint_rows::DriveKind::None;
+}
+
+}  // namespace
+
+PrismaticJoint makePrismaticJoint(const PrismaticDef& def, const BodyState& a,
+                                  const BodyState& b) {
+  PrismaticJoint j;
+  j.a = def.body;
+  j.b = def.other;
+  j.anchor_a = a.toLocal(def.anchor);
+  j.anchor_b = b.toLocal(def.anchor);
+  j.axis_b = b.q.conjugate() * def.axis.normalized();
+  j.rel = (b.q.conjugate() * a.q).normalized();
+  j.compliance = def.compliance;
+  j.limit = def.limit;
+  j.drive = def.drive;
+  return j;
+}
+
+double prismaticSlide(const PrismaticJoint& j, const Vec3& x_a, const Quat& q_a, const Vec3& x_b,
+                      const Quat& q_b) {
+  const Vec3 d = (x_a + q_a * j.anchor_a) - (x_b + q_b * j.anchor_b);
+  return d.dot(q_b * j.axis_b);
+}
+
+void preparePrismaticJoint(PrismaticJoint& j, const BodyState& a, const BodyState& b, double h) {
+  j.impulse_linear.setZero();
+  j.impulse_angular.setZero();
+  const joint_rows::DriveKind kind = kindOf(j.drive.mode);
+  if (kind == joint_rows::DriveKind::None) {
+    joint_rows::prepareCoordinate(j.slide, kind, 0.0, 0.0, 0.0, 0.0, false, h);
+    return;
+  }
+  // The orientation is locked, so a position drive brakes in time for the
+  // two masses alone: 1/m_eff = 1/m_a + 1/m_b.
+  joint_rows::prepareCoordinate(j.slide, kind, j.drive.target, j.drive.max_force,
+                                prismaticSlide(j, a.x_prev, a.q_prev, b.x_prev, b.q_prev),
+                                a.inv_mass + b.inv_mass, false, h);
+}
+
+void solvePrismaticJoint(PrismaticJoint& j, BodyState& a, BodyState& b, double h) {
+  // Rows (joint_rows.h: positional C_p = p_b - p_a, angular = rotation of a
+  // relative to b), u = q_b axis_b, T = [t1 t2] normal to u:
+  //   across the rail (2, compliant): C = T^T (p_b - p_a);
+  //   orientation (3, compliant): C = phi, the rotation vector of the
+  //     error rotation q_a (q_b rel)^-1;
+  //   slide (at most one at a time, rigid, clamped), s = (p_a - p_b) . u
+  //   (prismaticSlide), positional direction -u: lambda > 0 pushes a along
+  //   +u (force lambda u / h^2 on a), in order:
+  //     drive, velocity: C = (s - s_0) - v* h, s_0 the slide at the start
+  //       of the substep (from x_prev, q_prev): afterwards a moved v* h
+  //       relative to b over the substep, a velocity of v*;
+  //     drive, position: v* h replaced by the step toward the target that
+  //       max_force can still stop (joint_rows::prepareCoordinate);
+  //       |lambda_drive| <= max_force h^2 either way;
+  //     lower limit: C = s - lower, lambda >= 0; upper: C = s - upper,
+  //       lambda <= 0; each only while violated or already pushing.
+  // Each slide row is solved with the five locked rows as one block
+  // (joint_rows::solveRows); with no slide row active, the block alone.
+  const double alpha_tilde = j.compliance / (h * h);
+  const auto block = [&](const joint_rows::ClampedRow* clamped) {
+    const Vec3 r_a = a.q * j.anchor_a, r_b = b.q * j.anchor_b;
+    const Vec3 u = b.q * j.axis_b;
+    const Vec3 t1 = joint_rows::anyPerpendicular(u), t2 = u.cross(t1);
+    const Vec3 separation = (b.x + r_b) - (a.x + r_a);
+    const Vec3 phi = rotationVector(a.q * (b.q * j.rel).conjugate());
+    joint_rows::BilateralRows rows;
+    rows.addPositional(t1, t1.dot(separation));
+    rows.addPositional(t2, t2.dot(separation));
+    for (int i = 0; i < 3; ++i) rows.addAngular(Vec3::Unit(i), phi[i]);
+    joint_rows::solveRows(a, b, r_a, r_b, rows, alpha_tilde, clamped, j.impulse_linear,
+                          j.impulse_angular);
+  };
+  const bool driven = j.drive.mode != PrismaticDrive::Mode::None;
+  bool solved = false;
+  if (driven || j.limit.enabled) {
+    const auto value = [&] { return prismaticSlide(j, a.x, a.q, b.x, b.q); };
+    const auto row = [&](double C, double lo, double hi, double& lambda) {
+      joint_rows::ClampedRow clamped;
+      clamped.dir.head<3>() = -(b.q * j.axis_b);
+      clamped.C = C;
+      clamped.lo = lo;
+      clamped.hi = hi;
+      clamped.lambda = &lambda;
+      block(&clamped);
+    };
+    solved = joint_rows::solveCoordinateRows(j.slide, j.limit, driven, false, value, row);
+  }
+  if (!solved) block(nullptr);
+}
+
+JointWrench prismaticWrench(const PrismaticJoint& j, double h) {
+  if (!(h > 0.0)) return {};
+  return {j.impulse_linear / (h * h), j.impulse_angular / (h * h)};
+}
+
+}  // namespace reeve

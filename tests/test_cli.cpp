@@ -190,6 +190,21 @@ TEST_F(Cli, BadScenesExitWithCode2AndNameFilePathExpectedAndFound) {
   EXPECT_EQ(reeve("validate " + path("missing.json")).code, 2);
 }
 
+TEST_F(Cli, ANonFiniteStateStopsTheRunNamingTheBody) {
+  // A body flung at 1e308 m/s overflows within a frame.
+  const std::string scene = write("fling.json", R"({"name": "fling", "solver": {}, "bodies": [
+    {"name": "stone", "shape": {"type": "sphere", "radius_m": 0.1}, "mass_kg": 1,
+     "position_m": [1.79e308, 0, 0], "linear_velocity_m_per_s": [1e308, 0, 0]}]})");
+  const Result r = reeve("run " + scene + " --frames 5 --csv " + path("out.csv"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("non-finite"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("'stone'"), std::string::npos) << r.err;
+  std::ifstream csv(path("out.csv"));
+  int lines = 0;
+  for (std::string line; std::getline(csv, line);) ++lines;
+  EXPECT_EQ(lines, 1) << "only the header: no row of the broken frame";
+}
+
 TEST_F(Cli, UsageErrorsAndHelp) {
   EXPECT_EQ(reeve("run --frames -3").code, 64);
   EXPECT_EQ(reeve("frobnicate").code, 64);

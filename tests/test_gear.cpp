@@ -63,3 +63,27 @@ TEST(Gear, TheBeltTransmitsTheRadiusRatioWithoutSlipAndKeepsItsLength) {
 
 }  // namespace
 }  // namespace reeve
+
+namespace reeve {
+namespace {
+
+TEST(MotorBelt, ATorqueLimitedMotorSpinsUpTheBeltDrivenWheelsAsDerived) {
+  // Belt without slip: w_b = w_a r_a / r_b, w_c = w_a r_a / r_c. The motor
+  // (2 N m) sees I = I_a + I_b (r_a/r_b)^2 + I_c (r_a/r_c)^2 = 0.07 kg m^2
+  // and spins up at 2 / 0.07 rad/s^2 until 10 rad/s at 0.35 s.
+  Scene s = test::scene("motor_belt");
+  const BodyId a = test::body(s, "motor_wheel"), b = test::body(s, "big_wheel"), c = test::body(s, "small_wheel");
+  const double alpha = 2.0 / 0.07;
+  for (int f = 0; f < 12; ++f) test::frame(s);  // 0.2 s
+  const double w = s.world->body(a).omega.z();
+  EXPECT_NEAR(w, alpha * s.world->time(), 0.01 * alpha * s.world->time());
+  EXPECT_NEAR(s.world->body(b).omega.z(), w * 0.2 / 0.4, 0.01 * w);
+  EXPECT_NEAR(s.world->body(c).omega.z(), w * 0.2 / 0.1, 0.01 * w * 2.0);
+  for (int f = 12; f < 60; ++f) test::frame(s);  // 1 s: at speed
+  EXPECT_NEAR(s.world->body(a).omega.z(), 10.0, 0.05);
+  EXPECT_NEAR(s.world->body(b).omega.z(), 5.0, 0.025);
+  EXPECT_NEAR(s.world->body(c).omega.z(), 20.0, 0.1);
+}
+
+}  // namespace
+}  // namespace reeve

@@ -62,3 +62,47 @@ TEST(AtwoodScene, FallsWithTheAnalyticAcceleration) {
 
 }  // namespace
 }  // namespace reeve
+
+namespace reeve {
+namespace {
+
+// The two knobs (DESIGN.md): one step with many iterations (the paper),
+// many substeps with one iteration (SCA 2020), and a mix, must each meet
+// what the tests expect of a scene, and so agree with each other.
+TEST(SubstepsAndIterations, EverySplitOfTheBudgetMeetsTheAnalyticValues) {
+  const int splits[][2] = {{1, 20}, {20, 1}, {5, 4}};
+  for (const auto& split : splits) {
+    const std::string at = std::to_string(split[0]) + " x " + std::to_string(split[1]);
+    {  // Atwood: a = g / 4, T1 = m1 (g + a), T2 = m2 (g - a)
+      Scene s = loadScene(kScenes + "/atwood.json");
+      s.world->settings().substeps = split[0];
+      s.world->settings().iterations = split[1];
+      for (int f = 0; f < 30; ++f) s.world->step(1.0 / s.frame_rate_hz);
+      const double g = 9.81, a = g / 4.0;
+      EXPECT_NEAR(-s.world->body(*s.world->findBody("heavy")).v.y() / s.world->time(), a, 0.01 * a) << at;
+      EXPECT_NEAR(s.cables->tension(0, 0), g + a, 0.01 * (g + a)) << at;
+      EXPECT_NEAR(s.cables->tension(0, 1), 2.0 * (g - a), 0.01 * 2.0 * (g - a)) << at;
+    }
+    {  // Simple scene at rest: 10 N below the middle box, 20 N above it
+      Scene s = loadScene(kScenes + "/simple.json");
+      s.world->settings().substeps = split[0];
+      s.world->settings().iterations = split[1];
+      s.world->body(*s.world->findBody("left_bottom")).v.setZero();
+      for (int f = 0; f < 60; ++f) s.world->step(1.0 / s.frame_rate_hz);
+      const double expected[] = {10.0, 20.0, 20.0, 20.0};
+      for (int j = 0; j < 4; ++j) EXPECT_NEAR(s.cables->tension(0, j), expected[j], 0.01 * expected[j]) << at;
+    }
+    {  // The 1:4 gear stays balanced
+      Scene s = loadScene(kScenes + "/gear_1_to_4.json");
+      s.world->settings().substeps = split[0];
+      s.world->settings().iterations = split[1];
+      const BodyId w = *s.world->findBody("weight_small");
+      const Vec3 x0 = s.world->body(w).x;
+      for (int f = 0; f < 120; ++f) s.world->step(1.0 / s.frame_rate_hz);
+      EXPECT_LT((s.world->body(w).x - x0).norm(), 1e-3) << at;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace reeve

@@ -3,7 +3,10 @@
 // generalized inverse mass, and Hooke's law for a compliant distance.
 #include <gtest/gtest.h>
 
+#include <fenv.h>
+
 #include <cmath>
+#include <limits>
 
 #include "reeve/engine/correction.h"
 #include "reeve/engine/world.h"
@@ -130,6 +133,44 @@ TEST(Integration, AFreeWheelKeepsItsSpin) {
   // 10 s at 40 rad/s: the wheel has turned 400 rad.
   const double turned = 2.0 * std::atan2(world.body(wheel).q.z(), world.body(wheel).q.w());
   EXPECT_NEAR(std::remainder(turned - 400.0, 2.0 * 3.141592653589793), 0.0, 1e-9);
+}
+
+TEST(Integration, SpeedGuardCapsAFallingBodyAtTheLimit) {
+  // Free fall reaches 5 m/s after 5 / g s; from then on the guard holds it.
+  World world;
+  world.settings().gravity = Vec3(0, -10.0, 0);
+  world.settings().max_linear_speed = 5.0;
+  BodyDef def;
+  def.shape = Shape::sphere(0.1);
+  def.mass = 1.0;
+  def.angular_velocity = Vec3(0, 0, 100.0);
+  world.settings().max_angular_speed = 30.0;
+  const BodyId ball = world.addBody(def);
+  for (int f = 0; f < 15; ++f) world.step(1.0 / 60.0);  // 0.25 s: still free
+  EXPECT_NEAR(world.body(ball).v.y(), -2.5, 1e-9);
+  for (int f = 0; f < 60; ++f) world.step(1.0 / 60.0);
+  EXPECT_NEAR(world.body(ball).v.norm(), 5.0, 1e-9);
+  EXPECT_NEAR(world.body(ball).omega.norm(), 30.0, 1e-9);
+}
+
+TEST(Integration, NonFiniteStateIsReportedByBody) {
+  // This test makes NaNs on purpose: lift the traps of fp_main.cpp for it.
+  const int traps = fedisableexcept(FE_ALL_EXCEPT);
+  World world;
+  BodyDef def;
+  def.shape = Shape::sphere(0.1);
+  def.mass = 1.0;
+  def.name = "calm";
+  world.addBody(def);
+  def.name = "wild";
+  def.linear_velocity = Vec3(std::numeric_limits<double>::infinity(), 0, 0);
+  const BodyId wild = world.addBody(def);
+  EXPECT_FALSE(World().firstNonFiniteBody().has_value());
+  world.step(1.0 / 60.0);
+  ASSERT_TRUE(world.firstNonFiniteBody().has_value());
+  EXPECT_EQ(*world.firstNonFiniteBody(), wild);
+  feclearexcept(FE_ALL_EXCEPT);
+  feenableexcept(traps);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config
   libeigen3-dev          # engine maths
+  libccd-dev             # contacts: narrow phase (MPR)
   nlohmann-json3-dev     # scene files
   libvalijson-dev        # JSON Schema validation of scenes
   libcli11-dev           # command line

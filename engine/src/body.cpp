@@ -9,6 +9,9 @@ BodyState makeBodyState(const BodyDef& def) {
   BodyState s;
   s.x = s.x_prev = def.position;
   s.q = s.q_prev = def.orientation.normalized();
+  if (!isValid(def.material))
+    throw std::invalid_argument("body '" + def.name +
+                                "': frictions must be finite and >= 0, restitution in [0, 1]");
   if (def.is_static) return s;
   s.v = def.linear_velocity;
   s.omega = def.angular_velocity;

@@ -6,6 +6,7 @@
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace reeve {
 namespace {
@@ -52,7 +53,61 @@ World::World(SolverSettings settings) : settings_(settings) {}
 BodyId World::addBody(const BodyDef& def) {
   bodies_.push_back(makeBodyState(def));
   defs_.push_back(def);
-  return static_cast<BodyId>(bodies_.size() - 1);
+  bound_radius_.push_back(boundingRadius(def.shape));
+  const BodyId id = static_cast<BodyId>(bodies_.size() - 1);
+  if (def.collides) colliders_.push_back(id);
+  return id;
+}
+
+void World::setGround(const GroundPlane& ground) {
+  checkVector("ground", "normal", ground.normal, true);
+  if (!std::isfinite(ground.height_m)) reject("ground", "the height must be finite");
+  if (!isValid(ground.material))
+    reject("ground", "frictions must be finite and >= 0, restitution in [0, 1]");
+  ground_ = ground;
+  ground_->normal.normalize();
+}
+
+void World::findContacts() {
+  contacts_.clear();
+  manifolds_.clear();
+  const auto group = [&](std::size_t first) {
+    if (contacts_.size() > first)
+      manifolds_.push_back({static_cast<int>(first), static_cast<int>(contacts_.size() - first), Vec3::Zero()});
+  };
+  if (ground_) {
+    for (BodyId id = 0; id < bodyCount(); ++id) {
+      const BodyState& b = bodies_[id];
+      if (b.inv_mass == 0.0 ||
+          ground_->normal.dot(b.x) - ground_->height_m > bound_radius_[id])
+        continue;
+      const std::size_t first = contacts_.size();
+      collideGround(*ground_, id, defs_[id].shape, b, defs_[id].material, contacts_);
+      group(first);
+    }
+  }
+  if (colliders_.size() < 2) return;
+  // Sort and sweep along x; insertion sort, as the order barely changes
+  // between substeps (and it allocates nothing).
+  const auto low = [&](BodyId id) { return bodies_[id].x.x() - bound_radius_[id]; };
+  for (std::size_t i = 1; i < colliders_.size(); ++i)
+    for (std::size_t j = i; j > 0 && low(colliders_[j - 1]) > low(colliders_[j]); --j)
+      std::swap(colliders_[j - 1], colliders_[j]);
+  for (std::size_t i = 0; i < colliders_.size(); ++i) {
+    const BodyId a = colliders_[i];
+    const double high = bodies_[a].x.x() + bound_radius_[a];
+    for (std::size_t j = i + 1; j < colliders_.size() && low(colliders_[j]) <= high; ++j) {
+      const BodyId b = colliders_[j];
+      const BodyState &sa = bodies_[a], &sb = bodies_[b];
+      if (sa.inv_mass == 0.0 && sb.inv_mass == 0.0) continue;
+      const double reach = bound_radius_[a] + bound_radius_[b];
+      if ((sb.x - sa.x).squaredNorm() > reach * reach) continue;
+      const std::size_t first = contacts_.size();
+      collideBodies(a, defs_[a].shape, sa, b, defs_[b].shape, sb,
+                    combine(defs_[a].material, defs_[b].material), contacts_);
+      group(first);
+    }
+  }
 }
 
 void World::setMass(BodyId id, double mass) {
@@ -186,8 +241,24 @@ void World::step(double dt) {
   for (int s = 0; s < settings_.substeps; ++s) {
     integrate(h);
     for (auto& hook : hooks_) hook(*this, h);
+    const bool contacts = hasContacts();
+    if (contacts) findContacts();
+    else if (!contacts_.empty()) {  // the ground was removed
+      contacts_.clear();
+      manifolds_.clear();
+    }
     solvePositions(h);
     updateVelocities(h);
+    if (contacts) {
+      // SCA 2020, Alg. 2 line 24: the velocity pass of the contacts, with
+      // restitution off below 2 |g| h.
+      const double rest_speed = 2.0 * settings_.gravity.norm() * h;
+      for (const ContactManifold& m : manifolds_) {
+        const Contact& c = contacts_[m.first];
+        solveContactVelocities(m, contacts_.data(), body(c.a), body(c.b), h, rest_speed);
+      }
+    }
+    limitSpeeds();  // last, so no later pass can push past the guard
     time_ += h;
   }
   last_h_ = h;
@@ -227,6 +298,10 @@ void World::solvePositions(double h) {
     for (DistanceConstraint& c : distances_)
       solveDistanceConstraint(c, body(c.a), body(c.b), c.compliance * inv_h2);
     for (PathConstraint& p : paths_) solvePathConstraint(p, table, p.compliance * inv_h2);
+    for (ContactManifold& m : manifolds_) {
+      const Contact& c = contacts_[m.first];
+      solveContactPositions(m, contacts_.data(), body(c.a), body(c.b));
+    }
   }
 }
 
@@ -238,6 +313,21 @@ void World::updateVelocities(double h) {
     b.v *= std::exp(-b.linear_damping * h);
     b.omega *= std::exp(-b.angular_damping * h);
   }
+}
+
+void World::limitSpeeds() {
+  for (BodyState& b : bodies_) {
+    if (const double v = b.v.norm(); v > settings_.max_linear_speed) b.v *= settings_.max_linear_speed / v;
+    if (const double w = b.omega.norm(); w > settings_.max_angular_speed) b.omega *= settings_.max_angular_speed / w;
+  }
+}
+
+std::optional<BodyId> World::firstNonFiniteBody() const {
+  for (BodyId id = 0; id < bodyCount(); ++id) {
+    const BodyState& b = bodies_[id];
+    if (!b.x.allFinite() || !b.q.coeffs().allFinite() || !b.v.allFinite() || !b.omega.allFinite()) return id;
+  }
+  return std::nullopt;
 }
 
 }  // namespace reeve

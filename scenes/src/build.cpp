@@ -22,6 +22,8 @@ SolverSettings solverOf(const nlohmann::json& solver) {
       solver.contains("gravity_m_per_s2") ? vec3(solver.at("gravity_m_per_s2")) : kGravity;
   settings.substeps = solver.value("substeps", kSubsteps);
   settings.iterations = solver.value("iterations", kIterations);
+  settings.max_linear_speed = solver.value("max_linear_speed_m_per_s", settings.max_linear_speed);
+  settings.max_angular_speed = solver.value("max_angular_speed_rad_per_s", settings.max_angular_speed);
   return settings;
 }
 
@@ -40,6 +42,21 @@ CameraDef cameraOf(const nlohmann::json& camera, const std::string& source) {
                      "a direction not parallel to the view direction target_m - eye_m",
                      camera.contains("up") ? literal(camera.at("up")) : "the default [0,1,0]");
   return def;
+}
+
+// "ground": the schema checks the numbers; the normal must be non-zero.
+GroundPlane groundOf(const nlohmann::json& ground, const std::string& source) {
+  GroundPlane g;
+  g.height_m = ground.value("height_m", g.height_m);
+  if (const auto n = ground.find("normal"); n != ground.end()) {
+    g.normal = vec3(*n);
+    if (g.normal.squaredNorm() == 0.0)
+      throw SceneError(source, "/ground/normal", "a non-zero normal", literal(*n));
+  }
+  g.material.static_friction = ground.value("static_friction", g.material.static_friction);
+  g.material.dynamic_friction = ground.value("dynamic_friction", g.material.dynamic_friction);
+  g.material.restitution = ground.value("restitution", g.material.restitution);
+  return g;
 }
 
 }  // namespace
@@ -61,6 +78,8 @@ Scene buildScene(const nlohmann::json& document, const std::string& source) {
   scene.world = std::make_unique<World>(solverOf(solver));
   scene.cables = std::make_unique<CableSystem>(*scene.world);
   const BodyNames names = addBodies(document.at("bodies"), *scene.world, source);
+  if (const auto ground = document.find("ground"); ground != document.end())
+    scene.world->setGround(groundOf(*ground, source));
   if (const auto hinges = document.find("hinges"); hinges != document.end())
     addHinges(*hinges, names, *scene.world, source);
   if (const auto joints = document.find("joints"); joints != document.end())

@@ -62,6 +62,10 @@ BodyNames addBodies(const nlohmann::json& bodies, World& world, const std::strin
           Quat(Eigen::AngleAxisd(o->at("angle_rad").get<double>(), axis.normalized()));
     }
     def.is_static = b.value("static", false);
+    def.material.static_friction = b.value("static_friction", def.material.static_friction);
+    def.material.dynamic_friction = b.value("dynamic_friction", def.material.dynamic_friction);
+    def.material.restitution = b.value("restitution", def.material.restitution);
+    def.collides = b.value("collides", false);
     const bool has_density = b.contains("density_kg_per_m3");
     const bool has_mass = b.contains("mass_kg");
     if (def.is_static) {

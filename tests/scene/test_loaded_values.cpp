@@ -212,3 +212,19 @@ TEST(LoadedValues, BodyDamping) {
 
 }  // namespace
 }  // namespace reeve::test
+
+namespace reeve::test {
+namespace {
+
+TEST(LoadedValues, SpeedGuards) {
+  const Scene none = parseScene(kBase, "test.json");
+  EXPECT_TRUE(std::isinf(none.world->settings().max_linear_speed));
+  const Scene s = parseScene(
+      baseWith(R"("solver": {})", R"("solver": {"max_linear_speed_m_per_s": 12.5, "max_angular_speed_rad_per_s": 300})"),
+      "test.json");
+  EXPECT_EQ(s.world->settings().max_linear_speed, 12.5);
+  EXPECT_EQ(s.world->settings().max_angular_speed, 300.0);
+}
+
+}  // namespace
+}  // namespace reeve::test

@@ -18,7 +18,8 @@ TEST(SchemaErrors, UnknownFieldListsTheAllowedOnes) {
   expectError(baseWith(R"("mass_kg": 2,)", R"("mass_kg": 2, "colour": "red",)"), "/bodies/1/colour",
               "no property \"colour\" (allowed: name, shape, density_kg_per_m3, mass_kg, "
               "position_m, orientation, static, linear_velocity_m_per_s, "
-              "angular_velocity_rad_per_s, linear_damping_per_s, angular_damping_per_s)",
+              "angular_velocity_rad_per_s, linear_damping_per_s, angular_damping_per_s, "
+              "static_friction, dynamic_friction, restitution, collides)",
               "\"colour\"");
 }
 
@@ -46,7 +47,7 @@ TEST(SchemaErrors, AttachmentWithoutPoint) {
 TEST(SchemaErrors, UnknownFieldNameIsEscapedInThePointer) {
   expectError(baseWith(R"("solver": {})", R"("solver": {"a/b~c": 1})"), "/solver/a~1b~0c",
               "no property \"a/b~c\" (allowed: frame_rate_hz, substeps, iterations, "
-              "gravity_m_per_s2)",
+              "max_linear_speed_m_per_s, max_angular_speed_rad_per_s, gravity_m_per_s2)",
               "\"a/b~c\"");
 }
 

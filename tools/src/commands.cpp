@@ -59,15 +59,6 @@ void createParent(const fs::path& file) {
   if (file.has_parent_path()) fs::create_directories(file.parent_path());
 }
 
-// The first body whose state is not finite, or -1.
-BodyId firstNonFiniteBody(const World& world) {
-  for (BodyId b = 0; b < world.bodyCount(); ++b) {
-    const BodyState& s = world.body(b);
-    if (!s.x.allFinite() || !s.q.coeffs().allFinite() || !s.v.allFinite()) return b;
-  }
-  return -1;
-}
-
 Camera sceneCamera(const Scene& scene, double aspect) {
   if (!scene.camera) return frameScene(*scene.world, *scene.cables, aspect);
   return Camera{scene.camera->eye, scene.camera->target, scene.camera->up, scene.camera->fov_y_deg};
@@ -112,11 +103,11 @@ int simulate(const RunOptions& o) {
     const auto t0 = std::chrono::steady_clock::now();
     scene.world->step(dt);
     physics_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (const BodyId bad = firstNonFiniteBody(*scene.world); bad >= 0)
+    if (const auto bad = scene.world->firstNonFiniteBody())
       throw std::runtime_error("the simulation became non-finite at t = " +
                                std::to_string(scene.world->time()) + " s in body '" +
-                               scene.world->bodyDef(bad).name +
-                               "'; try more substeps or iterations");
+                               scene.world->bodyDef(*bad).name +
+                               "'; no frame of it was written. Try more substeps or iterations");
     if (csv) csv->writeRow();
     if (events) events->drain(*scene.cables);
     else scene.cables->takeEvents();  // nobody asked: do not let them pile up

@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "reeve/engine/contact_material.h"
 #include "reeve/engine/math.h"
 #include "reeve/engine/shape.h"
 
@@ -30,6 +31,13 @@ struct BodyDef {
   /// drag or bearing friction that lets a mechanism come to rest.
   double linear_damping = 0.0;
   double angular_damping = 0.0;
+  /// Friction and restitution of the body's surface against the ground and
+  /// other bodies (combined per pair, contact_material.h).
+  ContactMaterial material;
+  /// Takes part in body-body contacts (with every other colliding body).
+  /// Contact with the ground plane does not need it: a World's ground
+  /// touches every dynamic body.
+  bool collides = false;
 };
 
 /// Solver state of one body (Müller et al. 2020, Alg. 2). Static bodies
@@ -61,7 +69,8 @@ struct BodyState {
 
 /// Builds the solver state of `def`: mass from density unless given,
 /// inertia of the solid shape. Throws std::invalid_argument when a dynamic
-/// body's mass is not finite and positive.
+/// body's mass is not finite and positive, or its material is not valid
+/// (isValid in contact_material.h).
 BodyState makeBodyState(const BodyDef& def);
 
 }  // namespace reeve

@@ -4,11 +4,14 @@
 
 #include <cassert>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "reeve/engine/body.h"
+#include "reeve/engine/collide.h"
+#include "reeve/engine/contact.h"
 #include "reeve/engine/distance_constraint.h"
 #include "reeve/engine/fixed_joint.h"
 #include "reeve/engine/hinge_joint.h"
@@ -26,6 +29,11 @@ struct SolverSettings {
   Vec3 gravity = Vec3(0.0, -9.81, 0.0);  // m/s^2
   int substeps = 10;
   int iterations = 2;
+  /// Speed guards: after each substep a body's linear speed (m/s) and
+  /// angular speed (rad/s) are clamped to these, so a bad set-up cannot
+  /// fling bodies out to infinity. Infinite by default (no effect).
+  double max_linear_speed = std::numeric_limits<double>::infinity();
+  double max_angular_speed = std::numeric_limits<double>::infinity();
 };
 
 /// Id of a constraint in the World's per-type arrays.
@@ -71,6 +79,24 @@ class World {
   PathId addPath(PathConstraint path);
   void addSubstepHook(SubstepHook hook);
 
+  /// Sets the ground plane {p : n . p = height_m} (n = ground.normal,
+  /// normalized here), which touches every dynamic body (SCA 2020, sec.
+  /// 3.5). Throws std::invalid_argument for a zero or non-finite normal, a
+  /// non-finite height or an invalid material (contact_material.h).
+  void setGround(const GroundPlane& ground);
+  /// Removes the ground plane.
+  void removeGround() { ground_.reset(); }
+  const std::optional<GroundPlane>& ground() const { return ground_; }
+  /// True when a step looks for contacts: there is a ground plane or at
+  /// least two bodies with BodyDef::collides. Otherwise a step does no
+  /// collision work at all.
+  bool hasContacts() const { return ground_.has_value() || colliders_.size() >= 2; }
+  /// The contacts of the last substep (contact.h), fresh each substep.
+  /// Normal force of one: contactNormalForce(c, lastSubstep()).
+  const std::vector<Contact>& contacts() const { return contacts_; }
+  /// The same grouped by touching pair (ranges of contacts()).
+  const std::vector<ContactManifold>& contactManifolds() const { return manifolds_; }
+
   /// Advances by dt (s) with the current settings.
   void step(double dt);
 
@@ -88,6 +114,10 @@ class World {
     assert(id >= 0 && id < bodyCount());
     return defs_[id];
   }
+  /// The first body whose position, orientation or velocity is not
+  /// finite, if any: check after step(), which never throws, to stop a run
+  /// with the body's name instead of writing NaN frames.
+  std::optional<BodyId> firstNonFiniteBody() const;
   /// Body named `name`, if any.
   std::optional<BodyId> findBody(const std::string& name) const;
 
@@ -160,6 +190,10 @@ class World {
   void integrate(double h);
   void solvePositions(double h);
   void updateVelocities(double h);
+  void limitSpeeds();
+  /// Broad phase (sort and sweep of bounding spheres along x over the
+  /// colliding bodies) and narrow phase (collide.h) into contacts_.
+  void findContacts();
 
   SolverSettings settings_;
   std::vector<BodyState> bodies_;
@@ -172,6 +206,11 @@ class World {
   std::vector<DistanceConstraint> distances_;
   std::vector<PathConstraint> paths_;
   std::vector<SubstepHook> hooks_;
+  std::optional<GroundPlane> ground_;
+  std::vector<BodyId> colliders_;       // bodies with BodyDef::collides, swept along x
+  std::vector<double> bound_radius_;    // m, per body: boundingRadius of its shape
+  std::vector<Contact> contacts_;       // this substep's; capacity kept between substeps
+  std::vector<ContactManifold> manifolds_;  // ranges of contacts_, one per touching pair
   double time_ = 0.0;
   double last_h_ = 0.0;
 };

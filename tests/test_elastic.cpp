@@ -46,3 +46,26 @@ TEST(Elastic, ZeroComplianceIsInextensibleAtTwentyIterations) {
 
 }  // namespace
 }  // namespace reeve
+
+namespace reeve {
+namespace {
+
+TEST(Elastic, ASoftCableLetsItsWeightRestOnTheGround) {
+  // Fig. 15 right. Beam underside at 2.0 m, rest length 1.5 m, 1 kg boxes
+  // 0.2 m tall. Stiff (0.01 m/N): hangs with stretch 0.0981 m, bottom at
+  // 2.0 - 1.5 - 0.0981 - 0.2 = 0.2019 m. Soft (0.1 m/N): would stretch
+  // 0.981 m, so it rests on the ground; its cable spans 2.0 - 0.2 = 1.8 m,
+  // tension (1.8 - 1.5) / 0.1 = 3 N, the ground carries 9.81 - 3 N.
+  Scene s = test::scene("elastic_ground");
+  for (int f = 0; f < s.frameCount(); ++f) test::frame(s);
+  const BodyState& stiff = s.world->body(test::body(s, "stiff"));
+  const BodyState& soft = s.world->body(test::body(s, "soft"));
+  EXPECT_LT(stiff.v.norm() + soft.v.norm(), 1e-3);  // at rest
+  EXPECT_NEAR(stiff.x.y() - 0.1, 0.2019, 1e-3);
+  EXPECT_NEAR(s.cables->tension(0, 0), 9.81, 0.01 * 9.81);
+  EXPECT_NEAR(soft.x.y(), 0.1, 1e-3);  // on the ground
+  EXPECT_NEAR(s.cables->tension(1, 0), 3.0, 0.03);
+}
+
+}  // namespace
+}  // namespace reeve

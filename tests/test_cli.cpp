@@ -205,6 +205,21 @@ TEST_F(Cli, ANonFiniteStateStopsTheRunNamingTheBody) {
   EXPECT_EQ(lines, 1) << "only the header: no row of the broken frame";
 }
 
+TEST_F(Cli, SegmentWritesAValidSegmentedRopeSceneAndRefusesToOverwrite) {
+  const std::string atwood = std::string(REEVE_SCENES_DIR) + "/atwood.json";
+  const Result r = reeve("segment " + atwood + " --cable rope --segments 12 -o " + path("rope.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(reeve("validate " + path("rope.json")).code, 0);
+  std::ifstream f(path("rope.json"));
+  const std::string text((std::istreambuf_iterator<char>(f)), {});
+  EXPECT_NE(text.find("\"rope_seg_011\""), std::string::npos);
+  EXPECT_EQ(text.find("\"rope_seg_012\""), std::string::npos);
+  EXPECT_EQ(reeve("segment " + atwood + " --cable rope --segments 12 -o " + path("rope.json")).code, 3);
+  const Result unknown = reeve("segment " + atwood + " --cable string --segments 12 -o " + path("x.json"));
+  EXPECT_EQ(unknown.code, 64);
+  EXPECT_NE(unknown.err.find("rope"), std::string::npos) << "lists the cable names: " << unknown.err;
+}
+
 TEST_F(Cli, UsageErrorsAndHelp) {
   EXPECT_EQ(reeve("run --frames -3").code, 64);
   EXPECT_EQ(reeve("frobnicate").code, 64);

@@ -20,14 +20,7 @@ HingeJoint makeHingeJoint(const HingeDef& def, const BodyState& a, const BodySta
   HingeJoint j;
   j.a = def.body;
   j.b = def.other;
-  j.anchor_a = a.toLocal(def.anchor);
-  j.anchor_b = b.toLocal(def.anchor);
-  const Vec3 axis = def.axis.normalized();
-  j.axis_a = a.q.conjugate() * axis;
-  j.axis_b = b.q.conjugate() * axis;
-  const Vec3 ref = joint_rows::anyPerpendicular(axis);
-  j.ref_a = a.q.conjugate() * ref;
-  j.ref_b = b.q.conjugate() * ref;
+  j.frame = joint_rows::makeJointFrame(def.anchor, def.axis, a, b);
   j.compliance = def.compliance;
   j.limit = def.limit;
   j.drive = def.drive;
@@ -36,7 +29,7 @@ HingeJoint makeHingeJoint(const HingeDef& def, const BodyState& a, const BodySta
 
 double hingeAngle(const HingeJoint& j, const Quat& q_a, const Quat& q_b) {
   // The angle turning b's reference direction into a's about a's axis.
-  return joint_rows::signedAngle(q_b * j.ref_b, q_a * j.ref_a, q_a * j.axis_a);
+  return joint_rows::signedAngle(q_b * j.frame.ref_b, q_a * j.frame.ref_a, q_a * j.frame.axis_a);
 }
 
 void prepareHingeJoint(HingeJoint& j, const BodyState& a, const BodyState& b, double h) {
@@ -49,9 +42,9 @@ void prepareHingeJoint(HingeJoint& j, const BodyState& a, const BodyState& b, do
   }
   // An angle drive brakes in time for the inertia of both bodies about the
   // axis through the anchor (exact for one body on a world hinge).
-  const Vec3 u = a.q * j.axis_a;
-  const double inverse_inertia = joint_rows::inverseInertiaAbout(a, j.anchor_a, u) +
-                                 joint_rows::inverseInertiaAbout(b, j.anchor_b, u);
+  const Vec3 u = a.q * j.frame.axis_a;
+  const double inverse_inertia = joint_rows::inverseInertiaAbout(a, j.frame.anchor_a, u) +
+                                 joint_rows::inverseInertiaAbout(b, j.frame.anchor_b, u);
   joint_rows::prepareCoordinate(j.angle, kind, j.drive.target, j.drive.max_torque,
                                 hingeAngle(j, a.q_prev, b.q_prev), inverse_inertia, true, h);
 }
@@ -81,10 +74,10 @@ void solveHingeJoint(HingeJoint& j, BodyState& a, BodyState& b, double h) {
   // about their centres; with no angle row active, the block alone.
   const double alpha_tilde = j.compliance / (h * h);
   const auto block = [&](const joint_rows::ClampedRow* clamped) {
-    const Vec3 r_a = a.q * j.anchor_a, r_b = b.q * j.anchor_b;
-    const Vec3 u = a.q * j.axis_a;
+    const Vec3 r_a = a.q * j.frame.anchor_a, r_b = b.q * j.frame.anchor_b;
+    const Vec3 u = a.q * j.frame.axis_a;
     const Vec3 t1 = joint_rows::anyPerpendicular(u), t2 = u.cross(t1);
-    const Vec3 phi = joint_rows::alignment(b.q * j.axis_b, u);
+    const Vec3 phi = joint_rows::alignment(b.q * j.frame.axis_b, u);
     joint_rows::BilateralRows rows;
     rows.addPoint((b.x + r_b) - (a.x + r_a));
     rows.addAngular(t1, t1.dot(phi));
@@ -98,7 +91,7 @@ void solveHingeJoint(HingeJoint& j, BodyState& a, BodyState& b, double h) {
     const auto value = [&] { return hingeAngle(j, a.q, b.q); };
     const auto row = [&](double C, double lo, double hi, double& lambda) {
       joint_rows::ClampedRow clamped;
-      clamped.dir.tail<3>() = a.q * j.axis_a;
+      clamped.dir.tail<3>() = a.q * j.frame.axis_a;
       clamped.C = C;
       clamped.lo = lo;
       clamped.hi = hi;

@@ -151,4 +151,17 @@ double inverseInertiaAbout(const BodyState& body, const Vec3& local, const Vec3&
   return 1.0 / (about_centre + shift);
 }
 
+JointFrame makeJointFrame(const Vec3& anchor, const Vec3& axis, const BodyState& a, const BodyState& b) {
+  JointFrame f;
+  f.anchor_a = a.toLocal(anchor);
+  f.anchor_b = b.toLocal(anchor);
+  const Vec3 n = axis.normalized();
+  f.axis_a = a.q.conjugate() * n;
+  f.axis_b = b.q.conjugate() * n;
+  const Vec3 ref = anyPerpendicular(n);
+  f.ref_a = a.q.conjugate() * ref;
+  f.ref_b = b.q.conjugate() * ref;
+  return f;
+}
+
 }  // namespace reeve::joint_rows

@@ -144,4 +144,8 @@ bool solveCoordinateRows(JointCoordinate& c, const JointLimit& limit, bool drive
 /// body-local point `local` along the world unit `u`: 0 for a static body.
 double inverseInertiaAbout(const BodyState& body, const Vec3& local, const Vec3& u);
 
+/// The frame of a joint created at world `anchor` (m) with world `axis`
+/// (normalized here) between bodies at poses a and b.
+JointFrame makeJointFrame(const Vec3& anchor, const Vec3& axis, const BodyState& a, const BodyState& b);
+
 }  // namespace reeve::joint_rows

@@ -22,14 +22,7 @@ SphericalJoint makeSphericalJoint(const SphericalDef& def, const BodyState& a,
   SphericalJoint j;
   j.a = def.body;
   j.b = def.other;
-  j.anchor_a = a.toLocal(def.anchor);
-  j.anchor_b = b.toLocal(def.anchor);
-  const Vec3 axis = def.axis.normalized();
-  j.axis_a = a.q.conjugate() * axis;
-  j.axis_b = b.q.conjugate() * axis;
-  const Vec3 ref = joint_rows::anyPerpendicular(axis);
-  j.ref_a = a.q.conjugate() * ref;
-  j.ref_b = b.q.conjugate() * ref;
+  j.frame = joint_rows::makeJointFrame(def.anchor, def.axis, a, b);
   j.compliance = def.compliance;
   j.swing_limit = def.swing_limit;
   j.twist_limit = def.twist_limit;
@@ -37,13 +30,13 @@ SphericalJoint makeSphericalJoint(const SphericalDef& def, const BodyState& a,
 }
 
 double swingAngle(const SphericalJoint& j, const Quat& q_a, const Quat& q_b) {
-  const Vec3 u_a = q_a * j.axis_a, u_b = q_b * j.axis_b;
+  const Vec3 u_a = q_a * j.frame.axis_a, u_b = q_b * j.frame.axis_b;
   return std::atan2(u_a.cross(u_b).norm(), u_a.dot(u_b));
 }
 
 double twistAngle(const SphericalJoint& j, const Quat& q_a, const Quat& q_b) {
-  const Vec3 n = twistAxis(q_a * j.axis_a, q_b * j.axis_b);
-  return joint_rows::signedAngle(q_b * j.ref_b, q_a * j.ref_a, n);
+  const Vec3 n = twistAxis(q_a * j.frame.axis_a, q_b * j.frame.axis_b);
+  return joint_rows::signedAngle(q_b * j.frame.ref_b, q_a * j.frame.ref_a, n);
 }
 
 void prepareSphericalJoint(SphericalJoint& j) {
@@ -68,7 +61,7 @@ void solveSphericalJoint(SphericalJoint& j, BodyState& a, BodyState& b, double h
   //   bodies about the ball, not about their centres.
   const double alpha_tilde = j.compliance / (h * h);
   const auto block = [&](const joint_rows::ClampedRow* clamped) {
-    const Vec3 r_a = a.q * j.anchor_a, r_b = b.q * j.anchor_b;
+    const Vec3 r_a = a.q * j.frame.anchor_a, r_b = b.q * j.frame.anchor_b;
     joint_rows::BilateralRows rows;
     rows.addPoint((b.x + r_b) - (a.x + r_a));
     joint_rows::solveRows(a, b, r_a, r_b, rows, alpha_tilde, clamped, j.impulse_linear,
@@ -85,7 +78,7 @@ void solveSphericalJoint(SphericalJoint& j, BodyState& a, BodyState& b, double h
   };
   bool solved = false;
   if (j.swing_limit.enabled) {
-    const Vec3 u_a = a.q * j.axis_a, u_b = b.q * j.axis_b;
+    const Vec3 u_a = a.q * j.frame.axis_a, u_b = b.q * j.frame.axis_b;
     const Vec3 m = u_b.cross(u_a);
     const double C = swingAngle(j, a.q, b.q) - j.swing_limit.max;
     if ((C > 0.0 || j.lambda_swing < 0.0) && m.norm() > 1e-12) {
@@ -96,7 +89,7 @@ void solveSphericalJoint(SphericalJoint& j, BodyState& a, BodyState& b, double h
   if (j.twist_limit.enabled) {
     const auto value = [&] { return twistAngle(j, a.q, b.q); };
     const auto row = [&](double C, double lo, double hi, double& lambda) {
-      angular(twistAxis(a.q * j.axis_a, b.q * j.axis_b), C, lo, hi, lambda);
+      angular(twistAxis(a.q * j.frame.axis_a, b.q * j.frame.axis_b), C, lo, hi, lambda);
     };
     solved |= joint_rows::solveCoordinateRows(j.twist, j.twist_limit, false, true, value, row);
   }

@@ -95,8 +95,8 @@ TEST(JointScenes, HingeLimitsAndDrivesMapToTheirValues) {
   const HingeJoint& servo = w.hinge(1);
   EXPECT_EQ(servo.a, *w.findBody("arm"));
   EXPECT_EQ(servo.b, kWorldBody);
-  expectVec(servo.axis_b, Vec3::UnitZ());  // [0, 0, 2] normalized
-  expectVec(servo.anchor_a, Vec3(-0.5, 0, 0));
+  expectVec(servo.frame.axis_b, Vec3::UnitZ());  // [0, 0, 2] normalized
+  expectVec(servo.frame.anchor_a, Vec3(-0.5, 0, 0));
   EXPECT_TRUE(servo.limit.enabled);
   EXPECT_EQ(servo.limit.lower, -0.5);
   EXPECT_EQ(servo.limit.upper, 1.0);
@@ -124,9 +124,9 @@ TEST(JointScenes, EachJointTypeMapsToItsValues) {
   ASSERT_EQ(w.sphericals().size(), 1u);
   const SphericalJoint& ball = w.spherical(0);
   EXPECT_EQ(ball.a, *w.findBody("bob"));
-  expectVec(ball.anchor_a, Vec3(0, 1, 0));
-  expectVec(ball.anchor_b, Vec3(3, 0, 0));
-  expectVec(ball.axis_b, -Vec3::UnitY());
+  expectVec(ball.frame.anchor_a, Vec3(0, 1, 0));
+  expectVec(ball.frame.anchor_b, Vec3(3, 0, 0));
+  expectVec(ball.frame.axis_b, -Vec3::UnitY());
   EXPECT_TRUE(ball.swing_limit.enabled);
   EXPECT_EQ(ball.swing_limit.max, 0.7);
   EXPECT_TRUE(ball.twist_limit.enabled);

@@ -50,8 +50,8 @@ void expectFigure12(const Scene& s, double density) {
   ASSERT_EQ(w.hinges().size(), 2u);
   for (const HingeJoint& h : w.hinges()) {
     EXPECT_EQ(h.b, kWorldBody);
-    expectVec(h.anchor_a, Vec3::Zero());  // at the wheel's centre
-    expectVec(h.axis_b, Vec3::UnitZ());
+    expectVec(h.frame.anchor_a, Vec3::Zero());  // at the wheel's centre
+    expectVec(h.frame.axis_b, Vec3::UnitZ());
   }
   EXPECT_EQ(w.hinges()[0].a, bodyNamed(s, "wheel_left"));
   EXPECT_EQ(w.hinges()[1].a, bodyNamed(s, "wheel_right"));

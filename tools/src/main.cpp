@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "commands.h"
+#include "segment_command.h"
 #include "reeve/scene/scene.h"
 
 int main(int argc, char** argv) {
@@ -33,6 +34,23 @@ int main(int argc, char** argv) {
   CLI::App* validate_cmd = app.add_subcommand("validate", "Check a scene file and report the first error.");
   validate_cmd->add_option("scene", validate_scene, "Scene JSON file")->required();
 
+  reeve::SegmentCommandOptions segment;
+  double rope_mass = 0.0;
+  CLI::App* segment_cmd = app.add_subcommand(
+      "segment", "Write SCENE with a cable replaced by a chain of rigid segments (the paper's baseline).");
+  segment_cmd->add_option("scene", segment.scene, "Scene JSON file")->required();
+  segment_cmd->add_option("--cable", segment.segment.cable, "Name of the cable to replace")->required();
+  segment_cmd->add_option("--segments", segment.segment.segments, "Number of rigid segments")
+      ->required()->check(CLI::Range(1, 100000));
+  segment_cmd->add_option("--radius", segment.segment.radius_m, "Segment radius, m (default 0.01)")
+      ->check(CLI::PositiveNumber);
+  CLI::Option* rope_mass_opt = segment_cmd->add_option(
+      "--rope-mass", rope_mass, "Total rope mass, kg (default 1 % of the lighter end body)")
+      ->check(CLI::PositiveNumber);
+  segment_cmd->add_option("-o,--output", segment.output,
+                          "Output scene (default SCENE_segments.json beside SCENE)");
+  segment_cmd->add_flag("--force", segment.force, "Overwrite an existing output file");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -40,5 +58,12 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : reeve::kExitUsage;
   }
   if (*run_cmd) return reeve::runCommand(run);
+  if (*segment_cmd) {
+    if (*rope_mass_opt) segment.segment.rope_mass_kg = rope_mass;
+    std::string line = "reeve segment";
+    for (int i = 1 + 1; i < argc; ++i) line += std::string(" ") + argv[i];
+    segment.segment.command_line = line;
+    return reeve::segmentCommand(segment);
+  }
   return reeve::validateCommand(validate_scene);
 }

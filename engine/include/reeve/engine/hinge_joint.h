@@ -49,9 +49,7 @@ struct HingeDef {
 /// body-local, and what the rows did this substep.
 struct HingeJoint {
   BodyId a = 0, b = kWorldBody;
-  Vec3 anchor_a = Vec3::Zero(), anchor_b = Vec3::Zero();  // m, local
-  Vec3 axis_a = Vec3::UnitZ(), axis_b = Vec3::UnitZ();    // local
-  Vec3 ref_a = Vec3::UnitX(), ref_b = Vec3::UnitX();      // local, normal to the axis
+  JointFrame frame;  // anchors, axes (the twist axis of a ball joint), references
   double compliance = 0.0;
   JointLimit limit;
   HingeDrive drive;

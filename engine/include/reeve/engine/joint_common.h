@@ -67,4 +67,13 @@ struct JointCoordinate {
 /// `angle` (rad) wrapped to [-pi, pi].
 inline double wrapAngle(double angle) { return std::remainder(angle, 2.0 * std::numbers::pi); }
 
+/// A joint's frame on its two bodies, fixed at creation: body-local anchors
+/// (m), the joint axis and a reference direction normal to it in each body,
+/// so relative angles about the axis start at 0.
+struct JointFrame {
+  Vec3 anchor_a = Vec3::Zero(), anchor_b = Vec3::Zero();
+  Vec3 axis_a = Vec3::UnitZ(), axis_b = Vec3::UnitZ();
+  Vec3 ref_a = Vec3::UnitX(), ref_b = Vec3::UnitX();
+};
+
 }  // namespace reeve

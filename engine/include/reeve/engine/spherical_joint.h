@@ -29,9 +29,7 @@ struct SphericalDef {
 /// Solver form of a spherical joint.
 struct SphericalJoint {
   BodyId a = 0, b = kWorldBody;
-  Vec3 anchor_a = Vec3::Zero(), anchor_b = Vec3::Zero();  // m, local
-  Vec3 axis_a = Vec3::UnitZ(), axis_b = Vec3::UnitZ();    // local twist axes
-  Vec3 ref_a = Vec3::UnitX(), ref_b = Vec3::UnitX();      // local, normal to the axes
+  JointFrame frame;  // anchors, axes (the twist axis of a ball joint), references
   double compliance = 0.0;
   SwingLimit swing_limit;
   JointLimit twist_limit;

@@ -1,0 +1,89 @@
+// `reeve segment`'s generator (tools/src/segment_scene.h): the Atwood
+// machine's rope replaced by a chain of rigid segments is a valid scene,
+// follows the cable's path with its length, and holds the boxes.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+#include <utility>
+
+#include "reeve/scene/scene.h"
+#include "segment_scene.h"
+
+namespace reeve {
+namespace {
+
+std::string atwoodFile() { return std::string(REEVE_SCENES_DIR) + "/atwood.json"; }
+
+nlohmann::ordered_json atwoodJson() {
+  std::ifstream file(atwoodFile());
+  std::stringstream text;
+  text << file.rdbuf();
+  return nlohmann::ordered_json::parse(text.str());
+}
+
+std::pair<Vec3, Vec3> anchors(const SphericalJoint& j) {
+  return {j.frame.anchor_a, j.frame.anchor_b};
+}
+
+TEST(RopeSegments, SegmentedAtwoodIsValidFollowsThePathAndHoldsTheBoxes) {
+  constexpr int kSegments = 40;
+  const Scene original = loadScene(atwoodFile());
+  const double cable_length = original.cables->totalLength(0);
+  SegmentOptions options;
+  options.cable = "rope";
+  options.segments = kSegments;
+  Scene s = parseScene(segmentScene(atwoodJson(), original, options).dump(), "rope_segments");
+  World& w = *s.world;
+
+  ASSERT_EQ(w.bodyCount(), original.world->bodyCount() + kSegments);
+  EXPECT_TRUE(s.cables->cables().empty());
+  ASSERT_EQ(static_cast<int>(w.sphericals().size()), kSegments + 1);
+  EXPECT_TRUE(w.bodyDef(*w.findBody("wheel")).collides);
+
+  // The joints' anchors, in order, are the chain's vertices: light box,
+  // over the wheel, heavy box; the chain is as long as the cable.
+  double chain = 0.0;
+  Vec3 prev = w.body(w.sphericals().front().b).toWorld(anchors(w.sphericals().front()).second);
+  for (const SphericalJoint& j : w.sphericals()) {
+    const Vec3 p = w.body(j.a).toWorld(anchors(j).first);
+    EXPECT_LT((p - w.body(j.b).toWorld(anchors(j).second)).norm(), 1e-12);
+    chain += (p - prev).norm();
+    prev = p;
+  }
+  const BodyId light = *w.findBody("light"), heavy = *w.findBody("heavy");
+  EXPECT_LT((prev - w.body(heavy).toWorld(Vec3(0, 0.1, 0))).norm(), 1e-9);
+  EXPECT_NEAR(chain, cable_length, 1e-6 * cable_length);
+  double rope_mass = 0.0;
+  for (BodyId id = original.world->bodyCount(); id < w.bodyCount(); ++id) rope_mass += w.body(id).mass();
+  EXPECT_NEAR(rope_mass, 0.01 * 1.0, 1e-12);  // 1 % of the lighter box
+
+  // The rope transmits force: the heavy box goes down, the light one up.
+  // (The rope is elastic at this budget, so only directions and a loose
+  // bound are asserted: a free fall would drop the box by g t^2 / 2.)
+  const double y_heavy = w.body(heavy).x.y(), y_light = w.body(light).x.y();
+  w.settings().substeps = 20;
+  w.settings().iterations = 5;
+  for (int f = 0; f < 18; ++f) w.step(1.0 / 60.0);  // 0.3 s
+  ASSERT_FALSE(w.firstNonFiniteBody());
+  const double drop = y_heavy - w.body(heavy).x.y();
+  EXPECT_GT(drop, 0.0);
+  EXPECT_LT(drop, 0.5 * 9.81 * 0.09);
+  const double light_drop = y_light - w.body(light).x.y();
+  EXPECT_GT(drop, light_drop);
+}
+
+TEST(RopeSegments, UnknownCableListsTheCables) {
+  const Scene original = loadScene(atwoodFile());
+  SegmentOptions options;
+  options.cable = "nope";
+  try {
+    segmentScene(atwoodJson(), original, options);
+    FAIL() << "no error";
+  } catch (const SegmentError& e) {
+    EXPECT_NE(std::string(e.what()).find("'rope'"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace reeve

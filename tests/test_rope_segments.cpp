@@ -87,3 +87,23 @@ TEST(RopeSegments, UnknownCableListsTheCables) {
 
 }  // namespace
 }  // namespace reeve
+
+namespace reeve {
+namespace {
+
+TEST(RopeSegments, TheShippedSceneIsWhatTheGeneratorMakesToday) {
+  // scenes/rope_segments.json must not drift from atwood.json or the
+  // generator: regenerate it with the command its description names.
+  const Scene original = loadScene(atwoodFile());
+  SegmentOptions options;
+  options.cable = "rope";
+  options.segments = 100;
+  options.command_line = "reeve segment scenes/atwood.json --cable rope --segments 100 -o scenes/rope_segments.json";
+  std::ifstream file(std::string(REEVE_SCENES_DIR) + "/rope_segments.json");
+  std::stringstream text;
+  text << file.rdbuf();
+  EXPECT_EQ(nlohmann::ordered_json::parse(text.str()), segmentScene(atwoodJson(), original, options));
+}
+
+}  // namespace
+}  // namespace reeve

@@ -12,7 +12,6 @@ packages=(
   libosmesa6-dev         # off-screen OpenGL
   libpng-dev             # PNG frames
   libgtest-dev           # tests
-  libbenchmark-dev       # bench/
   ffmpeg                 # video (the program, piped to)
 )
 missing=()

@@ -430,7 +430,7 @@ TEST(SectionSurfaceDistance, SquareAndHexagonPayOutTheirPerimeterPerTurn) {
   EXPECT_NEAR(hexagon.perimeter(), 6 * 0.4, 1e-15);
 }
 
-TEST(SectionBoundary, CircleAgreesWithTangentH) {
+TEST(SectionBoundary, CircleDistancesAreRadiusTimesAngle) {
   std::mt19937 rng(23);
   std::uniform_real_distribution<double> angle(-kPi, kPi), rad(0.1, 3.0), small(-3.0, 3.0);
   for (int trial = 0; trial < 2000; ++trial) {
@@ -442,8 +442,9 @@ TEST(SectionBoundary, CircleAgreesWithTangentH) {
     EXPECT_NEAR(boundaryPosition(s, p1), expected_pos, 1e-12);
     EXPECT_NEAR(boundaryPosition(s, 3.0 * p1), expected_pos, 1e-12);  // off the boundary
     for (int o : {-1, 1}) {
-      EXPECT_NEAR(sectionSurfaceDistance(s, p1, p2, o), surfaceDistance(p1, p2, r, o), 1e-12);
-      const double arc = sectionWrappedArc(s, p1, p2, o), ref = wrappedArc(p1, p2, r, o);
+      // From new (p2) to old (p1) is a1 - a2 counter-clockwise, |.| < pi.
+      EXPECT_NEAR(sectionSurfaceDistance(s, p1, p2, o), o * r * (a1 - a2), 1e-12);
+      const double arc = sectionWrappedArc(s, p1, p2, o), ref = o * r * (a2 - a1);
       // Equal, or one just below a full turn and the other just above zero.
       EXPECT_NEAR(std::remainder(arc - ref, 2 * kPi * r), 0.0, 1e-12);
       EXPECT_GE(arc, 0.0);

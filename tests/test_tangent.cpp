@@ -7,7 +7,7 @@
 #include <numbers>
 #include <random>
 
-#include "reeve/cable/tangent.h"
+#include "reeve/cable/section.h"
 
 namespace reeve {
 namespace {
@@ -100,17 +100,17 @@ TEST(SurfaceDistance, SignFollowsOrientationAndArcLengthIsRadiusTimesAngle) {
   const Vec2 old_point = r * Vec2(std::cos(1.0 + angle), std::sin(1.0 + angle));
   const Vec2 new_point = r * Vec2(std::cos(1.0), std::sin(1.0));
   // From new to old is counter-clockwise by `angle`.
-  EXPECT_NEAR(surfaceDistance(old_point, new_point, r, +1), r * angle, 1e-14);
-  EXPECT_NEAR(surfaceDistance(old_point, new_point, r, -1), -r * angle, 1e-14);
-  EXPECT_NEAR(surfaceDistance(new_point, old_point, r, +1), -r * angle, 1e-14);
+  EXPECT_NEAR(sectionSurfaceDistance(Section::circle(r), old_point, new_point, +1), r * angle, 1e-14);
+  EXPECT_NEAR(sectionSurfaceDistance(Section::circle(r), old_point, new_point, -1), -r * angle, 1e-14);
+  EXPECT_NEAR(sectionSurfaceDistance(Section::circle(r), new_point, old_point, +1), -r * angle, 1e-14);
 }
 
 TEST(WrappedArc, MeasuresInTheOrientationSenseOverAFullTurn) {
   const double r = 2.0;
   const Vec2 east(r, 0), north(0, r), south(0, -r);
-  EXPECT_NEAR(wrappedArc(east, north, r, +1), r * std::numbers::pi / 2, 1e-12);
-  EXPECT_NEAR(wrappedArc(east, north, r, -1), r * 3 * std::numbers::pi / 2, 1e-12);
-  EXPECT_NEAR(wrappedArc(south, north, r, +1), r * std::numbers::pi, 1e-12);
+  EXPECT_NEAR(sectionWrappedArc(Section::circle(r), east, north, +1), r * std::numbers::pi / 2, 1e-12);
+  EXPECT_NEAR(sectionWrappedArc(Section::circle(r), east, north, -1), r * 3 * std::numbers::pi / 2, 1e-12);
+  EXPECT_NEAR(sectionWrappedArc(Section::circle(r), south, north, +1), r * std::numbers::pi, 1e-12);
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-// Common tangents and surface distances on circular cross-sections, in the
+// Common tangents of circular cross-sections and points, in the
 // 2D coordinates of a cable plane (paper sec. 3.1 and Appendix A).
 #pragma once
 
@@ -32,17 +32,5 @@ struct TangentPoints {
 /// Returns nullopt when no such tangent exists (|s_from - s_to| >= |d|: the
 /// shapes overlap in the sense the span needs).
 std::optional<TangentPoints> commonTangent(const CableCircle& from, const CableCircle& to);
-
-/// surfaceDist(a, a') of paper Alg. 1: arc length (m) on a circle of
-/// `radius` centred at the origin from `new_point` to `old_point`, positive
-/// when that arc runs in the sense of `orientation`. The shorter arc is
-/// taken, so the points must be less than half a turn apart (one substep).
-double surfaceDistance(const Vec2& old_point, const Vec2& new_point, double radius,
-                       int orientation);
-
-/// Arc length (m) from `arrival` to `departure` travelling in the sense of
-/// `orientation`, in [0, 2 pi r): the cable wrapped on a circle of `radius`
-/// centred at the origin (paper Alg. 2 line 2).
-double wrappedArc(const Vec2& arrival, const Vec2& departure, double radius, int orientation);
 
 }  // namespace reeve

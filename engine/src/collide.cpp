@@ -1,91 +1,18 @@
 #include "reeve/engine/collide.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
-#include <numbers>
 
 #include <ccd/ccd.h>
+
+#include "clip.h"
+#include "shape_features.h"
 
 namespace reeve {
 namespace {
 
-constexpr int kRimPoints = 16;  // samples around each cylinder cap rim
-
-/// Farthest point (body-local) of the shape along the body-local direction d.
-Vec3 localSupport(const Shape& s, const Vec3& d) {
-  switch (s.type) {
-    case Shape::Type::Box:
-      return Vec3(d.x() >= 0.0 ? s.half_extents.x() : -s.half_extents.x(),
-                  d.y() >= 0.0 ? s.half_extents.y() : -s.half_extents.y(),
-                  d.z() >= 0.0 ? s.half_extents.z() : -s.half_extents.z());
-    case Shape::Type::Sphere: {
-      const double len = d.norm();
-      return len > 0.0 ? Vec3(s.radius * d / len) : Vec3(s.radius, 0.0, 0.0);
-    }
-    case Shape::Type::Cylinder: {
-      const double radial = std::hypot(d.x(), d.y());
-      const double z = d.z() >= 0.0 ? s.half_length : -s.half_length;
-      if (radial == 0.0) return Vec3(s.radius, 0.0, z);
-      return Vec3(s.radius * d.x() / radial, s.radius * d.y() / radial, z);
-    }
-  }
-  return Vec3::Zero();
-}
-
 Vec3 worldSupport(const Shape& s, const BodyState& body, const Vec3& dir) {
   return body.toWorld(localSupport(s, body.q.conjugate() * dir));
-}
-
-/// Calls f(local point) for each feature point of the shape; `toward` is
-/// the body-local direction the features should reach furthest in.
-template <class F>
-void forEachFeature(const Shape& s, const Vec3& toward, F&& f) {
-  switch (s.type) {
-    case Shape::Type::Box:
-      for (int i = 0; i < 8; ++i)
-        f(Vec3((i & 1) ? s.half_extents.x() : -s.half_extents.x(),
-               (i & 2) ? s.half_extents.y() : -s.half_extents.y(),
-               (i & 4) ? s.half_extents.z() : -s.half_extents.z()));
-      return;
-    case Shape::Type::Sphere:
-      f(localSupport(s, toward));
-      return;
-    case Shape::Type::Cylinder: {
-      const double radial = std::hypot(toward.x(), toward.y());
-      for (double z : {-s.half_length, s.half_length}) {
-        if (radial > 1e-9 * toward.norm())
-          f(Vec3(s.radius * toward.x() / radial, s.radius * toward.y() / radial, z));
-        for (int k = 0; k < kRimPoints; ++k) {
-          const double phi = 2.0 * std::numbers::pi * k / kRimPoints;
-          f(Vec3(s.radius * std::cos(phi), s.radius * std::sin(phi), z));
-        }
-      }
-      return;
-    }
-  }
-}
-
-/// Body-local point p inside the shape, with `slack` (m) added all round.
-bool inside(const Shape& s, const Vec3& p, double slack) {
-  switch (s.type) {
-    case Shape::Type::Box:
-      return (p.cwiseAbs() - s.half_extents).maxCoeff() <= slack;
-    case Shape::Type::Sphere: return p.norm() <= s.radius + slack;
-    case Shape::Type::Cylinder:
-      return std::hypot(p.x(), p.y()) <= s.radius + slack &&
-             std::abs(p.z()) <= s.half_length + slack;
-  }
-  return false;
-}
-
-double leastDimension(const Shape& s) {
-  switch (s.type) {
-    case Shape::Type::Box: return 2.0 * s.half_extents.minCoeff();
-    case Shape::Type::Sphere: return 2.0 * s.radius;
-    case Shape::Type::Cylinder: return 2.0 * std::min(s.radius, s.half_length);
-  }
-  return 0.0;
 }
 
 Contact makeContact(BodyId id_a, const BodyState& a, const Vec3& p_a, BodyId id_b,
@@ -109,11 +36,14 @@ Contact makeContact(BodyId id_a, const BodyState& a, const Vec3& p_a, BodyId id_
 struct CcdObject {
   const Shape* shape;
   const BodyState* body;
+  double margin;  // m, added all round
 };
 
 void ccdSupport(const void* obj, const ccd_vec3_t* dir, ccd_vec3_t* out) {
   const auto* o = static_cast<const CcdObject*>(obj);
-  const Vec3 p = worldSupport(*o->shape, *o->body, Vec3(dir->v[0], dir->v[1], dir->v[2]));
+  const Vec3 d(dir->v[0], dir->v[1], dir->v[2]);
+  const double len = d.norm();
+  const Vec3 p = worldSupport(*o->shape, *o->body, d) + (len > 0.0 ? o->margin / len : 0.0) * d;
   ccdVec3Set(out, p.x(), p.y(), p.z());
 }
 
@@ -133,6 +63,10 @@ double boundingRadius(const Shape& s) {
   return 0.0;
 }
 
+double contactMargin(const Shape& a, const Shape& b) {
+  return 0.02 * std::min(boundingRadius(a), boundingRadius(b));
+}
+
 void collideGround(const GroundPlane& ground, BodyId id, const Shape& shape,
                    const BodyState& body, const ContactMaterial& material,
                    std::vector<Contact>& out) {
@@ -140,17 +74,23 @@ void collideGround(const GroundPlane& ground, BodyId id, const Shape& shape,
   const Vec3& n = ground.normal;
   const ContactMaterial m = combine(ground.material, material);
   const BodyState world;  // the fixed frame: plane points are world points
-  forEachFeature(shape, body.q.conjugate() * -n, [&](const Vec3& local) {
+  const double margin = contactMargin(shape, shape);
+  thread_local std::vector<Vec3> points;
+  featurePoints(shape, body.q.conjugate() * -n, points);
+  for (const Vec3& local : points) {
     const Vec3 p = body.toWorld(local);
     const double depth = ground.height_m - n.dot(p);
-    if (depth > 0.0) out.push_back(makeContact(kWorldBody, world, p + depth * n, id, body, p, n, m));
-  });
+    if (depth > -margin) out.push_back(makeContact(kWorldBody, world, p + depth * n, id, body, p, n, m));
+  }
 }
 
 void collideBodies(BodyId id_a, const Shape& shape_a, const BodyState& a, BodyId id_b,
                    const Shape& shape_b, const BodyState& b, const ContactMaterial& material,
                    std::vector<Contact>& out) {
-  const CcdObject obj_a{&shape_a, &a}, obj_b{&shape_b, &b};
+  // a grows by the margin, so MPR finds pairs up to that far apart; depth
+  // below is the true one, negative for a gap.
+  const double margin = contactMargin(shape_a, shape_b);
+  const CcdObject obj_a{&shape_a, &a, margin}, obj_b{&shape_b, &b, 0.0};
   ccd_t ccd;
   CCD_INIT(&ccd);
   ccd.support1 = ccdSupport;
@@ -166,61 +106,68 @@ void collideBodies(BodyId id_a, const Shape& shape_a, const BodyState& a, BodyId
   Vec3 n(dir.v[0], dir.v[1], dir.v[2]);
   if (!(depth > 0.0) || !n.allFinite() || !(n.norm() > 0.0)) return;
   n.normalize();
-  // MPR's normal of a face resting on a face is off by ~1e-3 rad, which
-  // walked a stack of boxes sideways. Take instead the face axis (box
-  // faces, cylinder caps) of least overlap when it overlaps no more than
-  // MPR's depth plus a little: that is the exact separating axis.
-  {
-    const auto overlap = [&](const Vec3& u) {
-      const double hi_a = u.dot(worldSupport(shape_a, a, u));
-      const double lo_b = u.dot(worldSupport(shape_b, b, -u));
-      return hi_a - lo_b;  // how far b sinks into a along u
-    };
-    const double tolerance = 1e-6 + 1e-3 * std::min(leastDimension(shape_a), leastDimension(shape_b));
-    double best = depth + tolerance;
-    Vec3 best_axis = Vec3::Zero();
-    const auto consider = [&](const Shape& s, const BodyState& body) {
-      for (int k = 0; k < 3; ++k) {
-        if (s.type == Shape::Type::Sphere || (s.type == Shape::Type::Cylinder && k < 2)) continue;
-        Vec3 u = body.q * Vec3::Unit(k);
-        if (u.dot(n) < 0.0) u = -u;
-        if (u.dot(n) < 0.9) continue;  // a face far from MPR's normal is not this contact's
-        if (const double o = overlap(u); o >= 0.0 && o < best) {
-          best = o;
-          best_axis = u;
-        }
+  depth -= margin;
+  // MPR's depth is along the ray between the shapes' centres, not the
+  // least: for a box sliding on a long ramp its normal is off the ramp's by
+  // up to 45 deg. Take instead the face normal (of a, or of b reversed) of
+  // least overlap when it overlaps no more than MPR's depth plus a little:
+  // that face is the exact separating axis, and the reference face of the
+  // manifold. Otherwise (edge on edge) MPR's normal stands.
+  const auto overlap = [&](const Vec3& u) {  // how far b sinks into a along u
+    return u.dot(worldSupport(shape_a, a, u)) - u.dot(worldSupport(shape_b, b, -u));
+  };
+  const double tolerance =
+      1e-6 + 1e-3 * std::min(boundingRadius(shape_a), boundingRadius(shape_b));
+  double best = depth + tolerance;
+  const BodyState* reference = nullptr;
+  Vec3 axis = Vec3::Zero();  // from a into b
+  thread_local std::vector<Vec3> normals;
+  for (const BodyState* body : {&a, &b}) {
+    const bool is_a = body == &a;
+    faceNormals(is_a ? shape_a : shape_b, normals);
+    for (const Vec3& local : normals) {
+      const Vec3 u = is_a ? Vec3(a.q * local) : Vec3(-(b.q * local));
+      const double o = overlap(u);
+      if (o < -margin) return;  // a separating axis: further apart than the margin
+      if (o < best) {
+        best = o;
+        axis = u;
+        reference = body;
       }
-    };
-    consider(shape_a, a);
-    consider(shape_b, b);
-    if (best_axis != Vec3::Zero()) {
-      n = best_axis;
-      depth = best;
     }
   }
-
-  const std::size_t first = out.size();
-  const double slack = 0.01 * std::min(leastDimension(shape_a), leastDimension(shape_b));
-  // Highest point of a along n and lowest of b.
-  const double top_a = n.dot(worldSupport(shape_a, a, n));
-  const double bottom_b = n.dot(worldSupport(shape_b, b, -n));
-  forEachFeature(shape_b, b.q.conjugate() * -n, [&](const Vec3& local) {
-    const Vec3 p = b.toWorld(local);
-    const double d = top_a - n.dot(p);
-    if (d > 0.0 && inside(shape_a, a.toLocal(p), slack))
-      out.push_back(makeContact(id_a, a, p + d * n, id_b, b, p, n, material));
-  });
-  forEachFeature(shape_a, a.q.conjugate() * n, [&](const Vec3& local) {
-    const Vec3 p = a.toWorld(local);
-    const double d = n.dot(p) - bottom_b;
-    if (d > 0.0 && inside(shape_b, b.toLocal(p), slack))
-      out.push_back(makeContact(id_a, a, p, id_b, b, p - d * n, n, material));
-  });
-  if (out.size() == first) {
-    const Vec3 mid(pos.v[0], pos.v[1], pos.v[2]);
-    out.push_back(makeContact(id_a, a, mid + 0.5 * depth * n, id_b, b, mid - 0.5 * depth * n, n,
-                              material));
+  if (reference) {
+    // Clip the incident feature (face, side line or point) of the other
+    // body to the prism over the reference face; its points below the
+    // reference plane are the manifold, with depths to that plane.
+    n = axis;
+    const bool ref_a = reference == &a;
+    const BodyState& incident = ref_a ? b : a;
+    const Shape& ref_shape = ref_a ? shape_a : shape_b;
+    const Shape& inc_shape = ref_a ? shape_b : shape_a;
+    const Vec3 out_ref = ref_a ? n : Vec3(-n);  // outward normal of the reference face
+    thread_local Face ref_face, inc_face;
+    thread_local std::vector<Vec3> scratch;
+    supportingFace(ref_shape, reference->q.conjugate() * out_ref, ref_face);
+    supportingFace(inc_shape, incident.q.conjugate() * -out_ref, inc_face);
+    for (Vec3& v : ref_face.vertices) v = reference->toWorld(v);
+    for (Vec3& v : inc_face.vertices) v = incident.toWorld(v);
+    clipToPrism(ref_face.vertices, n, inc_face.vertices, scratch);
+    const double plane = n.dot(ref_face.vertices[0]);
+    const std::size_t first = out.size();
+    for (const Vec3& p : inc_face.vertices) {
+      // Separation along n of the incident point and the plane.
+      const double C = ref_a ? n.dot(p) - plane : plane - n.dot(p);
+      if (C >= margin) continue;
+      if (ref_a) out.push_back(makeContact(id_a, a, p - C * n, id_b, b, p, n, material));
+      else out.push_back(makeContact(id_a, a, p, id_b, b, p + C * n, n, material));
+    }
+    if (out.size() > first) return;
   }
+  // Edge on edge, or a curved surface on anything but a face: MPR's point.
+  const Vec3 mid(pos.v[0], pos.v[1], pos.v[2]);
+  out.push_back(makeContact(id_a, a, mid + 0.5 * depth * n, id_b, b, mid - 0.5 * depth * n, n,
+                            material));
 }
 
 }  // namespace reeve

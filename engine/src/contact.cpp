@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
+#include <vector>
 
 #include "reeve/engine/contact_material.h"
 #include "reeve/engine/correction.h"
@@ -19,7 +21,8 @@ void solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, 
   const int end = m.first + m.count;
   for (int sweep = 0; sweep < kManifoldSweeps; ++sweep) {
     double largest = 0.0;
-    for (int i = m.first; i < end; ++i) {
+    for (int k = 0; k < m.count; ++k) {
+      const int i = sweep % 2 == 0 ? m.first + k : end - 1 - k;
       // Normal row: C = (p_b - p_a) . n, dC/dp_b = n; unilateral (C < 0 only).
       Contact& c = contacts[i];
       const Vec3 r_a = a.q * c.local_a, r_b = b.q * c.local_b;
@@ -36,40 +39,106 @@ void solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, 
   double lambda_n = 0.0;  // of the whole manifold
   for (int i = m.first; i < end; ++i) lambda_n += contacts[i].lambda_n;
   if (lambda_n <= 0.0) return;
-  // Static friction holds for the manifold as a whole or not at all: if the
-  // sweeps need more than mu_s lambda_n, the poses are put back as they were.
+  // Static friction of the patch: one tangential row at its centre and one
+  // twist row about n, held together or not at all.
+  const Vec3 &local_a = m.centre_a, &local_b = m.centre_b;
+  const Vec3& n = contacts[m.first].normal;
+  const double mu_s = contacts[m.first].static_friction;
+  const double radius = m.patch_radius;
   const Vec3 xa = a.x, xb = b.x, friction_before = m.friction_impulse;
   const Quat qa = a.q, qb = b.q;
-  const double mu_s = contacts[m.first].static_friction;
+  const double twist_before = m.twist_impulse;
   for (int sweep = 0; sweep < kManifoldSweeps; ++sweep) {
-    double largest = 0.0;
-    for (int i = m.first; i < end; ++i) {
-      // Static friction row: C = |dp_t|, gradient dp_t / |dp_t| wrt b.
-      Contact& c = contacts[i];
-      if (c.lambda_n <= 0.0) continue;
-      const Vec3 r_a = a.q * c.local_a, r_b = b.q * c.local_b;
-      const Vec3 dp = ((b.x + r_b) - (b.x_prev + b.q_prev * c.local_b)) -
-                      ((a.x + r_a) - (a.x_prev + a.q_prev * c.local_a));
-      const Vec3 dp_t = dp - c.normal * c.normal.dot(dp);
-      const double len = dp_t.norm();
-      if (len <= kSettled) continue;
+    // Tangential: C = |dp_t| of the centre, gradient dp_t / |dp_t| wrt b.
+    const Vec3 r_a = a.q * local_a, r_b = b.q * local_b;
+    const Vec3 dp = ((b.x + r_b) - (b.x_prev + b.q_prev * local_b)) -
+                    ((a.x + r_a) - (a.x_prev + a.q_prev * local_a));
+    const Vec3 dp_t = dp - n * n.dot(dp);
+    const double len = dp_t.norm();
+    if (len > kSettled) {
       const Vec3 t = dp_t / len;
       const Vec3 P = positionalDeltaLambda(a, b, r_a, r_b, t, len, 0.0, 0.0) * t;
       m.friction_impulse += P;
-      c.lambda_t += P.norm();
       applyPositionalImpulse(a, b, r_a, r_b, P);
-      largest = std::max(largest, len);
     }
-    if (largest <= kSettled) break;
+    // Twist: C = the turn of b relative to a about n this substep.
+    const double turn =
+        n.dot(rotationVector(b.q * b.q_prev.conjugate()) - rotationVector(a.q * a.q_prev.conjugate()));
+    if (std::abs(turn) > kSettled && radius > 0.0) {
+      const double dl = angularDeltaLambda(a, b, n, turn, 0.0, 0.0);
+      m.twist_impulse += dl;
+      applyAngularImpulse(a, b, dl * n);
+    }
+    if (len <= kSettled && std::abs(turn) * radius <= kSettled) break;
   }
-  if (m.friction_impulse.norm() > mu_s * lambda_n) {  // sliding
+  if (m.friction_impulse.norm() > mu_s * lambda_n ||
+      std::abs(m.twist_impulse) > mu_s * lambda_n * radius) {  // sliding or spinning
     a.x = xa;
     a.q = qa;
     b.x = xb;
     b.q = qb;
     m.friction_impulse = friction_before;
-    for (int i = m.first; i < end; ++i) contacts[i].lambda_t = 0.0;
+    m.twist_impulse = twist_before;
   }
+}
+
+void describePatch(ContactManifold& m, const Contact* contacts, const BodyState& a,
+                   const BodyState& b) {
+  // The overlapping points (all of them when none overlaps yet) in the
+  // patch plane, (u, v) along two tangents; h: their mean height along n.
+  const Vec3& n = contacts[m.first].normal;
+  const Vec3 u = n.unitOrthogonal(), v = n.cross(u);
+  thread_local std::vector<Vec2> points;
+  points.clear();
+  double h = 0.0;
+  for (int pass = 0; pass < 2 && points.empty(); ++pass) {
+    for (int i = m.first; i < m.first + m.count; ++i) {
+      const Contact& c = contacts[i];
+      const Vec3 p_b = b.toWorld(c.local_b);
+      if (pass == 0 && (p_b - a.toWorld(c.local_a)).dot(n) >= 0.0) continue;
+      points.emplace_back(u.dot(p_b), v.dot(p_b));
+      h += n.dot(p_b);
+    }
+  }
+  h /= static_cast<double>(points.size());
+  // Their convex hull (Andrew's monotone chain), its area, centroid and
+  // longest chord.
+  std::sort(points.begin(), points.end(),
+            [](const Vec2& p, const Vec2& q) { return p.x() < q.x() || (p.x() == q.x() && p.y() < q.y()); });
+  const auto turn = [](const Vec2& o, const Vec2& p, const Vec2& q) {
+    return (p - o).x() * (q - o).y() - (p - o).y() * (q - o).x();
+  };
+  thread_local std::vector<Vec2> hull;
+  hull.clear();
+  for (int pass = 0; pass < 2 && points.size() > 1; ++pass) {
+    const std::size_t start = hull.size();
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      const Vec2& p = pass == 0 ? points[k] : points[points.size() - 1 - k];
+      while (hull.size() >= start + 2 && turn(hull[hull.size() - 2], hull.back(), p) <= 0.0) hull.pop_back();
+      hull.push_back(p);
+    }
+    hull.pop_back();
+  }
+  if (hull.empty()) hull.push_back(points.front());
+  double area = 0.0, spread = 0.0;
+  Vec2 centroid = Vec2::Zero(), mean = Vec2::Zero();
+  for (std::size_t k = 0; k < hull.size(); ++k) {
+    const Vec2& p = hull[k];
+    const Vec2& q = hull[(k + 1) % hull.size()];
+    const double cross = p.x() * q.y() - p.y() * q.x();
+    area += 0.5 * cross;
+    centroid += (p + q) * cross / 6.0;
+    mean += p;
+    for (const Vec2& r : hull) spread = std::max(spread, (r - p).norm());
+  }
+  mean /= static_cast<double>(hull.size());
+  // A patch of no area (a line, a point) is centred on its hull's vertices.
+  const bool flat = std::abs(area) <= 1e-9 * spread * spread;
+  const Vec2 c = flat ? mean : Vec2(centroid / area);
+  const Vec3 centre = c.x() * u + c.y() * v + h * n;
+  m.centre_a = a.toLocal(centre);
+  m.centre_b = b.toLocal(centre);
+  m.patch_radius = std::max(2.0 / 3.0 * std::sqrt(std::abs(area) / std::numbers::pi), 0.25 * spread);
 }
 
 namespace {
@@ -94,14 +163,12 @@ void solveContactVelocities(const ContactManifold& m, const Contact* contacts, B
                             BodyState& b, double h, double rest_speed) {
   const int end = m.first + m.count;
   double lambda_n = 0.0;
-  Vec3 local_a = Vec3::Zero(), local_b = Vec3::Zero();  // centre of pressure, body-local
+  for (int i = m.first; i < end; ++i) lambda_n += contacts[i].lambda_n;
+  if (lambda_n <= 0.0) return;
   for (int i = m.first; i < end; ++i) {
-    // Restitution (eq. 34), per point; e = 0 for slow contacts.
+    // Restitution (eq. 34), per pressed point; e = 0 for slow contacts.
     const Contact& c = contacts[i];
     if (c.lambda_n <= 0.0) continue;
-    lambda_n += c.lambda_n;
-    local_a += c.lambda_n * c.local_a;
-    local_b += c.lambda_n * c.local_b;
     const Vec3 r_a = a.q * c.local_a, r_b = b.q * c.local_b;
     const Vec3& n = c.normal;
     const Vec3 v = (b.v + b.omega.cross(r_b)) - (a.v + a.omega.cross(r_a));
@@ -110,19 +177,29 @@ void solveContactVelocities(const ContactManifold& m, const Contact* contacts, B
     if (const double w = inverseMassAlong(a, b, r_a, r_b, n); w > 0.0 && dvn != 0.0)
       applyVelocityImpulse(a, b, r_a, r_b, n * (dvn / w));
   }
-  if (lambda_n <= 0.0) return;
-  // Dynamic friction (eq. 30) at the centre of pressure, bounded in
-  // impulse: mu_d |f_n| h = mu_d lambda_n / h.
+  // Dynamic friction (eq. 30) at the patch centre, bounded in impulse:
+  // mu_d |f_n| h = mu_d lambda_n / h.
   const Contact& c = contacts[m.first];
-  const Vec3 r_a = a.q * (local_a / lambda_n), r_b = b.q * (local_b / lambda_n);
+  const Vec3 r_a = a.q * m.centre_a, r_b = b.q * m.centre_b;
   const Vec3 v = (b.v + b.omega.cross(r_b)) - (a.v + a.omega.cross(r_a));
   const Vec3 vt = v - c.normal * c.normal.dot(v);
   const double vt_len = vt.norm();
-  if (vt_len < 1e-15) return;
-  const Vec3 t = vt / vt_len;
-  const double w = inverseMassAlong(a, b, r_a, r_b, t);
-  if (!(w > 0.0)) return;
-  applyVelocityImpulse(a, b, r_a, r_b, -t * std::min(c.dynamic_friction * lambda_n / h, vt_len / w));
+  if (vt_len >= 1e-15) {
+    const Vec3 t = vt / vt_len;
+    if (const double w = inverseMassAlong(a, b, r_a, r_b, t); w > 0.0)
+      applyVelocityImpulse(a, b, r_a, r_b,
+                           -t * std::min(c.dynamic_friction * lambda_n / h, vt_len / w));
+  }
+  // Dynamic twist friction: the spin about n, braked by a torque of at
+  // most mu_d |f_n| x the patch radius.
+  const Vec3& n = c.normal;
+  const double spin = n.dot(b.omega - a.omega);
+  const double w = n.dot(a.applyInvInertia(n)) + n.dot(b.applyInvInertia(n));
+  if (spin == 0.0 || !(w > 0.0) || m.patch_radius <= 0.0) return;
+  const double impulse = std::min(c.dynamic_friction * lambda_n * m.patch_radius / h, std::abs(spin) / w);
+  const Vec3 L = -std::copysign(impulse, spin) * n;  // angular impulse on b, kg m^2/s
+  b.omega += b.applyInvInertia(L);
+  a.omega -= a.applyInvInertia(L);
 }
 
 }  // namespace reeve

@@ -109,8 +109,13 @@ TEST(ContactScenes, ContactsSceneBehavesAsDescribed) {
               e * e * drop, a, a_expected);
   EXPECT_NEAR(peak, e * e * drop, 0.03 * e * e * drop);
   EXPECT_NEAR(a, a_expected, 0.02 * a_expected);
-  // The stack of three stands: the top box within 2.5 cm of 1.5 m.
-  EXPECT_NEAR(w.body(*w.findBody("stack_3")).x.y(), 1.5, 0.025);
+  // The stack of three stands still: its top box within 2 mm of where it
+  // was put (measured 0.6 mm at the scene's 20 x 4; 4 mm at 20 x 1, where
+  // one Gauss-Seidel pass over ground and box-box contacts leaves the small
+  // boxes rocking).
+  const Vec3 top = w.body(*w.findBody("stack_3")).x;
+  std::printf("  top of the stack moved %.3g m\n", (top - Vec3(6.5, 1.5, 0.0)).norm());
+  EXPECT_LT((top - Vec3(6.5, 1.5, 0.0)).norm(), 2e-3);
 }
 
 }  // namespace

@@ -1,10 +1,11 @@
 // Narrow phase: contact points between a ground plane and a shape, and
 // between two shapes (boxes, spheres, cylinders), for the contact rows of
-// contact.h. Body-body pairs use libccd's Minkowski Portal Refinement for
-// the normal (Snethen, "XenoCollide", Game Programming Gems 7); points come
-// from shape features (box corners, cylinder cap rims, a sphere's support
-// point) that lie inside the other shape, so a face resting on a face gets
-// a stable manifold of several points rather than MPR's single one.
+// contact.h. Body-body pairs: libccd's Minkowski Portal Refinement (Snethen,
+// "XenoCollide", Game Programming Gems 7) says whether they touch; the face
+// of least overlap (a separating-axis test over both shapes' face normals)
+// gives the normal and the reference face, and the other shape's facing
+// feature clipped to it (Sutherland-Hodgman) gives the points, so a face on
+// a face gets a manifold of several points with exact depths.
 #pragma once
 
 #include <vector>
@@ -28,19 +29,31 @@ struct GroundPlane {
 /// shape: the broad phase's bound.
 double boundingRadius(const Shape& shape);
 
+/// Contact margin (m) of a pair: points up to this far apart become contacts
+/// too, whose rows act only once the solve makes them touch. Without it a
+/// box that the solve pushes into its neighbour after detection finds no
+/// contact until the next substep: a stack bounced every other substep and
+/// walked. 2 % of the smaller bounding radius.
+double contactMargin(const Shape& a, const Shape& b);
+
 /// Appends to `out` a contact (a = kWorldBody, b = `id`) for every feature
-/// point of the body below the plane, with the combined material of the
-/// ground and `material`. Box: its corners; sphere: its lowest point;
-/// cylinder: the lowest point of each cap rim and 16 points around each rim.
+/// point of the body below the plane or less than contactMargin above it,
+/// with the combined material of the ground and `material`. Box: its
+/// corners; sphere: its lowest point; cylinder: the lowest point of each
+/// cap rim and 16 points around each rim.
 void collideGround(const GroundPlane& ground, BodyId id, const Shape& shape,
                    const BodyState& body, const ContactMaterial& material,
                    std::vector<Contact>& out);
 
-/// Appends to `out` the contacts (normal from a into b) between two
-/// overlapping shapes: the feature points of each inside the other (with a
-/// lateral slack of 1 % of the smaller shape's least dimension), depths
-/// measured along the MPR normal; MPR's single point when no feature is
-/// inside (edge on edge). Nothing when the shapes are apart.
+/// Appends to `out` the contacts (normal from a into b) between two shapes
+/// closer than contactMargin: when a face normal (box faces, cylinder caps)
+/// overlaps no more than MPR's depth (+1e-6 m + 0.1 % of the smaller
+/// bounding radius), that face is the reference and the other body's
+/// feature facing it (face, cylinder side line or sphere point) is clipped
+/// to the prism over it; every clipped point less than the margin above
+/// the reference plane is a contact, its point on the reference body
+/// projected onto the plane. Otherwise (edge on edge, curved on curved)
+/// MPR's single point. Nothing when the shapes are further apart.
 void collideBodies(BodyId id_a, const Shape& shape_a, const BodyState& a, BodyId id_b,
                    const Shape& shape_b, const BodyState& b, const ContactMaterial& material,
                    std::vector<Contact>& out);

@@ -1,6 +1,6 @@
-// Contacts: a non-penetration row, static friction as a positional row on
-// the tangential motion, and the velocity pass with dynamic friction and
-// restitution (Müller, Macklin, Chentanez, Jeschke, Kim, "Detailed Rigid
+// Contacts: a non-penetration row per point, static friction as positional
+// rows on the tangential motion and twist of the contact patch, and the
+// velocity pass with dynamic friction, twisting friction and restitution (Müller, Macklin, Chentanez, Jeschke, Kim, "Detailed Rigid
 // Body Simulation with Extended Position Based Dynamics", SCA 2020, sec.
 // 3.5 and Alg. 2 lines 20-24).
 //
@@ -27,7 +27,6 @@ struct Contact {
   /// after integration and before the position solve: SCA 2020's v~_n.
   double normal_speed_before = 0.0;
   double lambda_n = 0.0;  // kg m, >= 0: accumulated normal correction this substep
-  double lambda_t = 0.0;  // kg m, >= 0: accumulated static friction correction
 };
 
 /// The contact points one narrow-phase call found between two bodies,
@@ -39,7 +38,25 @@ struct ContactManifold {
   /// all points this substep: the manifold's friction, whose size static
   /// friction may not push past mu_s x sum of lambda_n.
   Vec3 friction_impulse = Vec3::Zero();
+  /// Sum of the static twist corrections (kg m^2, about n) this substep.
+  double twist_impulse = 0.0;
+  /// The patch (describePatch), set at detection: its centre, body-local on
+  /// a and on b (m), and the lever arm of twisting friction (m).
+  Vec3 centre_a = Vec3::Zero(), centre_b = Vec3::Zero();
+  double patch_radius = 0.0;
 };
+
+/// Sets the patch of manifold `m` from its contacts at the poses a, b: the
+/// patch is the convex hull of the points that overlap (separation < 0;
+/// all points when none does yet). `centre_a`, `centre_b`: the mean of
+/// their body-local points, where the friction rows act. `patch_radius`:
+/// the lever arm of twisting friction, the mean distance from the centre of
+/// a uniform pressure, taken as that of a disc of equal area,
+/// 2/3 sqrt(A / pi) (a square: 0.752 half-sides, exactly 0.765), or a
+/// quarter of the longest chord when larger (a line contact: exact); 0 for
+/// one point, which holds no twist.
+void describePatch(ContactManifold& m, const Contact* contacts, const BodyState& a,
+                   const BodyState& b);
 
 /// Most sweeps over a manifold's normal rows, and over its friction rows,
 /// in one visit; a visit stops sweeping early once no row moves more than
@@ -48,24 +65,27 @@ inline constexpr int kManifoldSweeps = 8;
 
 /// One Gauss-Seidel visit of a manifold's positional rows (SCA 2020, sec.
 /// 3.5, eq. 26-27): up to kManifoldSweeps sweeps over the normal rows of
-/// its points, then as many over their static friction rows. (One sweep
-/// per visit leaves a box tilted toward the corner solved last, and it
-/// walks: 1.4 mm and 2.4 mrad in 10 s at 10 substeps and 2 iterations.)
+/// its points, in alternating order, then as many over the patch's static
+/// friction rows. (One sweep per visit leaves a box tilted toward the
+/// corner solved last, and it walks.)
 ///   normal:   C = (p_b - p_a) . n  (m); solved only while C < 0, with zero
-///             compliance; lambda_n accumulates >= 0.
-///   friction: dp = (p_b - p_b_prev) - (p_a - p_a_prev), dp_t its part
-///             normal to n, C = |dp_t|, gradient dp_t / |dp_t|; applied only
-///             while |friction_impulse + dlambda_t dp_t/|dp_t|| <= mu_s x
-///             (sum of its points' lambda_n), otherwise left to the
-///             velocity pass.
-/// p_prev are a point's body-local arms at the poses before this substep's
-/// integration (x_prev, q_prev). The bound is on the manifold, not
-/// kept per point as in the paper: Gauss-Seidel lets the first point of a
-/// box's face hold the whole box, which a per-point budget (a quarter of
-/// the weight at each corner) would refuse, so a box on an incline slid
-/// below the friction angle. It bounds the net tangential impulse, so
-/// corrections that only turn the body about n (and cancel in the sum) do
-/// not use it up. All points of a manifold share one material.
+///             compliance; lambda_n accumulates >= 0. Contacts found within
+///             the margin (collide.h) start with C > 0 and act only if the
+///             solve closes the gap.
+///   friction: at the patch centre c (describePatch) a tangential row,
+///             dp = (c_b - c_b_prev) - (c_a - c_a_prev), dp_t its part
+///             normal to n, C = |dp_t|, gradient dp_t / |dp_t|; and a twist
+///             row, C = n . (turn of b - turn of a this substep), angular.
+///             Kept only while |sum of tangential corrections| <= mu_s x
+///             (sum of lambda_n) and |sum of twist corrections| <= mu_s x
+///             (sum of lambda_n) x patch_radius; otherwise both are undone
+///             and the velocity pass brakes instead.
+/// _prev are the poses before this substep's integration (x_prev, q_prev).
+/// The paper keeps a friction row and bound per point; Gauss-Seidel then
+/// lets the first point of a face hold the whole box, which a per-point
+/// budget refuses (a box on an incline slid below the friction angle), and
+/// corner rows brake a spin about n by the corners' distance (48 % too
+/// fast). All points of a manifold share one material.
 void solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, BodyState& b);
 
 /// The velocity pass of one manifold (SCA 2020, eq. 29-34), after the
@@ -75,14 +95,19 @@ void solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, 
 ///   restitution, per point: impulse n (-v_n + max(-e v~_n, 0)) / w_n,
 ///     with e = 0 when |v~_n| <= `rest_speed` (SCA 2020 use 2 |g| h, so
 ///     that resting contacts do not jitter);
-///   dynamic friction, once at the centre of pressure (points weighted by
-///     lambda_n): impulse -v_t/|v_t| min(mu_d lambda_n / h, |v_t| / w_t),
-///     lambda_n of the whole manifold (mu_d |f_n| h, f_n = lambda_n / h^2).
+///   dynamic friction, once at the patch centre: impulse
+///     -v_t/|v_t| min(mu_d lambda_n / h, |v_t| / w_t), lambda_n of the
+///     whole manifold (mu_d |f_n| h, f_n = lambda_n / h^2);
+///   twisting friction: with s = n . (w_b - w_a) and w_s = n . (I_a^-1 +
+///     I_b^-1) n, angular impulse -sign(s) n min(mu_d lambda_n r / h,
+///     |s| / w_s), r = patch_radius.
 /// The paper bounds the velocity change by h mu_d |f_n| instead of the
 /// impulse, and per point; at box corners, where w_t > 1/m, that braked
 /// with less than mu_d |f_n| (a box on an incline slid 6-15 % too fast),
-/// and corner by corner it yawed a sliding box. Points whose normal row
-/// never acted this substep (lambda_n = 0) are skipped.
+/// and corner by corner it yawed a sliding box. At the centre of pressure
+/// instead of the patch centre it braked a spinning box (the centre of
+/// pressure wanders off the axis under Gauss-Seidel). Points whose normal
+/// row never acted this substep (lambda_n = 0) are skipped.
 void solveContactVelocities(const ContactManifold& m, const Contact* contacts, BodyState& a,
                             BodyState& b, double h, double rest_speed);
 

@@ -1,0 +1,112 @@
+// Narrow phase (collide.h): the manifold of a face on a face is the clip of
+// the incident face to the reference face, with exact depths; nearly
+// touching pairs within the contact margin give contacts with a gap.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "reeve/engine/collide.h"
+
+namespace reeve {
+namespace {
+
+using std::numbers::pi;
+
+BodyState at(const Vec3& x, const Quat& q = Quat::Identity()) {
+  BodyState s;
+  s.x = s.x_prev = x;
+  s.q = s.q_prev = q;
+  s.inv_mass = 1.0;
+  return s;
+}
+
+/// Separation (m) along the normal of a contact's two points: < 0 overlaps.
+double separation(const Contact& c, const BodyState& a, const BodyState& b) {
+  return (b.toWorld(c.local_b) - a.toWorld(c.local_a)).dot(c.normal);
+}
+
+std::vector<Contact> collide(const Shape& sa, const BodyState& a, const Shape& sb,
+                             const BodyState& b) {
+  std::vector<Contact> out;
+  collideBodies(0, sa, a, 1, sb, b, ContactMaterial{}, out);
+  return out;
+}
+
+TEST(Collide, SmallBoxOnBigBoxTouchesAtItsFourCornersWithTheExactDepth) {
+  // A 0.5 m cube turned 30 deg about y sinks 1 mm into a 1 m cube.
+  const Shape big = Shape::box(Vec3(0.5, 0.5, 0.5)), small = Shape::box(Vec3(0.25, 0.25, 0.25));
+  const Quat yaw(Eigen::AngleAxisd(pi / 6.0, Vec3::UnitY()));
+  const BodyState a = at(Vec3(0.0, 0.5, 0.0)), b = at(Vec3(0.1, 1.249, -0.05), yaw);
+  const std::vector<Contact> contacts = collide(big, a, small, b);
+  ASSERT_EQ(contacts.size(), 4u);
+  for (const Contact& c : contacts) {
+    EXPECT_NEAR((c.normal - Vec3::UnitY()).norm(), 0.0, 1e-12);
+    EXPECT_NEAR(separation(c, a, b), -1e-3, 1e-12);
+    // At a bottom corner of the small cube.
+    EXPECT_NEAR(std::abs(c.local_b.x()), 0.25, 1e-12);
+    EXPECT_NEAR(c.local_b.y(), -0.25, 1e-12);
+    EXPECT_NEAR(std::abs(c.local_b.z()), 0.25, 1e-12);
+  }
+}
+
+TEST(Collide, BigBoxOnSmallBoxTouchesAtTheSmallTopCorners) {
+  // The reference face is the small box's top; the big box's face is
+  // clipped to it, so the points are above the small box's corners.
+  const Shape big = Shape::box(Vec3(0.5, 0.5, 0.5)), small = Shape::box(Vec3(0.25, 0.25, 0.25));
+  const BodyState a = at(Vec3(0.0, 0.25, 0.0)), b = at(Vec3(0.05, 0.998, 0.0));
+  const std::vector<Contact> contacts = collide(small, a, big, b);
+  ASSERT_EQ(contacts.size(), 4u);
+  for (const Contact& c : contacts) {
+    EXPECT_NEAR(separation(c, a, b), -2e-3, 1e-12);
+    EXPECT_NEAR(std::abs(c.local_a.x()), 0.25, 1e-12);
+    EXPECT_NEAR(c.local_a.y(), 0.25, 1e-12);
+    EXPECT_NEAR(std::abs(c.local_a.z()), 0.25, 1e-12);
+  }
+}
+
+TEST(Collide, BoxOnAnEdgeTouchesAtTheEdgeEnds) {
+  // A cube rolled 45 deg about z stands on its edge, 0.5 mm deep.
+  const Shape cube = Shape::box(Vec3(0.5, 0.5, 0.5));
+  const Quat roll(Eigen::AngleAxisd(pi / 4.0, Vec3::UnitZ()));
+  const BodyState a = at(Vec3(0.0, 0.5, 0.0)), b = at(Vec3(0.0, 1.0 + std::sqrt(0.5) - 5e-4, 0.0), roll);
+  const std::vector<Contact> contacts = collide(cube, a, cube, b);
+  ASSERT_EQ(contacts.size(), 2u);
+  for (const Contact& c : contacts) {
+    EXPECT_NEAR(separation(c, a, b), -5e-4, 1e-12);
+    EXPECT_NEAR(b.toWorld(c.local_b).x(), 0.0, 1e-12);
+    EXPECT_NEAR(std::abs(b.toWorld(c.local_b).z()), 0.5, 1e-12);
+  }
+}
+
+TEST(Collide, CylinderOnItsSideTouchesAlongItsLowestLine) {
+  // Axis along x, 0.2 mm deep: the ends of the bottom line, at x = +-0.4.
+  const Shape slab = Shape::box(Vec3(1.0, 0.1, 1.0)), log = Shape::cylinder(0.3, 0.4);
+  const Quat along_x(Eigen::AngleAxisd(pi / 2.0, Vec3::UnitY()));
+  const BodyState a = at(Vec3(0.0, 0.0, 0.0)), b = at(Vec3(0.2, 0.4 - 2e-4, 0.1), along_x);
+  const std::vector<Contact> contacts = collide(slab, a, log, b);
+  ASSERT_EQ(contacts.size(), 2u);
+  for (const Contact& c : contacts) {
+    EXPECT_NEAR(separation(c, a, b), -2e-4, 1e-12);
+    const Vec3 p = b.toWorld(c.local_b);
+    EXPECT_NEAR(std::abs(p.x() - 0.2), 0.4, 1e-12);
+    EXPECT_NEAR(p.z(), 0.1, 1e-12);
+  }
+}
+
+TEST(Collide, NearlyTouchingBoxesGiveGapContactsWithinTheMarginOnly) {
+  // 1 mm apart: inside the 2 % margin (17 mm for unit cubes), so four
+  // contacts with separation +1 mm; 5 cm apart: none.
+  const Shape cube = Shape::box(Vec3(0.5, 0.5, 0.5));
+  EXPECT_NEAR(contactMargin(cube, cube), 0.02 * std::sqrt(0.75), 1e-15);
+  const BodyState a = at(Vec3(0.0, 0.5, 0.0));
+  const BodyState near = at(Vec3(0.0, 1.501, 0.0)), far = at(Vec3(0.0, 1.55, 0.0));
+  const std::vector<Contact> contacts = collide(cube, a, cube, near);
+  ASSERT_EQ(contacts.size(), 4u);
+  for (const Contact& c : contacts) EXPECT_NEAR(separation(c, a, near), 1e-3, 1e-12);
+  EXPECT_TRUE(collide(cube, a, cube, far).empty());
+}
+
+}  // namespace
+}  // namespace reeve

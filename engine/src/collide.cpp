@@ -64,7 +64,7 @@ double boundingRadius(const Shape& s) {
 }
 
 double contactMargin(const Shape& a, const Shape& b) {
-  return 0.02 * std::min(boundingRadius(a), boundingRadius(b));
+  return kContactMarginFraction * std::min(boundingRadius(a), boundingRadius(b));
 }
 
 void collideGround(const GroundPlane& ground, BodyId id, const Shape& shape,

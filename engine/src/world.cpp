@@ -71,6 +71,8 @@ void World::setGround(const GroundPlane& ground) {
 void World::findContacts() {
   contacts_.clear();
   manifolds_.clear();
+  // Bounds grow by the largest contact margin a body can have (collide.h).
+  constexpr double grow = 1.0 + kContactMarginFraction;
   const auto group = [&](std::size_t first) {
     if (contacts_.size() == first) return;
     ContactManifold m;
@@ -84,7 +86,7 @@ void World::findContacts() {
     for (BodyId id = 0; id < bodyCount(); ++id) {
       const BodyState& b = bodies_[id];
       if (b.inv_mass == 0.0 ||
-          ground_->normal.dot(b.x) - ground_->height_m > 1.02 * bound_radius_[id])
+          ground_->normal.dot(b.x) - ground_->height_m > grow * bound_radius_[id])
         continue;
       const std::size_t first = contacts_.size();
       collideGround(*ground_, id, defs_[id].shape, b, defs_[id].material, contacts_);
@@ -94,19 +96,18 @@ void World::findContacts() {
   if (colliders_.size() < 2) return;
   // Sort and sweep along x; insertion sort, as the order barely changes
   // between substeps (and it allocates nothing).
-  // Bounds grow by the largest contact margin (collide.h: 2 % of a radius).
-  const auto low = [&](BodyId id) { return bodies_[id].x.x() - 1.02 * bound_radius_[id]; };
+  const auto low = [&](BodyId id) { return bodies_[id].x.x() - grow * bound_radius_[id]; };
   for (std::size_t i = 1; i < colliders_.size(); ++i)
     for (std::size_t j = i; j > 0 && low(colliders_[j - 1]) > low(colliders_[j]); --j)
       std::swap(colliders_[j - 1], colliders_[j]);
   for (std::size_t i = 0; i < colliders_.size(); ++i) {
     const BodyId a = colliders_[i];
-    const double high = bodies_[a].x.x() + 1.02 * bound_radius_[a];
+    const double high = bodies_[a].x.x() + grow * bound_radius_[a];
     for (std::size_t j = i + 1; j < colliders_.size() && low(colliders_[j]) <= high; ++j) {
       const BodyId b = colliders_[j];
       const BodyState &sa = bodies_[a], &sb = bodies_[b];
       if (sa.inv_mass == 0.0 && sb.inv_mass == 0.0) continue;
-      const double reach = 1.02 * (bound_radius_[a] + bound_radius_[b]);
+      const double reach = grow * (bound_radius_[a] + bound_radius_[b]);
       if ((sb.x - sa.x).squaredNorm() > reach * reach) continue;
       const std::size_t first = contacts_.size();
       collideBodies(a, defs_[a].shape, sa, b, defs_[b].shape, sb,

@@ -33,7 +33,8 @@ double boundingRadius(const Shape& shape);
 /// too, whose rows act only once the solve makes them touch. Without it a
 /// box that the solve pushes into its neighbour after detection finds no
 /// contact until the next substep: a stack bounced every other substep and
-/// walked. 2 % of the smaller bounding radius.
+/// walked. kContactMarginFraction of the smaller bounding radius.
+inline constexpr double kContactMarginFraction = 0.02;
 double contactMargin(const Shape& a, const Shape& b);
 
 /// Appends to `out` a contact (a = kWorldBody, b = `id`) for every feature

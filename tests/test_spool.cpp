@@ -92,7 +92,7 @@ TEST(Spool, EnergyNeverGrows) {
     const BodyState& w = s.world->body(weight);
     const BodyState& sp = s.world->body(spool);
     return 0.5 * w.mass() * w.v.squaredNorm() + w.mass() * 9.81 * w.x.y() +
-           0.5 * sp.omega.dot(sp.q * sp.inertia.cwiseProduct(sp.q.conjugate() * sp.omega));
+           0.5 * sp.omega.dot(sp.q * (sp.inertia * (sp.q.conjugate() * sp.omega)));
   };
   const double e0 = energy();
   for (int f = 0; f < s.frameCount(); ++f) {

@@ -6,6 +6,7 @@ packages=(
   build-essential cmake pkg-config
   libeigen3-dev          # engine maths
   libccd-dev             # contacts: narrow phase (MPR)
+  libqhull-dev           # convex-hull shapes: faces
   nlohmann-json3-dev     # scene files
   libvalijson-dev        # JSON Schema validation of scenes
   libcli11-dev           # command line

@@ -25,6 +25,11 @@ std::optional<Section> defaultSection(const Shape& shape, double offset) {
     case Shape::Type::Sphere:
       if (std::abs(offset) >= shape.radius) return std::nullopt;
       return Section::circle(std::sqrt(shape.radius * shape.radius - offset * offset));
+    case Shape::Type::Hull: {
+      std::vector<Vec2> points = planeSection(*shape.hull, offset);
+      if (points.empty()) return std::nullopt;
+      return Section::polygon(std::move(points));
+    }
   }
   return std::nullopt;
 }

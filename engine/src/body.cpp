@@ -19,8 +19,8 @@ BodyState makeBodyState(const BodyDef& def) {
   if (!(m > 0.0) || !std::isfinite(m))
     throw std::invalid_argument("body '" + def.name + "': a dynamic body needs a finite mass > 0 kg");
   s.inv_mass = 1.0 / m;
-  s.inertia = principalInertia(def.shape, m);
-  s.inv_inertia = s.inertia.cwiseInverse();
+  s.inertia = inertiaTensor(def.shape, m);
+  s.inv_inertia = s.inertia.inverse();
   if (!(def.linear_damping >= 0.0) || !(def.angular_damping >= 0.0))
     throw std::invalid_argument("body '" + def.name + "': damping must be >= 0 per second");
   s.linear_damping = def.linear_damping;

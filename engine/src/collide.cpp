@@ -59,6 +59,7 @@ double boundingRadius(const Shape& s) {
     case Shape::Type::Box: return s.half_extents.norm();
     case Shape::Type::Sphere: return s.radius;
     case Shape::Type::Cylinder: return std::hypot(s.radius, s.half_length);
+    case Shape::Type::Hull: return s.hull->bounding_radius;
   }
   return 0.0;
 }

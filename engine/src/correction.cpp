@@ -37,7 +37,7 @@ void applyAngularImpulse(BodyState& a, BodyState& b, const Vec3& P) {
 
 Eigen::Matrix3d inverseInertiaWorld(const BodyState& body) {
   const Eigen::Matrix3d R = body.q.toRotationMatrix();
-  return R * body.inv_inertia.asDiagonal() * R.transpose();
+  return R * body.inv_inertia * R.transpose();
 }
 
 namespace {

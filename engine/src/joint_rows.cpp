@@ -146,7 +146,7 @@ double inverseInertiaAbout(const BodyState& body, const Vec3& local, const Vec3&
   if (body.inv_mass == 0.0) return 0.0;
   const Vec3 u_local = body.q.conjugate() * u;
   const Vec3 r = body.q * local;
-  const double about_centre = u_local.dot(body.inertia.cwiseProduct(u_local));
+  const double about_centre = u_local.dot(body.inertia * u_local);
   const double shift = body.mass() * (r.squaredNorm() - r.dot(u) * r.dot(u));
   return 1.0 / (about_centre + shift);
 }

@@ -26,35 +26,44 @@ Shape Shape::sphere(double radius) {
   return s;
 }
 
+Shape Shape::convexHull(const std::vector<Vec3>& points) {
+  Shape s;
+  s.type = Type::Hull;
+  s.hull = makeConvexHull(points);
+  return s;
+}
+
 double volume(const Shape& s) {
   using std::numbers::pi;
   switch (s.type) {
     case Shape::Type::Box: return 8.0 * s.half_extents.prod();
     case Shape::Type::Cylinder: return pi * s.radius * s.radius * 2.0 * s.half_length;
     case Shape::Type::Sphere: return 4.0 / 3.0 * pi * s.radius * s.radius * s.radius;
+    case Shape::Type::Hull: return s.hull->volume;
   }
   return 0.0;
 }
 
-Vec3 principalInertia(const Shape& s, double m) {
+Mat3 inertiaTensor(const Shape& s, double m) {
   switch (s.type) {
     case Shape::Type::Box: {
       const Vec3 e2 = s.half_extents.cwiseProduct(s.half_extents);
-      return m / 3.0 * Vec3(e2.y() + e2.z(), e2.x() + e2.z(), e2.x() + e2.y());
+      return (m / 3.0 * Vec3(e2.y() + e2.z(), e2.x() + e2.z(), e2.x() + e2.y())).asDiagonal();
     }
     case Shape::Type::Cylinder: {
       const double r2 = s.radius * s.radius;
       const double l = 2.0 * s.half_length;
       const double side = m * (3.0 * r2 + l * l) / 12.0;
-      return Vec3(side, side, 0.5 * m * r2);
+      return Vec3(side, side, 0.5 * m * r2).asDiagonal();
     }
-    case Shape::Type::Sphere: return Vec3::Constant(0.4 * m * s.radius * s.radius);
+    case Shape::Type::Sphere: return Mat3::Identity() * (0.4 * m * s.radius * s.radius);
+    case Shape::Type::Hull: return m * s.hull->inertia_per_mass;
   }
-  return Vec3::Zero();
+  return Mat3::Zero();
 }
 
 double circularSectionRadius(const Shape& s) {
-  return s.type == Shape::Type::Box ? 0.0 : s.radius;
+  return s.type == Shape::Type::Cylinder || s.type == Shape::Type::Sphere ? s.radius : 0.0;
 }
 
 }  // namespace reeve

@@ -11,6 +11,16 @@ Vec3 capVertex(const Shape& s, int k, double z) {
   return Vec3(s.radius * std::cos(phi), s.radius * std::sin(phi), z);
 }
 
+// A linear scan: hulls in scenes have tens of vertices, where hill climbing
+// over neighbours would save little.
+int hullSupportIndex(const ConvexHull& hull, const Vec3& d) {
+  int best = 0;
+  double best_dot = hull.vertices[0].dot(d);
+  for (int i = 1; i < static_cast<int>(hull.vertices.size()); ++i)
+    if (const double dot = hull.vertices[i].dot(d); dot > best_dot) best = i, best_dot = dot;
+  return best;
+}
+
 }  // namespace
 
 Vec3 localSupport(const Shape& s, const Vec3& d) {
@@ -29,6 +39,7 @@ Vec3 localSupport(const Shape& s, const Vec3& d) {
       if (radial == 0.0) return Vec3(s.radius, 0.0, z);
       return Vec3(s.radius * d.x() / radial, s.radius * d.y() / radial, z);
     }
+    case Shape::Type::Hull: return s.hull->vertices[hullSupportIndex(*s.hull, d)];
   }
   return Vec3::Zero();
 }
@@ -70,12 +81,24 @@ void supportingFace(const Shape& s, const Vec3& d, Face& out) {
       out.vertices.push_back(localSupport(s, d));
       out.normal = out.vertices.back() / s.radius;
       return;
+    case Shape::Type::Hull: {
+      const ConvexHull::Face* best = &s.hull->faces[0];
+      for (const ConvexHull::Face& face : s.hull->faces)
+        if (face.normal.dot(d) > best->normal.dot(d)) best = &face;
+      for (int v : best->vertices) out.vertices.push_back(s.hull->vertices[v]);
+      out.normal = best->normal;
+      return;
+    }
   }
 }
 
 void faceNormals(const Shape& s, std::vector<Vec3>& out) {
   out.clear();
   if (s.type == Shape::Type::Sphere) return;
+  if (s.type == Shape::Type::Hull) {
+    for (const ConvexHull::Face& face : s.hull->faces) out.push_back(face.normal);
+    return;
+  }
   for (int k = s.type == Shape::Type::Cylinder ? 2 : 0; k < 3; ++k) {
     out.push_back(Vec3::Unit(k));
     out.push_back(-Vec3::Unit(k));
@@ -103,6 +126,9 @@ void featurePoints(const Shape& s, const Vec3& toward, std::vector<Vec3>& out) {
       }
       return;
     }
+    case Shape::Type::Hull:
+      out = s.hull->vertices;
+      return;
   }
 }
 

@@ -26,16 +26,17 @@ struct Face {
 /// The feature facing the local direction d. Box: the face whose normal is
 /// nearest d. Cylinder: the cap when |d_z| >= |d_xy| (a kCapVertices-gon),
 /// else the side line under d (2 vertices). Sphere: its support point.
+/// Hull: the face whose normal is nearest d.
 void supportingFace(const Shape& s, const Vec3& d, Face& out);
 
 /// Outward unit normals (local) of the shape's flat faces: the six box
-/// faces, the two cylinder caps; none for a sphere.
+/// faces, the two cylinder caps, every hull face; none for a sphere.
 void faceNormals(const Shape& s, std::vector<Vec3>& out);
 
 /// Points (local) of the shape that can touch a plane whose normal points
 /// into the shape along -`toward`: box corners, the point of each cylinder
 /// cap rim furthest along `toward` and kCapVertices around each rim, a
-/// sphere's support point.
+/// sphere's support point, every hull vertex.
 void featurePoints(const Shape& s, const Vec3& toward, std::vector<Vec3>& out);
 
 }  // namespace reeve

@@ -281,7 +281,7 @@ void World::integrate(double h) {
     b.q_prev = b.q;
     // Gyroscopic term, body frame: w += h I^-1 (-w x I w).
     Vec3 w = b.q.conjugate() * b.omega;
-    w += h * b.inv_inertia.cwiseProduct(-w.cross(b.inertia.cwiseProduct(w)));
+    w += h * (b.inv_inertia * -w.cross(b.inertia * w));
     b.omega = b.q * w;
     rotateExactly(b.q, h * b.omega);
   }

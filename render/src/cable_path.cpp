@@ -251,6 +251,16 @@ bool sectionMatchesShape(const Link& link, const Shape& shape) {
       // Four hull vertices at (+-hx, +-hy) are the four corners.
       return true;
     }
+    case Shape::Type::Hull: {
+      std::vector<Vec2> points = planeSection(*shape.hull, link.plane_offset);
+      if (s.kind != Section::Kind::Polygon || points.empty()) return false;
+      const std::vector<Vec2> own = Section::polygon(std::move(points)).vertices;
+      if (own.size() != s.vertices.size()) return false;
+      for (std::size_t i = 0; i < own.size(); ++i)
+        if (!near(own[i].x(), s.vertices[i].x()) || !near(own[i].y(), s.vertices[i].y()))
+          return false;
+      return true;
+    }
   }
   return false;
 }

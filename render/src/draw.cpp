@@ -70,6 +70,11 @@ void drawBody(const ShapeMeshes& meshes, const Shape& shape, const BodyState& bo
       transform(body.x, body.q, Vec3::Constant(shape.radius));
       drawTwoTone(meshes.sphere, colour);
       break;
+    case Shape::Type::Hull:
+      transform(body.x, body.q, Vec3::Ones());
+      setColour(colour);
+      drawMesh(hullMesh(*shape.hull));  // tens of triangles: cheaper to build than to cache
+      break;
   }
   glPopMatrix();
 }

@@ -41,6 +41,15 @@ Mesh unitBox() {
   return mesh;
 }
 
+Mesh hullMesh(const ConvexHull& hull) {
+  Mesh mesh;
+  for (const ConvexHull::Face& face : hull.faces)
+    for (std::size_t i = 1; i + 1 < face.vertices.size(); ++i)
+      for (std::size_t k : {std::size_t{0}, i, i + 1})
+        mesh.addVertex(hull.vertices[face.vertices[k]], face.normal);
+  return mesh;
+}
+
 TwoToneMesh unitCylinder(int segments) {
   TwoToneMesh mesh;
   for (int i = 0; i < segments; ++i) {

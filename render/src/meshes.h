@@ -3,6 +3,7 @@
 
 #include <vector>
 
+#include "reeve/engine/convex_hull.h"
 #include "reeve/engine/math.h"
 
 namespace reeve {
@@ -25,6 +26,9 @@ struct TwoToneMesh {
 
 /// The cube [-1, 1]^3 with flat faces.
 Mesh unitBox();
+
+/// The faces of `hull` (m, its local frame), flat, each a triangle fan.
+Mesh hullMesh(const ConvexHull& hull);
 
 /// Cylinder of radius 1 about local z from z = -1 to 1, sides smooth with
 /// `segments` facets, flat caps; accent: two opposite quarters of each cap.

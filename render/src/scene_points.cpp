@@ -17,6 +17,11 @@ Vec3 worldHalfExtents(const Shape& shape, const Quat& q) {
       return shape.radius * across + shape.half_length * axis.cwiseAbs();
     }
     case Shape::Type::Sphere: return Vec3::Constant(shape.radius);
+    case Shape::Type::Hull: {
+      Vec3 half = Vec3::Zero();
+      for (const Vec3& v : shape.hull->vertices) half = half.cwiseMax((q * v).cwiseAbs());
+      return half;
+    }
   }
   return Vec3::Zero();
 }

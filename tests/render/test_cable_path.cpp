@@ -379,6 +379,18 @@ TEST(SectionOutline, MatchesTheShapeOnlyWhereTheBodyShowsTheSection) {
   EXPECT_TRUE(sectionMatchesShape(link, Shape::box(Vec3(0.2, 0.3, 0.1))));
   EXPECT_FALSE(sectionMatchesShape(link, Shape::box(Vec3(0.3, 0.2, 0.1))));
   EXPECT_FALSE(sectionMatchesShape(link, Shape::cylinder(0.3, 0.1)));
+  // A hull: a square pyramid (base half side 1 at z = 0, apex at z = 3;
+  // centre of mass at z = 3/4) shows the square of half side 1 - z/3 that
+  // its cut at z makes.
+  const Shape pyramid = Shape::convexHull(
+      {Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(1, 1, 0), Vec3(-1, 1, 0), Vec3(0, 0, 3)});
+  link.plane_offset = 1.5 - 0.75;
+  link.section = boxSection(0.5, 0.5);
+  EXPECT_TRUE(sectionMatchesShape(link, pyramid));
+  link.section = boxSection(0.6, 0.6);  // a groove
+  EXPECT_FALSE(sectionMatchesShape(link, pyramid));
+  link.plane_offset = 0.0;
+  link.section = boxSection(0.2, 0.3);
   link.type = LinkType::Attachment;
   EXPECT_FALSE(sectionMatchesShape(link, Shape::box(Vec3(0.2, 0.3, 0.1))));
 

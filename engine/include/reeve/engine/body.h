@@ -51,8 +51,10 @@ struct BodyState {
   Vec3 x_prev = Vec3::Zero();
   Quat q_prev = Quat::Identity();
   double inv_mass = 0.0;          // 1/kg
-  Vec3 inv_inertia = Vec3::Zero();  // 1/(kg m^2), principal, local axes
-  Vec3 inertia = Vec3::Zero();      // kg m^2, principal, local axes
+  // Inertia tensor about the centre of mass in body-local axes, kg m^2, and
+  // its inverse; diagonal except for hulls, whose axes are the user's.
+  Mat3 inv_inertia = Mat3::Zero();
+  Mat3 inertia = Mat3::Zero();
   double linear_damping = 0.0;      // 1/s
   double angular_damping = 0.0;     // 1/s
 
@@ -62,7 +64,7 @@ struct BodyState {
   Vec3 toLocal(const Vec3& world) const { return q.conjugate() * (world - x); }
   /// I^-1 v for a world-space vector v, with the current orientation.
   Vec3 applyInvInertia(const Vec3& v) const {
-    return q * inv_inertia.cwiseProduct(q.conjugate() * v);
+    return q * (inv_inertia * (q.conjugate() * v));
   }
   double mass() const { return inv_mass > 0.0 ? 1.0 / inv_mass : 0.0; }
 };

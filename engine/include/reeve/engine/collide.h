@@ -1,5 +1,5 @@
 // Narrow phase: contact points between a ground plane and a shape, and
-// between two shapes (boxes, spheres, cylinders), for the contact rows of
+// between two shapes (boxes, spheres, cylinders, convex hulls), for the contact rows of
 // contact.h. Body-body pairs: libccd's Minkowski Portal Refinement (Snethen,
 // "XenoCollide", Game Programming Gems 7) says whether they touch; the face
 // of least overlap (a separating-axis test over both shapes' face normals)
@@ -39,15 +39,15 @@ double contactMargin(const Shape& a, const Shape& b);
 
 /// Appends to `out` a contact (a = kWorldBody, b = `id`) for every feature
 /// point of the body below the plane or less than contactMargin above it,
-/// with the combined material of the ground and `material`. Box: its
-/// corners; sphere: its lowest point; cylinder: the lowest point of each
-/// cap rim and 16 points around each rim.
+/// with the combined material of the ground and `material`. Box and hull:
+/// their corners; sphere: its lowest point; cylinder: the lowest point of
+/// each cap rim and 16 points around each rim.
 void collideGround(const GroundPlane& ground, BodyId id, const Shape& shape,
                    const BodyState& body, const ContactMaterial& material,
                    std::vector<Contact>& out);
 
 /// Appends to `out` the contacts (normal from a into b) between two shapes
-/// closer than contactMargin: when a face normal (box faces, cylinder caps)
+/// closer than contactMargin: when a face normal (box and hull faces, cylinder caps)
 /// overlaps no more than MPR's depth (+1e-6 m + 0.1 % of the smaller
 /// bounding radius), that face is the reference and the other body's
 /// feature facing it (face, cylinder side line or sphere point) is clipped

@@ -11,6 +11,7 @@ namespace reeve {
 
 using Vec2 = Eigen::Vector2d;
 using Vec3 = Eigen::Vector3d;
+using Mat3 = Eigen::Matrix3d;
 using Quat = Eigen::Quaterniond;
 
 /// Rotates `q` by the small world-space rotation vector `dphi` (rad) and

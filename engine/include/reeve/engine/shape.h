@@ -2,34 +2,45 @@
 // cables, cross-sections. All lengths in m.
 #pragma once
 
+#include <memory>
+#include <vector>
+
+#include "reeve/engine/convex_hull.h"
 #include "reeve/engine/math.h"
 
 namespace reeve {
 
 /// A body's shape in its local frame, centred on the body origin.
 /// Box: `half_extents` (m). Cylinder: `radius` and `half_length` (m), axis
-/// along local +z. Sphere: `radius` (m).
+/// along local +z. Sphere: `radius` (m). Hull: the convex polyhedron
+/// `hull`, whose centre of mass is the origin.
 struct Shape {
-  enum class Type { Box, Cylinder, Sphere };
+  enum class Type { Box, Cylinder, Sphere, Hull };
   Type type = Type::Box;
   Vec3 half_extents = Vec3(0.5, 0.5, 0.5);
   double radius = 0.5;
   double half_length = 0.5;
+  std::shared_ptr<const ConvexHull> hull;
 
   static Shape box(const Vec3& half_extents);
   static Shape cylinder(double radius, double half_length);
   static Shape sphere(double radius);
+  /// The convex hull of `points` (m), moved so that its centre of mass is
+  /// the origin (hull->input_centre_of_mass says by how much). Throws as
+  /// makeConvexHull.
+  static Shape convexHull(const std::vector<Vec3>& points);
 };
 
 /// Volume in m^3.
 double volume(const Shape& shape);
 
-/// Principal moments of inertia (kg m^2) of a solid of uniform density and
-/// total `mass` (kg), about the local axes through the origin.
-Vec3 principalInertia(const Shape& shape, double mass);
+/// Inertia tensor (kg m^2) of a solid of uniform density and total `mass`
+/// (kg) about its centre of mass (the origin), in local axes: diagonal for
+/// a box, cylinder or sphere, full for a hull.
+Mat3 inertiaTensor(const Shape& shape, double mass);
 
 /// Radius (m) of the circular cross-section in the local z = const plane,
-/// or 0 when that section is not a circle (a box). Cables roll on it.
+/// or 0 when that section is not a circle (a box, a hull). Cables roll on it.
 double circularSectionRadius(const Shape& shape);
 
 }  // namespace reeve

@@ -73,7 +73,8 @@ std::vector<Vec3> sectionOutline(const Link& link, const BodyState& body, double
 
 /// Whether the body's drawn `shape` shows the section `link` wraps: a
 /// cylinder or sphere cut by the cable plane in a circle of the section's
-/// radius, a box by the rectangle of the section (1e-9 relative). False
+/// radius, a box by the rectangle of the section, a hull by its own
+/// section polygon in that plane (1e-9 relative). False
 /// for links that do not wrap a section (attachments, pinholes).
 bool sectionMatchesShape(const Link& link, const Shape& shape);
 

@@ -27,6 +27,11 @@ struct BodyNames {
               bool world_allowed) const;
 };
 
+/// Where a body's origin lies in the frame its scene entry's body-local
+/// coordinates are given in (m): a hull's centre of mass in the frame of
+/// its vertices, zero for other shapes, which are centred on their origin.
+Vec3 hullOrigin(const Shape& shape);
+
 /// Adds "bodies" (build_bodies.cpp): unique names other than "world",
 /// exactly one of density or mass when dynamic, nothing of either and no
 /// velocity or damping when static, non-zero orientation axes.

@@ -6,16 +6,30 @@ namespace {
 
 constexpr const char* kWorldName = "world";
 
-Shape shapeOf(const nlohmann::json& shape) {
+// The "shape" object at `path` (schema-checked), and a hull's degenerate
+// points as a SceneError.
+Shape shapeOf(const nlohmann::json& shape, const std::string& path, const std::string& source) {
   const std::string type = shape.at("type").get<std::string>();
   if (type == "box") return Shape::box(vec3(shape.at("half_extents_m")));
   if (type == "cylinder")
     return Shape::cylinder(shape.at("radius_m").get<double>(),
                            shape.at("half_length_m").get<double>());
-  return Shape::sphere(shape.at("radius_m").get<double>());
+  if (type == "sphere") return Shape::sphere(shape.at("radius_m").get<double>());
+  std::vector<Vec3> points;
+  for (const nlohmann::json& p : shape.at("vertices_m")) points.push_back(vec3(p));
+  try {
+    return Shape::convexHull(points);
+  } catch (const std::invalid_argument&) {  // the schema has checked their count and numbers
+    throw SceneError(source, path + "/vertices_m", "points spanning a volume",
+                     std::to_string(points.size()) + " points on one plane or line");
+  }
 }
 
 }  // namespace
+
+Vec3 hullOrigin(const Shape& shape) {
+  return shape.type == Shape::Type::Hull ? shape.hull->input_centre_of_mass : Vec3::Zero();
+}
 
 Vec3 vec3(const nlohmann::json& xyz) {
   return Vec3(xyz.at(0).get<double>(), xyz.at(1).get<double>(), xyz.at(2).get<double>());
@@ -51,7 +65,7 @@ BodyNames addBodies(const nlohmann::json& bodies, World& world, const std::strin
       fail("name",
            "a body name not already used by /bodies/" + std::to_string(names.ids.at(def.name)),
            quote(def.name));
-    def.shape = shapeOf(b.at("shape"));
+    def.shape = shapeOf(b.at("shape"), path + "/shape", source);
     def.position = vec3(b.at("position_m"));
     if (const auto o = b.find("orientation"); o != b.end()) {
       const Vec3 axis = vec3(o->at("axis"));
@@ -61,6 +75,9 @@ BodyNames addBodies(const nlohmann::json& bodies, World& world, const std::strin
       def.orientation =
           Quat(Eigen::AngleAxisd(o->at("angle_rad").get<double>(), axis.normalized()));
     }
+    // position_m places the frame of the vertices; the body's origin is the
+    // hull's centre of mass.
+    def.position += def.orientation * hullOrigin(def.shape);
     def.is_static = b.value("static", false);
     def.material.static_friction = b.value("static_friction", def.material.static_friction);
     def.material.dynamic_friction = b.value("dynamic_friction", def.material.dynamic_friction);

@@ -37,24 +37,34 @@ LinkType linkTypeOf(const nlohmann::json& type) {
   return LinkType::Attachment;
 }
 
+// Body-local coordinates in the scene are relative to `origin` (m, see
+// hullOrigin), the engine's to the body's centre of mass.
 LinkDef linkOf(const nlohmann::json& link, const std::string& path, const BodyNames& names,
-               const std::string& source) {
+               const World& world, const std::string& source) {
   LinkDef def;
   def.body = names.find(link.at("body"), path + "/body", source, false);
   def.type = linkTypeOf(link.at("type"));
+  const Vec3 origin = hullOrigin(world.bodyDef(def.body).shape);
   if (def.type == LinkType::Attachment || def.type == LinkType::Pinhole) {
-    def.point = vec3(link.at("point_m"));
+    def.point = vec3(link.at("point_m")) - origin;
     return def;
   }
   // Rolling and hybrid links. Without "section" CableSystem::addCable takes
-  // the body shape's own (cylinder, sphere: circle of its radius; box: its
-  // x-y rectangle).
+  // the body shape's own cut by the cable plane.
   def.orientation = link.at("orientation") == "ccw" ? 1 : -1;
   if (const auto stored = link.find("stored_m"); stored != link.end())
     def.stored = stored->get<double>();
-  if (const auto section = link.find("section"); section != link.end())
+  if (const auto section = link.find("section"); section != link.end()) {
     def.section = sectionOf(*section, path + "/section", source);
-  def.plane_offset = link.value("plane_offset_m", 0.0);
+    if (def.section.kind == Section::Kind::Polygon)
+      for (Vec2& p : def.section.vertices) p -= origin.head<2>();
+    else if (origin.head<2>() != Vec2::Zero())
+      throw SceneError(source, path + "/section",
+                       "a polygon section (a circle is centred on the body's origin, and this "
+                       "hull's centre of mass is off the z axis of its vertices)",
+                       literal(*section));
+  }
+  def.plane_offset = link.value("plane_offset_m", 0.0) - origin.z();
   def.active = link.value("active", true);
   return def;
 }
@@ -109,7 +119,7 @@ void addCables(const nlohmann::json& cables, const BodyNames& names, CableSystem
     const nlohmann::json& links = cable.at("links");
     for (std::size_t k = 0; k < links.size(); ++k) {
       const std::string link_path = path + "/links/" + std::to_string(k);
-      def.links.push_back(linkOf(links[k], link_path, names, source));
+      def.links.push_back(linkOf(links[k], link_path, names, system.world(), source));
       checkLinkPlace(links[k], def.links.back(), k, links.size(), def.closed, link_path, source);
     }
     bool only_pinholes = true;

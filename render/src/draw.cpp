@@ -73,7 +73,7 @@ void drawBody(const ShapeMeshes& meshes, const Shape& shape, const BodyState& bo
     case Shape::Type::Hull:
       transform(body.x, body.q, Vec3::Ones());
       setColour(colour);
-      drawMesh(hullMesh(*shape.hull));  // tens of triangles: cheaper to build than to cache
+      drawMesh(hullMesh(*shape.hull));  // rebuilt each draw: a hull has tens of triangles
       break;
   }
   glPopMatrix();

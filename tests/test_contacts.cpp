@@ -13,51 +13,15 @@
 #include <cstdio>
 #include <numbers>
 
-#include "reeve/engine/world.h"
+#include "contact_fixture.h"
 
 namespace reeve {
 namespace {
 
+using namespace test;
+
 using std::numbers::pi;
 constexpr double kDeg = pi / 180.0;
-constexpr double kG = 9.81;
-constexpr double kFrame = 1.0 / 60.0;
-
-World makeWorld(int substeps, int iterations, const Vec3& gravity = Vec3(0.0, -kG, 0.0)) {
-  SolverSettings s;
-  s.gravity = gravity;
-  s.substeps = substeps;
-  s.iterations = iterations;
-  return World(s);
-}
-
-ContactMaterial material(double mu_s, double mu_d, double e) {
-  ContactMaterial m;
-  m.static_friction = mu_s;
-  m.dynamic_friction = mu_d;
-  m.restitution = e;
-  return m;
-}
-
-GroundPlane ground(const Vec3& normal, const ContactMaterial& m) {
-  GroundPlane g;
-  g.normal = normal;
-  g.material = m;
-  return g;
-}
-
-BodyId add(World& world, const Shape& shape, double mass, const Vec3& position,
-           const ContactMaterial& m, bool collides = false,
-           const Quat& orientation = Quat::Identity()) {
-  BodyDef def;
-  def.shape = shape;
-  def.mass = mass;
-  def.position = position;
-  def.orientation = orientation;
-  def.material = m;
-  def.collides = collides;
-  return world.addBody(def);
-}
 
 TEST(Contacts, NoCollisionWorkWithoutGroundOrTwoCollidingBodies) {
   World world = makeWorld(10, 1);
@@ -125,13 +89,7 @@ TEST(Contacts, UprightCylinderRestsOnGround) {
 }
 
 // A box on a plane tilted by `tilt` about z (the ground normal is tilted;
-// gravity stays -y). Returns the box's displacement along the downhill
-// direction after `seconds`, and its downhill acceleration measured from
-// the velocity change between t = 0.5 s and t = seconds.
-struct Slide {
-  double displacement_m, acceleration_m_per_s2;
-};
-
+// gravity stays -y), from rest, over `seconds`.
 Slide slideOnIncline(double tilt, const ContactMaterial& m, double seconds) {
   World world = makeWorld(20, 1);
   const Vec3 n(-std::sin(tilt), std::cos(tilt), 0.0);
@@ -141,15 +99,7 @@ Slide slideOnIncline(double tilt, const ContactMaterial& m, double seconds) {
   const Vec3 start = half.y() * n;
   const BodyId id = add(world, Shape::box(half), 2.0, start, m, false,
                         Quat(Eigen::AngleAxisd(tilt, Vec3::UnitZ())));
-  double v1 = 0.0;
-  const int frames = static_cast<int>(std::lround(seconds / kFrame));
-  const int f1 = static_cast<int>(std::lround(0.5 / kFrame));
-  for (int i = 1; i <= frames; ++i) {
-    world.step(kFrame);
-    if (i == f1) v1 = world.body(id).v.dot(downhill);
-  }
-  const double v2 = world.body(id).v.dot(downhill);
-  return {(world.body(id).x - start).dot(downhill), (v2 - v1) / (seconds - 0.5)};
+  return measureSlide(world, id, start, downhill, seconds);
 }
 
 TEST(Contacts, BoxOnInclineSticksBelowFrictionAngle) {

@@ -10,14 +10,13 @@
 #include <cstdio>
 #include <numbers>
 
-#include "reeve/engine/world.h"
+#include "contact_fixture.h"
 
 namespace reeve {
 namespace {
 
+using namespace test;
 using std::numbers::pi;
-constexpr double kG = 9.81;
-constexpr double kFrame = 1.0 / 60.0;
 
 std::vector<Vec3> boxCorners(const Vec3& half, const Vec3& centre = Vec3::Zero(),
                              const Quat& q = Quat::Identity()) {
@@ -110,27 +109,6 @@ TEST(Hull, PlaneSectionOfAPyramidShrinksLinearly) {
   EXPECT_TRUE(planeSection(*s.hull, 3.0).empty());
 }
 
-World makeWorld(int substeps, int iterations, const Vec3& gravity = Vec3(0.0, -kG, 0.0)) {
-  SolverSettings s;
-  s.gravity = gravity;
-  s.substeps = substeps;
-  s.iterations = iterations;
-  return World(s);
-}
-
-BodyId add(World& world, const Shape& shape, double mass, const Vec3& position,
-           const Quat& orientation = Quat::Identity(), bool collides = false,
-           const ContactMaterial& m = ContactMaterial{}) {
-  BodyDef def;
-  def.shape = shape;
-  def.mass = mass;
-  def.position = position;
-  def.orientation = orientation;
-  def.material = m;
-  def.collides = collides;
-  return world.addBody(def);
-}
-
 TEST(Hull, TurnedVerticesTumbleAsTheTurnedBox) {
   // The same solid two ways: a box body turned by q, and a hull of the
   // box's corners turned by q in an unturned body, whose inertia tensor is
@@ -140,9 +118,9 @@ TEST(Hull, TurnedVerticesTumbleAsTheTurnedBox) {
   const Quat q(Eigen::AngleAxisd(0.7, Vec3(1.0, 2.0, -0.5).normalized()));
   World world = makeWorld(20, 1, Vec3::Zero());
   const Vec3 omega0 = q * Vec3(0.02, 5.0, 0.03);  // about the box's middle axis, slightly off
-  const BodyId box = add(world, Shape::box(half), 2.0, Vec3::Zero(), q);
+  const BodyId box = add(world, Shape::box(half), 2.0, Vec3::Zero(), ContactMaterial{}, false, q);
   const BodyId hull = add(world, Shape::convexHull(boxCorners(half, Vec3::Zero(), q)), 2.0,
-                          Vec3(3.0, 0.0, 0.0));
+                          Vec3(3.0, 0.0, 0.0), ContactMaterial{});
   world.body(box).omega = world.body(hull).omega = omega0;
   double worst = 0.0, flipped = 0.0;
   for (int f = 0; f < 180; ++f) {
@@ -168,7 +146,7 @@ Drift freeSpinDrift(int substeps) {
   World world = makeWorld(substeps, 1, Vec3::Zero());
   const BodyId id = add(world, Shape::convexHull({Vec3::Zero(), Vec3(0.3, 0, 0), Vec3(0, 0.5, 0),
                                                   Vec3(0, 0, 0.9)}),
-                        1.0, Vec3::Zero());
+                        1.0, Vec3::Zero(), ContactMaterial{});
   world.body(id).omega = Vec3(3.0, -2.0, 4.0);
   const auto momentum = [&] {
     const BodyState& b = world.body(id);
@@ -206,20 +184,6 @@ TEST(Hull, FreeAsymmetricHullKeepsItsAngularMomentum) {
   EXPECT_LT(d80.energy, 1e-2);
 }
 
-ContactMaterial material(double mu_s, double mu_d, double e = 0.0) {
-  ContactMaterial m;
-  m.static_friction = mu_s;
-  m.dynamic_friction = mu_d;
-  m.restitution = e;
-  return m;
-}
-
-void setGround(World& world, const ContactMaterial& m) {
-  GroundPlane g;
-  g.material = m;
-  world.setGround(g);
-}
-
 TEST(Hull, BoxAndWedgeRestOnGround) {
   // Set exactly on the ground, each stays within 0.1 mm and 0.1 mrad of
   // where it was put over 10 s: a hull box, and a wedge (a triangular
@@ -229,12 +193,12 @@ TEST(Hull, BoxAndWedgeRestOnGround) {
   for (const Shape& shape : {Shape::convexHull(boxCorners(Vec3(0.4, 0.25, 0.3), Vec3(0, 0.25, 0))),
                              Shape::convexHull(wedge)}) {
     World world = makeWorld(20, 1);
-    const ContactMaterial m = material(0.5, 0.3);
-    setGround(world, m);
+    const ContactMaterial m = material(0.5, 0.3, 0.0);
+    world.setGround(ground(Vec3::UnitY(), m));
     // Both stand on their input frame's y = 0; the body's origin is the
     // centre of mass, input_centre_of_mass above that.
     const Vec3 start = shape.hull->input_centre_of_mass + Vec3(0.4, 0.0, 0.0);
-    const BodyId id = add(world, shape, 3.0, start, Quat::Identity(), false, m);
+    const BodyId id = add(world, shape, 3.0, start, m);
     double drift = 0.0, tilt = 0.0;
     for (int f = 0; f < 600; ++f) {
       world.step(kFrame);
@@ -258,10 +222,10 @@ TEST(Hull, RegularTetrahedronSettlesOnAFace) {
   std::vector<Vec3> points;
   for (const Vec3& c : corners) points.push_back(a / std::sqrt(8.0) * c);  // edge a
   World world = makeWorld(20, 2);
-  const ContactMaterial m = material(0.6, 0.4);
-  setGround(world, m);
+  const ContactMaterial m = material(0.6, 0.4, 0.0);
+  world.setGround(ground(Vec3::UnitY(), m));
   const Quat tipped(Eigen::AngleAxisd(0.3, Vec3(1.0, 0.0, 0.4).normalized()));
-  const BodyId id = add(world, Shape::convexHull(points), 1.0, Vec3(0.0, 0.5, 0.0), tipped, false, m);
+  const BodyId id = add(world, Shape::convexHull(points), 1.0, Vec3(0.0, 0.5, 0.0), m, false, tipped);
   for (int f = 0; f < 300; ++f) world.step(kFrame);
   const BodyState& b = world.body(id);
   double top = -1.0;
@@ -274,13 +238,8 @@ TEST(Hull, RegularTetrahedronSettlesOnAFace) {
   EXPECT_LT(b.v.norm(), 1e-3);
 }
 
-// A hull block on a static hull ramp (a wedge) of slope `tilt`, friction
-// `m`: its downhill acceleration between 0.5 s and `seconds`, and how far it
-// moved.
-struct Slide {
-  double displacement_m, acceleration_m_per_s2;
-};
-
+// A hull block from rest on a static hull ramp (a wedge) of slope `tilt`,
+// friction `m`, over `seconds`.
 Slide slideOnHullRamp(double tilt, const ContactMaterial& m, double seconds) {
   World world = makeWorld(20, 1);
   // The ramp: a wedge 8 m long rising to the left, its top face through the origin.
@@ -298,21 +257,13 @@ Slide slideOnHullRamp(double tilt, const ContactMaterial& m, double seconds) {
   const Vec3 downhill(std::cos(tilt), -std::sin(tilt), 0.0);
   const Vec3 half(0.3, 0.1, 0.2);  // low and wide: it slides rather than tips
   const Vec3 start = -3.0 * downhill + half.y() * n;
-  const BodyId id = add(world, Shape::convexHull(boxCorners(half)), 2.0, start,
-                        Quat(Eigen::AngleAxisd(-tilt, Vec3::UnitZ())), true, m);
-  double v1 = 0.0;
-  const int frames = static_cast<int>(std::lround(seconds / kFrame));
-  const int f1 = static_cast<int>(std::lround(0.5 / kFrame));
-  for (int i = 1; i <= frames; ++i) {
-    world.step(kFrame);
-    if (i == f1) v1 = world.body(id).v.dot(downhill);
-  }
-  const double v2 = world.body(id).v.dot(downhill);
-  return {(world.body(id).x - start).dot(downhill), (v2 - v1) / (seconds - 0.5)};
+  const BodyId id = add(world, Shape::convexHull(boxCorners(half)), 2.0, start, m, true,
+                        Quat(Eigen::AngleAxisd(-tilt, Vec3::UnitZ())));
+  return measureSlide(world, id, start, downhill, seconds);
 }
 
 TEST(Hull, BlockOnHullRampSticksThenSlides) {
-  const ContactMaterial m = material(0.5, 0.3);  // friction angle atan(0.5) = 26.6 deg
+  const ContactMaterial m = material(0.5, 0.3, 0.0);  // friction angle atan(0.5) = 26.6 deg
   for (double deg : {15.0, 25.0}) {
     const Slide s = slideOnHullRamp(deg * pi / 180.0, m, 2.0);
     std::printf("  %g deg: moved %.3g m downhill in 2 s\n", deg, s.displacement_m);
@@ -337,12 +288,12 @@ TEST(Hull, StackOfFiveHullCubesStandsStill) {
   // orders moved 0.2 to 3.1 mm: at one iteration the Gauss-Seidel row order
   // sets the millimetres, so a tighter bound would test the order.
   World world = makeWorld(20, 1);
-  const ContactMaterial m = material(0.6, 0.4);
-  setGround(world, m);
+  const ContactMaterial m = material(0.6, 0.4, 0.0);
+  world.setGround(ground(Vec3::UnitY(), m));
   const Shape cube = Shape::convexHull(boxCorners(Vec3(0.5, 0.5, 0.5)));
   std::vector<BodyId> ids;
   for (int i = 0; i < 5; ++i)
-    ids.push_back(add(world, cube, 10.0, Vec3(0.0, 0.5 + i, 0.0), Quat::Identity(), true, m));
+    ids.push_back(add(world, cube, 10.0, Vec3(0.0, 0.5 + i, 0.0), m, true));
   double drift = 0.0, tilt = 0.0;
   for (int f = 0; f < 600; ++f) {
     world.step(kFrame);

@@ -62,8 +62,4 @@ Mat3 inertiaTensor(const Shape& s, double m) {
   return Mat3::Zero();
 }
 
-double circularSectionRadius(const Shape& s) {
-  return s.type == Shape::Type::Cylinder || s.type == Shape::Type::Sphere ? s.radius : 0.0;
-}
-
 }  // namespace reeve

@@ -1,5 +1,4 @@
-// Collision-free shape descriptions: they give mass, inertia and, for
-// cables, cross-sections. All lengths in m.
+// Body shapes: their geometry, volume and inertia. All lengths in m.
 #pragma once
 
 #include <memory>
@@ -38,9 +37,5 @@ double volume(const Shape& shape);
 /// (kg) about its centre of mass (the origin), in local axes: diagonal for
 /// a box, cylinder or sphere, full for a hull.
 Mat3 inertiaTensor(const Shape& shape, double mass);
-
-/// Radius (m) of the circular cross-section in the local z = const plane,
-/// or 0 when that section is not a circle (a box, a hull). Cables roll on it.
-double circularSectionRadius(const Shape& shape);
 
 }  // namespace reeve

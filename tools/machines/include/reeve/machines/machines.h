@@ -1,0 +1,128 @@
+// Cable machines generated in code, for the tests and benchmarks that sweep
+// masses, loads, wheel counts and solver settings beyond the shipped scene
+// files: the Atwood machine (on a fixed or a swinging axle, slack or taut,
+// rigid or elastic), a cable zig-zagging over K wheels, a block and tackle
+// with sheaves on a moving block, and the paper's Hilbert-curve machine
+// (Fig. 1 right, Fig. 18). Each returns a Scene (scene.h) and the ids of
+// its parts; closed forms of their motion are derived in
+// reeve/machines/closed_forms.h. Wheels are solid cylinders: I = M r^2 / 2.
+#pragma once
+
+#include <vector>
+
+#include "reeve/scene/scene.h"
+
+namespace reeve::machines {
+
+/// Solver knobs every machine takes.
+struct Budget {
+  int substeps = 10;
+  int iterations = 2;
+};
+
+/// Two boxes on a cable over one wheel of radius `radius_m` hinged at the
+/// origin about z: `light` hangs on the left (x = -r), `heavy` on the right
+/// (x = +r), both `drop_m` below the wheel. With `arm_kg` > 0 the wheel's
+/// axle is not the world but the lower end of a swinging arm (a 1 m bar
+/// hinged to the world at (0, 1, 0)) of that mass. `slack_m` of extra cable
+/// goes to the heavy side; `heavy_speed_m_per_s` starts the heavy box
+/// moving down (a jerk when it meets the slack); `compliance_m_per_N` is
+/// that of the whole cable.
+struct AtwoodSpec {
+  double light_kg = 1.0, heavy_kg = 2.0, wheel_kg = 2.0, radius_m = 0.3;
+  double gravity = 10.0;  // m/s^2, along -y
+  double drop_m = 3.0;
+  double arm_kg = 0.0;
+  double slack_m = 0.0;
+  double heavy_speed_m_per_s = 0.0;
+  double compliance_m_per_N = 0.0;
+  Budget budget;
+};
+
+struct Atwood {
+  AtwoodSpec spec;
+  Scene scene;
+  BodyId wheel = 0, light = 0, heavy = 0, arm = kWorldBody;
+  HingeId axle = 0;  // the wheel's hinge (to the world or to the arm)
+  int cable = 0;     // joint 0: light -> wheel, joint 1: wheel -> heavy
+};
+Atwood atwood(const AtwoodSpec& spec);
+
+/// One cable over K wheels of radius `radius_m` and mass `wheel_kg`,
+/// zig-zagging between a top row (y = 0, the cable over the wheel) and a
+/// bottom row (y = -`rows_apart_m`, under it), `pitch_m` apart in x; the
+/// first and last wheels are top wheels (with K even the last two both
+/// are). `light` hangs from the first wheel's left side, `heavy` from the
+/// last one's right side, `drop_m` below the top row. Every wheel is hinged
+/// to the world at its centre.
+struct ZigZagSpec {
+  int wheels = 8;
+  double wheel_kg = 0.1, radius_m = 0.1, pitch_m = 0.4, rows_apart_m = 0.8;
+  double light_kg = 1.0, heavy_kg = 2.0, gravity = 10.0, drop_m = 2.0;
+  Budget budget;
+};
+
+struct ZigZag {
+  ZigZagSpec spec;
+  Scene scene;
+  std::vector<BodyId> wheels;
+  std::vector<HingeId> axles;
+  BodyId light = 0, heavy = 0;
+  int cable = 0;  // joint 0 leaves the light box, joint K arrives at the heavy one
+};
+ZigZag zigzag(const ZigZagSpec& spec);
+
+/// A block and tackle (paper Fig. 1 centre): a static upper block with two
+/// sheaves, a moving lower block of `block_kg` with two sheaves on hinges,
+/// sheaves of radius `radius_m` and mass `sheave_kg`, `drop_m` apart. The
+/// cable is tied to the upper block, runs under lower sheave A, over upper
+/// sheave A, under lower sheave B, over upper sheave B and down to a
+/// `counterweight_kg` box: four strands carry the lower block, so the
+/// counterweight moves four times as far.
+struct BlockAndTackleSpec {
+  double block_kg = 4.0, sheave_kg = 0.004, counterweight_kg = 1.001, radius_m = 0.1;
+  double drop_m = 2.0, gravity = 10.0;
+  Budget budget;
+};
+
+struct BlockAndTackle {
+  BlockAndTackleSpec spec;
+  Scene scene;
+  BodyId upper_block = 0, lower_block = 0, counterweight = 0;
+  BodyId upper[2] = {0, 0}, lower[2] = {0, 0};  // sheaves A, B
+  HingeId lower_axles[2] = {0, 0};
+  int cable = 0;
+};
+BlockAndTackle blockAndTackle(const BlockAndTackleSpec& spec);
+
+/// The paper's Hilbert machine (Fig. 1 right, Fig. 18): a wheel at every
+/// point of a 3D Hilbert curve of `level` (8^level wheels, `pitch_m`
+/// apart), each hinged to the world at its centre with its axis normal to
+/// the curve's turn there (or to the neighbour's turn where the curve runs
+/// straight), and one cable along the curve. The cable starts wound on the
+/// first wheel, a motor (`motor_speed_rad_per_s`, at most `motor_torque_Nm`)
+/// that winds it in, and ends at a `load_kg` box hanging below the last.
+struct HilbertSpec {
+  int level = 3;
+  double pitch_m = 1.0, radius_m = 0.25, wheel_kg = 1.0;
+  double load_kg = 1.0, gravity = 10.0;
+  double motor_speed_rad_per_s = 2.0, motor_torque_Nm = 1000.0;
+  Budget budget;
+};
+
+struct Hilbert {
+  HilbertSpec spec;
+  Scene scene;
+  std::vector<BodyId> wheels;
+  HingeId motor = 0;
+  BodyId load = 0;
+  int cable = 0;
+};
+Hilbert hilbert(const HilbertSpec& spec);
+
+/// The points (grid units) of the 3D Hilbert curve with 2^level points per
+/// side, in curve order; consecutive points are one unit apart (Skilling,
+/// "Programming the Hilbert curve", AIP Conf. Proc. 707, 2004).
+std::vector<Vec3> hilbertCurve(int level);
+
+}  // namespace reeve::machines

@@ -50,6 +50,10 @@ struct BodyState {
   Vec3 omega = Vec3::Zero();      // rad/s, world
   Vec3 x_prev = Vec3::Zero();
   Quat q_prev = Quat::Identity();
+  // Orientation right after this substep's integration, before the solve:
+  // the velocity read-out adds the solve's small correction to the
+  // integrated turn h omega, which may be many turns (a fast wheel).
+  Quat q_pred = Quat::Identity();
   double inv_mass = 0.0;          // 1/kg
   // Inertia tensor about the centre of mass in body-local axes, kg m^2, and
   // its inverse; diagonal except for hulls, whose axes are the user's.

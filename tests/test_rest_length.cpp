@@ -56,6 +56,22 @@ TEST(RestLength, TurningInThePayingOutSenseLengthensTheLeavingSpanByRadiusTimesA
   EXPECT_NEAR(rig.cables.restLength(rig.cable, 0) - d0, -rig.radius * angle, 1e-12);
 }
 
+TEST(RestLength, AWheelTurningOneAndAHalfTurnsInOneSubstepPaysOutEveryTurn) {
+  // The update after a substep of h in which the wheel turned -3 pi at
+  // omega: geometrically the tangent point is where it was a half turn
+  // ago, either way round; the wheel's own turn says which and how often.
+  for (const double angle : {3.0 * std::numbers::pi, 7.9, 0.5 * std::numbers::pi}) {
+    WheelRig rig(-1);
+    const double d1 = rig.cables.restLength(rig.cable, 1);
+    const double h = 1.0 / 600.0;
+    BodyState& wheel = rig.world.body(rig.wheel);
+    wheel.omega = Vec3(0.0, 0.0, -angle / h);
+    rotateExactly(wheel.q, h * wheel.omega);
+    rig.cables.update(0.0, h);
+    EXPECT_NEAR(rig.cables.restLength(rig.cable, 1) - d1, rig.radius * angle, 1e-12) << angle;
+  }
+}
+
 TEST(RestLength, TurningTheOtherWayShortensIt) {
   WheelRig rig(-1);
   const double d1 = rig.cables.restLength(rig.cable, 1);

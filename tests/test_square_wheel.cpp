@@ -34,6 +34,25 @@ TEST(SquareWheel, OneFullTurnPaysOutExactlyThePerimeter) {
   EXPECT_NEAR(s.cables->restLength(0, 0) - before, 1.5, 1e-9);
 }
 
+TEST(SquareWheel, ASpoolTurningTwiceInOneSubstepPaysOutTwoPerimeters) {
+  // 2.04 turns within one substep of h: the whole turns come from the
+  // spool's own rotation, h omega, the rest from the geometry.
+  Scene s = test::scene("square_wheel");
+  const BodyId square = test::body(s, "square");
+  const double before = s.cables->restLength(0, 0);
+  const double perimeter = s.cables->cables()[0].links[0].section.perimeter();
+  const double h = 1e-3, turns = 2.04;
+  BodyState& spool = s.world->body(square);
+  spool.omega = Vec3(0.0, 0.0, -turns * 2.0 * std::numbers::pi / h);  // cw: paying out
+  rotateExactly(spool.q, h * spool.omega);
+  // The spool starts turned 0.3 rad: the same corner touches the vertical
+  // cable until it has turned cw by 0.3 rad (an edge then hangs plumb), so
+  // after 0.04 turn (0.25 rad) the tangent vertex is the one it was, and
+  // the cable paid out is exactly the two perimeters.
+  s.cables->update(0.0, h);
+  EXPECT_NEAR(s.cables->restLength(0, 0) - before, 2.0 * perimeter, 1e-9);
+}
+
 TEST(SquareWheel, TheWeightUnwindsTheSquareAndTheCableStaysTautAndWhole) {
   Scene s = test::scene("square_wheel");
   const BodyId weight = test::body(s, "weight"), square = test::body(s, "square");

@@ -1,5 +1,6 @@
 // Building cables: validation, initial tangent points, rest lengths,
 // stored cable and compliance (paper sec. 3, Alg. 2 line 2).
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <stdexcept>
@@ -51,7 +52,7 @@ const char* eventName(CableEvent::Kind kind) {
 }
 
 CableSystem::CableSystem(World& world) : world_(world) {
-  world_.addSubstepHook([this](World& w, double h) { update(w.time() + h); });
+  world_.addSubstepHook([this](World& w, double h) { update(w.time() + h, h); });
 }
 
 int CableSystem::addCable(const CableDef& def) {
@@ -141,6 +142,16 @@ int CableSystem::addCable(const CableDef& def) {
     joint.path = world_.addPath(std::move(path));
   }
   syncRuns(cable);
+  for (const Link& link : cable.links) {
+    if (link.type != LinkType::Rolling && link.type != LinkType::Hybrid) continue;
+    if (std::find(rolling_bodies_.begin(), rolling_bodies_.end(), link.body) == rolling_bodies_.end())
+      rolling_bodies_.push_back(link.body);
+    if (last_q_.size() <= static_cast<size_t>(link.body)) {
+      last_q_.resize(link.body + 1, Quat::Identity());
+      turn_.resize(link.body + 1, 0.0);
+    }
+    last_q_[link.body] = world_.body(link.body).q;
+  }
   cables_.push_back(std::move(cable));
   return static_cast<int>(cables_.size() - 1);
 }

@@ -1,5 +1,8 @@
 // The per-substep cable update: paper Alg. 1 (tangent points, rest
 // lengths, pinholes) and Alg. 2 (stored cable, hybrid links, merge, split).
+#include <cmath>
+#include <numbers>
+
 #include "link_geometry.h"
 #include "links.h"
 #include "reeve/cable/cable.h"
@@ -12,16 +15,33 @@ namespace {
 constexpr double kSplitMargin = 1e-6;
 
 // Arc (m) paid out into a span when its anchor on a rolling link moves
-// from `old_anchor` to `new_anchor` (body-local): Alg. 1 l. 4-5 with the
-// sign of the leaving side; the arriving side uses its negative.
-double payOut(const Link& link, const Vec3& old_anchor, const Vec3& new_anchor) {
+// from `old_anchor` to `new_anchor` (body-local) while the body turns by
+// `turn` (rad, about the plane normal): Alg. 1 l. 4-5 with the sign of the
+// leaving side; the arriving side uses its negative.
+double payOut(const Link& link, const Vec3& old_anchor, const Vec3& new_anchor, double turn) {
   return sectionSurfaceDistance(link.section, planePoint(old_anchor), planePoint(new_anchor),
-                                link.orientation);
+                                link.orientation, turn);
 }
 
 }  // namespace
 
-void CableSystem::update(double time_s) {
+void CableSystem::measureTurns(double h) {
+  // The geometric turn since the last update is known only up to whole
+  // turns; the integration's h omega supplies them, the solver's last
+  // correction (small) the rest.
+  for (const BodyId b : rolling_bodies_) {
+    const BodyState& body = world_.body(b);
+    const Vec3 n = body.q * Vec3::UnitZ();
+    const Quat dq = body.q * last_q_[b].conjugate();
+    const double twist = 2.0 * std::atan2(dq.vec().dot(n), dq.w());
+    const double integrated = h * body.omega.dot(n);
+    turn_[b] = integrated + std::remainder(twist - integrated, 2.0 * std::numbers::pi);
+    last_q_[b] = body.q;
+  }
+}
+
+void CableSystem::update(double time_s, double h) {
+  measureTurns(h);
   for (int c = 0; c < static_cast<int>(cables_.size()); ++c) {
     Cable& cable = cables_[c];
     for (int j = 0; j < static_cast<int>(cable.joints.size()); ++j) updateJoint(cable, j);
@@ -44,12 +64,12 @@ void CableSystem::updateJoint(Cable& cable, int j) {
   // old anchor is cable paid out into the span (leaving side) or taken up
   // from it (arriving side).
   if (from.rolls()) {
-    const double s = payOut(from, joint.local_a, anchors->first);
+    const double s = payOut(from, joint.local_a, anchors->first, turn_[from.body]);
     joint.rest_length += s;
     from.stored -= s;
   }
   if (to.rolls()) {
-    const double s = payOut(to, joint.local_b, anchors->second);
+    const double s = payOut(to, joint.local_b, anchors->second, turn_[to.body]);
     joint.rest_length -= s;
     to.stored += s;
   }
@@ -158,8 +178,8 @@ void CableSystem::splitAtCrossedLinks(Cable& cable, int c, double time_s) {
       }
       // Moving the span's ends to the new tangent points pays cable in or
       // out of the end links, as in updateJoint().
-      const double from_shift = from.rolls() ? payOut(from, in.local_a, first->first) : 0.0;
-      const double to_shift = to.rolls() ? payOut(to, in.local_b, second->second) : 0.0;
+      const double from_shift = from.rolls() ? payOut(from, in.local_a, first->first, 0.0) : 0.0;
+      const double to_shift = to.rolls() ? payOut(to, in.local_b, second->second, 0.0) : 0.0;
       const double wrap = sectionWrappedArc(mid.section, planePoint(first->second), planePoint(second->first),
                                             mid.orientation);
       const double rest = in.rest_length + from_shift - to_shift - wrap;

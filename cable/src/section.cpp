@@ -116,13 +116,18 @@ Vec2 boundaryPoint(const Section& section, double position) {
 }
 
 double sectionSurfaceDistance(const Section& section, const Vec2& old_point, const Vec2& new_point,
-                              int orientation) {
+                              int orientation, double turn_rad) {
   const double perimeter = section.perimeter();
-  // Counter-clockwise length from new to old, then the shorter way round.
-  double ccw = wrapPositive(
-      boundaryPosition(section, old_point) - boundaryPosition(section, new_point), perimeter);
-  if (ccw > 0.5 * perimeter) ccw -= perimeter;
-  return orientation * ccw;
+  // Counter-clockwise length from new to old, up to whole perimeters: the
+  // one nearest what the turn predicts.
+  const double ccw = boundaryPosition(section, old_point) - boundaryPosition(section, new_point);
+  double predicted = section.radius * turn_rad;
+  if (section.kind == Section::Kind::Polygon) {
+    double shorter = wrapPositive(ccw, perimeter);
+    if (shorter > 0.5 * perimeter) shorter -= perimeter;
+    predicted = shorter + perimeter * std::round(turn_rad / (2.0 * std::numbers::pi));
+  }
+  return orientation * (ccw + perimeter * std::round((predicted - ccw) / perimeter));
 }
 
 double sectionWrappedArc(const Section& section, const Vec2& arrival, const Vec2& departure,

@@ -172,8 +172,12 @@ class CableSystem {
   /// One substep of bookkeeping from the current poses: tangent points,
   /// rest lengths and stored cable (Alg. 1 l. 2-7, Alg. 2 l. 8-9), pinhole
   /// sliding (Alg. 1 l. 8-16), hybrid switches (Alg. 2 l. 11-22), merges and
-  /// splits (Alg. 2 l. 23-28). `time_s` stamps the events.
-  void update(double time_s = 0.0);
+  /// splits (Alg. 2 l. 23-28). `time_s` stamps the events. `h` (s) is the
+  /// substep the World just integrated: each body turned by h omega then,
+  /// however many turns that is, and the cable it pays out counts them all.
+  /// With h = 0 (bodies moved by hand) each must have turned less than
+  /// half a turn about its cable plane's normal since the last update.
+  void update(double time_s = 0.0, double h = 0.0);
 
   const std::vector<Cable>& cables() const { return cables_; }
   const World& world() const { return world_; }
@@ -198,6 +202,9 @@ class CableSystem {
   void setRestLength(int c, int j, double rest_length_m);
 
  private:
+  /// turn_[b]: how far (rad, unwrapped) body b turned about its cable
+  /// plane's normal (local z) since the last update.
+  void measureTurns(double h);
   void updateJoint(Cable& cable, int j);
   void switchHybrids(Cable& cable, int c, double time_s);
   void mergeEmptyLinks(Cable& cable, int c, double time_s);
@@ -211,6 +218,9 @@ class CableSystem {
   World& world_;
   std::vector<Cable> cables_;
   std::vector<CableEvent> events_;
+  std::vector<BodyId> rolling_bodies_;  // bodies with a rolling or hybrid link
+  std::vector<Quat> last_q_;            // per body: orientation at the last update
+  std::vector<double> turn_;            // per body, rad (measureTurns)
 };
 
 }  // namespace reeve

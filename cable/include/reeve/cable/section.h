@@ -87,11 +87,18 @@ Vec2 boundaryPoint(const Section& section, double position);
 /// surfaceDist(a, a') of Alg. 1 on the section's boundary (the hull for
 /// polygons, sec. 3.2): the length (m) from `new_point` to `old_point` along
 /// the boundary, positive when that way runs in the sense of `orientation`.
-/// The shorter way is taken (|result| <= perimeter / 2), so the points must
-/// be less than half the boundary apart (one substep). Points off the
-/// boundary count as their nearest boundary point.
+/// Two points on a boundary are joined both ways round; `turn_rad` picks
+/// the way: how far (rad, counter-clockwise about the plane normal, not
+/// wrapped) the section turned since `old_point` was its tangent point,
+/// which carries `old_point` that far ahead of a tangent point that stays
+/// put. A circle takes the way nearest r x turn_rad, exact while the
+/// tangent point itself moves less than half a turn; a polygon the shorter
+/// way plus one perimeter per whole turn (round(turn_rad / 2 pi)), exact
+/// while the rest of the turn moves the tangent point less than half the
+/// boundary. turn_rad = 0 (a section that did not turn): the shorter way.
+/// Points off the boundary count as their nearest boundary point.
 double sectionSurfaceDistance(const Section& section, const Vec2& old_point, const Vec2& new_point,
-                              int orientation);
+                              int orientation, double turn_rad = 0.0);
 
 /// Boundary length (m, in [0, perimeter)) from `arrival` to `departure`
 /// travelling in the sense of `orientation`: the cable stored on the

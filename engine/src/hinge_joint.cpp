@@ -1,6 +1,6 @@
 #include "reeve/engine/hinge_joint.h"
 
-#include "joint_rows.h"
+#include "joint_row_sets.h"
 
 namespace reeve {
 namespace {
@@ -12,6 +12,19 @@ joint_rows::DriveKind kindOf(HingeDrive::Mode mode) {
     case HingeDrive::Mode::None: break;
   }
   return joint_rows::DriveKind::None;
+}
+
+// The point and axis rows (solveHingeJoint) at arms r_a, r_b.
+joint_rows::BilateralRows bilateralRows(const HingeJoint& j, const BodyState& a, const BodyState& b,
+                                        const Vec3& r_a, const Vec3& r_b) {
+  const Vec3 u = a.q * j.frame.axis_a;
+  const Vec3 t1 = joint_rows::anyPerpendicular(u), t2 = u.cross(t1);
+  const Vec3 phi = joint_rows::alignment(b.q * j.frame.axis_b, u);
+  joint_rows::BilateralRows rows;
+  rows.addPoint((b.x + r_b) - (a.x + r_a));
+  rows.addAngular(t1, t1.dot(phi));
+  rows.addAngular(t2, t2.dot(phi));
+  return rows;
 }
 
 }  // namespace
@@ -75,15 +88,8 @@ void solveHingeJoint(HingeJoint& j, BodyState& a, BodyState& b, double h) {
   const double alpha_tilde = j.compliance / (h * h);
   const auto block = [&](const joint_rows::ClampedRow* clamped) {
     const Vec3 r_a = a.q * j.frame.anchor_a, r_b = b.q * j.frame.anchor_b;
-    const Vec3 u = a.q * j.frame.axis_a;
-    const Vec3 t1 = joint_rows::anyPerpendicular(u), t2 = u.cross(t1);
-    const Vec3 phi = joint_rows::alignment(b.q * j.frame.axis_b, u);
-    joint_rows::BilateralRows rows;
-    rows.addPoint((b.x + r_b) - (a.x + r_a));
-    rows.addAngular(t1, t1.dot(phi));
-    rows.addAngular(t2, t2.dot(phi));
-    joint_rows::solveRows(a, b, r_a, r_b, rows, alpha_tilde, clamped, j.impulse_point,
-                          j.impulse_axis);
+    joint_rows::solveRows(a, b, r_a, r_b, bilateralRows(j, a, b, r_a, r_b), alpha_tilde, clamped,
+                          j.impulse_point, j.impulse_axis);
   };
   const bool driven = j.drive.mode != HingeDrive::Mode::None;
   bool solved = false;
@@ -101,6 +107,18 @@ void solveHingeJoint(HingeJoint& j, BodyState& a, BodyState& b, double h) {
     solved = joint_rows::solveCoordinateRows(j.angle, j.limit, driven, true, value, row);
   }
   if (!solved) block(nullptr);
+}
+
+void joint_rows::hingeRowSet(HingeJoint& j, const BodyState& a, const BodyState& b, JointRowSet& out) {
+  out.r_a = a.q * j.frame.anchor_a;
+  out.r_b = b.q * j.frame.anchor_b;
+  const bool rotor = a.isRotor() || b.isRotor();
+  out.bilateral = rotor ? BilateralRows{} : bilateralRows(j, a, b, out.r_a, out.r_b);
+  out.clamped_count = 0;
+  Vec6 dir = Vec6::Zero();
+  dir.tail<3>() = a.q * j.frame.axis_a;
+  addCoordinateRows(j.angle, j.limit, j.drive.mode != HingeDrive::Mode::None, true, hingeAngle(j, a.q, b.q), dir,
+                    out);
 }
 
 JointWrench hingeWrench(const HingeJoint& j, double h) {

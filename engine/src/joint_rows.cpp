@@ -55,7 +55,7 @@ void BilateralRows::addAngular(const Vec3& n, double C) {
 void solveRows(BodyState& a, BodyState& b, const Vec3& r_a, const Vec3& r_b,
                const BilateralRows& rows, double alpha_tilde, const ClampedRow* clamped,
                Vec3& linear_a, Vec3& angular_a) {
-  if (a.inv_mass == 0.0 && b.inv_mass == 0.0) return;  // nothing can move
+  if (!a.moves() && !b.moves()) return;  // nothing can move
   const int m = rows.count;
   if (!clamped && (m == 0 || (alpha_tilde == 0.0 &&
                               !(rows.values.head(m).cwiseAbs().maxCoeff() > 1e-15))))
@@ -143,7 +143,7 @@ void prepareCoordinate(JointCoordinate& c, DriveKind kind, double target, double
 }
 
 double inverseInertiaAbout(const BodyState& body, const Vec3& local, const Vec3& u) {
-  if (body.inv_mass == 0.0) return 0.0;
+  if (!body.moves()) return 0.0;
   const Vec3 u_local = body.q.conjugate() * u;
   const Vec3 r = body.q * local;
   const double about_centre = u_local.dot(body.inertia * u_local);

@@ -1,6 +1,6 @@
 #include "reeve/engine/prismatic_joint.h"
 
-#include "joint_rows.h"
+#include "joint_row_sets.h"
 
 namespace reeve {
 namespace {
@@ -12,6 +12,20 @@ joint_rows::DriveKind kindOf(PrismaticDrive::Mode mode) {
     case PrismaticDrive::Mode::None: break;
   }
   return joint_rows::DriveKind::None;
+}
+
+// The rail and orientation rows (solvePrismaticJoint) at arms r_a, r_b.
+joint_rows::BilateralRows bilateralRows(const PrismaticJoint& j, const BodyState& a, const BodyState& b,
+                                        const Vec3& r_a, const Vec3& r_b) {
+  const Vec3 u = b.q * j.axis_b;
+  const Vec3 t1 = joint_rows::anyPerpendicular(u), t2 = u.cross(t1);
+  const Vec3 separation = (b.x + r_b) - (a.x + r_a);
+  const Vec3 phi = rotationVector(a.q * (b.q * j.rel).conjugate());
+  joint_rows::BilateralRows rows;
+  rows.addPositional(t1, t1.dot(separation));
+  rows.addPositional(t2, t2.dot(separation));
+  for (int i = 0; i < 3; ++i) rows.addAngular(Vec3::Unit(i), phi[i]);
+  return rows;
 }
 
 }  // namespace
@@ -74,16 +88,8 @@ void solvePrismaticJoint(PrismaticJoint& j, BodyState& a, BodyState& b, double h
   const double alpha_tilde = j.compliance / (h * h);
   const auto block = [&](const joint_rows::ClampedRow* clamped) {
     const Vec3 r_a = a.q * j.anchor_a, r_b = b.q * j.anchor_b;
-    const Vec3 u = b.q * j.axis_b;
-    const Vec3 t1 = joint_rows::anyPerpendicular(u), t2 = u.cross(t1);
-    const Vec3 separation = (b.x + r_b) - (a.x + r_a);
-    const Vec3 phi = rotationVector(a.q * (b.q * j.rel).conjugate());
-    joint_rows::BilateralRows rows;
-    rows.addPositional(t1, t1.dot(separation));
-    rows.addPositional(t2, t2.dot(separation));
-    for (int i = 0; i < 3; ++i) rows.addAngular(Vec3::Unit(i), phi[i]);
-    joint_rows::solveRows(a, b, r_a, r_b, rows, alpha_tilde, clamped, j.impulse_linear,
-                          j.impulse_angular);
+    joint_rows::solveRows(a, b, r_a, r_b, bilateralRows(j, a, b, r_a, r_b), alpha_tilde, clamped,
+                          j.impulse_linear, j.impulse_angular);
   };
   const bool driven = j.drive.mode != PrismaticDrive::Mode::None;
   bool solved = false;
@@ -101,6 +107,17 @@ void solvePrismaticJoint(PrismaticJoint& j, BodyState& a, BodyState& b, double h
     solved = joint_rows::solveCoordinateRows(j.slide, j.limit, driven, false, value, row);
   }
   if (!solved) block(nullptr);
+}
+
+void joint_rows::prismaticRowSet(PrismaticJoint& j, const BodyState& a, const BodyState& b, JointRowSet& out) {
+  out.r_a = a.q * j.anchor_a;
+  out.r_b = b.q * j.anchor_b;
+  out.bilateral = bilateralRows(j, a, b, out.r_a, out.r_b);
+  out.clamped_count = 0;
+  Vec6 dir = Vec6::Zero();
+  dir.head<3>() = -(b.q * j.axis_b);
+  addCoordinateRows(j.slide, j.limit, j.drive.mode != PrismaticDrive::Mode::None, false,
+                    prismaticSlide(j, a.x, a.q, b.x, b.q), dir, out);
 }
 
 JointWrench prismaticWrench(const PrismaticJoint& j, double h) {

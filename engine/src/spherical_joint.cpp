@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "joint_rows.h"
+#include "joint_row_sets.h"
 
 namespace reeve {
 namespace {
@@ -94,6 +94,27 @@ void solveSphericalJoint(SphericalJoint& j, BodyState& a, BodyState& b, double h
     solved |= joint_rows::solveCoordinateRows(j.twist, j.twist_limit, false, true, value, row);
   }
   if (!solved) block(nullptr);
+}
+
+void joint_rows::sphericalRowSet(SphericalJoint& j, const BodyState& a, const BodyState& b, JointRowSet& out) {
+  out.r_a = a.q * j.frame.anchor_a;
+  out.r_b = b.q * j.frame.anchor_b;
+  out.bilateral = BilateralRows{};
+  out.bilateral.addPoint((b.x + out.r_b) - (a.x + out.r_a));
+  out.clamped_count = 0;
+  const Vec3 u_a = a.q * j.frame.axis_a, u_b = b.q * j.frame.axis_b;
+  if (j.swing_limit.enabled) {
+    // As in solveSphericalJoint; with the axes aligned the row has no
+    // direction and stays inactive.
+    const Vec3 m = u_b.cross(u_a);
+    const double C = swingAngle(j, a.q, b.q) - j.swing_limit.max;
+    Vec6 dir = Vec6::Zero();
+    if (m.norm() > 1e-12) dir.tail<3>() = m.normalized();
+    out.addClamped(dir, C, -kInf, 0.0, &j.lambda_swing, (C > 0.0 || j.lambda_swing < 0.0) && m.norm() > 1e-12);
+  }
+  Vec6 dir = Vec6::Zero();
+  dir.tail<3>() = twistAxis(u_a, u_b);
+  addCoordinateRows(j.twist, j.twist_limit, false, true, twistAngle(j, a.q, b.q), dir, out);
 }
 
 JointWrench sphericalWrench(const SphericalJoint& j, double h) {

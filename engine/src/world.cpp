@@ -1,5 +1,6 @@
 #include "reeve/engine/world.h"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <limits>
@@ -9,6 +10,8 @@
 #include <utility>
 
 #include <Eigen/LU>
+
+#include "direct_solver.h"
 
 namespace reeve {
 namespace {
@@ -68,10 +71,15 @@ constexpr double kAny = std::numeric_limits<double>::infinity();
 
 }  // namespace
 
-World::World(SolverSettings settings) : settings_(settings) {}
+World::World(SolverSettings settings) : settings_(settings), direct_(std::make_unique<DirectSolver>()) {}
+World::~World() = default;
+World::World(World&&) noexcept = default;
+World& World::operator=(World&&) noexcept = default;
 
 BodyId World::addBody(const BodyDef& def) {
   bodies_.push_back(makeBodyState(def));
+  mass_.push_back(bodies_.back().mass());
+  rotors_dirty_ = true;
   defs_.push_back(def);
   bound_radius_.push_back(boundingRadius(def.shape));
   const BodyId id = static_cast<BodyId>(bodies_.size() - 1);
@@ -105,7 +113,7 @@ void World::findContacts() {
   if (ground_) {
     for (BodyId id = 0; id < bodyCount(); ++id) {
       const BodyState& b = bodies_[id];
-      if (b.inv_mass == 0.0 ||
+      if (!b.moves() ||
           ground_->normal.dot(b.x) - ground_->height_m > grow * bound_radius_[id])
         continue;
       const std::size_t first = contacts_.size();
@@ -126,7 +134,7 @@ void World::findContacts() {
     for (std::size_t j = i + 1; j < colliders_.size() && low(colliders_[j]) <= high; ++j) {
       const BodyId b = colliders_[j];
       const BodyState &sa = bodies_[a], &sb = bodies_[b];
-      if (sa.inv_mass == 0.0 && sb.inv_mass == 0.0) continue;
+      if (!sa.moves() && !sb.moves()) continue;
       const double reach = grow * (bound_radius_[a] + bound_radius_[b]);
       if ((sb.x - sa.x).squaredNorm() > reach * reach) continue;
       const std::size_t first = contacts_.size();
@@ -138,13 +146,58 @@ void World::findContacts() {
 }
 
 void World::setMass(BodyId id, double mass) {
-  BodyState& b = body(id);
-  if (id == kWorldBody || b.inv_mass == 0.0 || !(mass > 0.0) || !std::isfinite(mass))
+  if (id == kWorldBody || id < 0 || id >= bodyCount() || mass_[id] == 0.0 || !(mass > 0.0) ||
+      !std::isfinite(mass))
     throw std::invalid_argument("setMass: needs a dynamic body and a finite mass > 0 kg");
-  const double scale = mass * b.inv_mass;
-  b.inv_mass = 1.0 / mass;
+  BodyState& b = bodies_[id];
+  const double scale = mass / mass_[id];
+  mass_[id] = mass;
   b.inertia *= scale;
-  b.inv_inertia /= scale;
+  b.inv_mass = 1.0 / mass;
+  b.inv_inertia = b.inertia.inverse();
+  b.rotor_axis.setZero();
+  rotors_dirty_ = true;  // a rotor is made again at the next step
+}
+
+void World::refreshRotors() {
+  rotors_dirty_ = false;
+  rotors_for_ = settings_.solver;
+  for (BodyId id = 0; id < bodyCount(); ++id) {
+    BodyState& b = bodies_[id];
+    if (mass_[id] == 0.0) continue;
+    b.inv_mass = 1.0 / mass_[id];
+    b.inv_inertia = b.inertia.inverse();
+    b.rotor_axis.setZero();
+  }
+  if (settings_.solver != SolverKind::Direct) return;
+  // A rotor's only joint is a rigid hinge to a static body (or the world)
+  // whose axle passes through its centre of mass.
+  std::vector<int> joints(bodies_.size(), 0);
+  const auto count = [&](BodyId a, BodyId b) {
+    for (const BodyId id : {a, b})
+      if (id != kWorldBody) ++joints[id];
+  };
+  for (const HingeJoint& j : hinges_) count(j.a, j.b);
+  for (const PrismaticJoint& j : prismatics_) count(j.a, j.b);
+  for (const SphericalJoint& j : sphericals_) count(j.a, j.b);
+  for (const FixedJoint& j : fixeds_) count(j.a, j.b);
+  for (const HingeJoint& j : hinges_) {
+    const bool a_moves = j.a != kWorldBody && mass_[j.a] > 0.0;
+    const bool b_moves = j.b != kWorldBody && mass_[j.b] > 0.0;
+    if (a_moves == b_moves || j.compliance != 0.0) continue;
+    const BodyId id = a_moves ? j.a : j.b;
+    const Vec3 anchor = a_moves ? j.frame.anchor_a : j.frame.anchor_b;
+    const Vec3 axis = (a_moves ? j.frame.axis_a : j.frame.axis_b).normalized();
+    if (joints[id] != 1 || (anchor - anchor.dot(axis) * axis).norm() > 1e-9 * std::max(1.0, anchor.norm()))
+      continue;
+    BodyState& b = bodies_[id];
+    b.rotor_axis = axis;
+    b.inv_mass = 0.0;
+    b.inv_inertia = axis * axis.transpose() / axis.dot(b.inertia * axis);
+    const Vec3 u = b.q * axis;
+    b.v.setZero();
+    b.omega = u * u.dot(b.omega);
+  }
 }
 
 void World::checkJointBodies(const char* kind, BodyId a, BodyId b) const {
@@ -160,6 +213,7 @@ HingeId World::addHinge(const HingeDef& def) {
   checkLimit("hinge", def.limit, kPi);
   checkDrive("hinge", def.drive.target, def.drive.max_torque,
              def.drive.mode == HingeDrive::Mode::Angle ? kPi : kAny);
+  rotors_dirty_ = true;
   hinges_.push_back(makeHingeJoint(def, body(def.body), body(def.other)));
   return static_cast<HingeId>(hinges_.size() - 1);
 }
@@ -171,6 +225,7 @@ PrismaticId World::addPrismatic(const PrismaticDef& def) {
   checkCompliance("prismatic joint", def.compliance);
   checkLimit("prismatic joint", def.limit, kAny);
   checkDrive("prismatic joint", def.drive.target, def.drive.max_force, kAny);
+  rotors_dirty_ = true;
   prismatics_.push_back(makePrismaticJoint(def, body(def.body), body(def.other)));
   return static_cast<PrismaticId>(prismatics_.size() - 1);
 }
@@ -183,6 +238,7 @@ SphericalId World::addSpherical(const SphericalDef& def) {
   checkLimit("spherical joint", def.twist_limit, kPi);
   if (def.swing_limit.enabled && !(def.swing_limit.max >= 0.0 && def.swing_limit.max <= kPi))
     reject("spherical joint", "the swing limit must lie within [0, pi] rad");
+  rotors_dirty_ = true;
   sphericals_.push_back(makeSphericalJoint(def, body(def.body), body(def.other)));
   return static_cast<SphericalId>(sphericals_.size() - 1);
 }
@@ -191,6 +247,7 @@ FixedId World::addFixed(const FixedDef& def) {
   checkJointBodies("fixed joint", def.body, def.other);
   checkVector("fixed joint", "anchor", def.anchor, false);
   checkCompliance("fixed joint", def.compliance);
+  rotors_dirty_ = true;
   fixeds_.push_back(makeFixedJoint(def, body(def.body), body(def.other)));
   return static_cast<FixedId>(fixeds_.size() - 1);
 }
@@ -264,6 +321,7 @@ double World::tension(DistanceId id) const {
 
 void World::step(double dt) {
   assert(settings_.substeps > 0 && settings_.iterations > 0);
+  if (rotors_dirty_ || rotors_for_ != settings_.solver) refreshRotors();
   const double h = dt / settings_.substeps;
   for (int s = 0; s < settings_.substeps; ++s) {
     integrate(h);
@@ -294,7 +352,16 @@ void World::step(double dt) {
 void World::integrate(double h) {
   const Vec3 g = settings_.gravity;
   for (BodyState& b : bodies_) {
-    if (b.inv_mass == 0.0) continue;
+    if (!b.moves()) continue;
+    if (b.isRotor()) {  // no gravity, no gyroscopic torque: it turns about its axle
+      b.x_prev = b.x;
+      b.q_prev = b.q;
+      const Vec3 u = b.q * b.rotor_axis;
+      b.omega = u * u.dot(b.omega);
+      rotateExactly(b.q, h * b.omega);
+      b.q_pred = b.q;
+      continue;
+    }
     b.x_prev = b.x;
     b.v += h * g;
     b.x += h * b.v;
@@ -313,6 +380,18 @@ void World::solvePositions(double h) {
   for (FixedJoint& j : fixeds_) prepareFixedJoint(j);
   for (DistanceConstraint& c : distances_) c.lambda = 0.0;
   for (PathConstraint& p : paths_) p.lambda = 0.0;
+  if (settings_.solver == SolverKind::Direct) {
+    direct_->prepare(*this, h);
+    for (int it = 0; it < settings_.iterations; ++it) {
+      direct_->iterate(*this, h);
+      for (ContactManifold& m : manifolds_) {
+        const Contact& c = contacts_[m.first];
+        solveContactPositions(m, contacts_.data(), body(c.a), body(c.b));
+      }
+    }
+    direct_->finish(*this, h);
+    return;
+  }
   const BodyTable table{bodies_.data(), &world_frame_};
   for (int it = 0; it < settings_.iterations; ++it) {
     // Joints first (all types), then distances and paths (cables).
@@ -332,7 +411,7 @@ void World::solvePositions(double h) {
 
 void World::updateVelocities(double h) {
   for (BodyState& b : bodies_) {
-    if (b.inv_mass == 0.0) continue;
+    if (!b.moves()) continue;
     b.v = (b.x - b.x_prev) / h;
     // Not rotationVector(q q_prev^-1) / h, which is wrapped to half a turn
     // per substep: the integrated omega plus the solve's correction.

@@ -18,6 +18,7 @@ inline Scene emptyScene(const std::string& name, double g, const Budget& budget)
   settings.gravity = Vec3(0.0, -g, 0.0);
   settings.substeps = budget.substeps;
   settings.iterations = budget.iterations;
+  settings.solver = budget.solver;
   scene.world = std::make_unique<World>(settings);
   scene.cables = std::make_unique<CableSystem>(*scene.world);
   return scene;

@@ -42,7 +42,10 @@ struct BodyDef {
 
 /// Solver state of one body (Müller et al. 2020, Alg. 2). Static bodies
 /// have zero inverse mass and inertia, so corrections leave them in place
-/// without a branch in the kernels.
+/// without a branch in the kernels. A rotor (the direct solver's model of
+/// a wheel on a fixed axle, World::step) has zero inverse mass and the
+/// inverse inertia u u^T / I_u of its axle u alone: every kernel then turns
+/// it about the axle and never moves its centre, again without a branch.
 struct BodyState {
   Vec3 x = Vec3::Zero();          // position, m
   Quat q = Quat::Identity();      // orientation, local -> world
@@ -61,6 +64,8 @@ struct BodyState {
   Mat3 inertia = Mat3::Zero();
   double linear_damping = 0.0;      // 1/s
   double angular_damping = 0.0;     // 1/s
+  // Body-local unit axle of a rotor; zero for every other body.
+  Vec3 rotor_axis = Vec3::Zero();
 
   /// World point of the body-local point `local`.
   Vec3 toWorld(const Vec3& local) const { return x + q * local; }
@@ -71,6 +76,9 @@ struct BodyState {
     return q * (inv_inertia * (q.conjugate() * v));
   }
   double mass() const { return inv_mass > 0.0 ? 1.0 / inv_mass : 0.0; }
+  bool isRotor() const { return rotor_axis.squaredNorm() > 0.0; }
+  /// False for static bodies only.
+  bool moves() const { return inv_mass > 0.0 || isRotor(); }
 };
 
 /// Builds the solver state of `def`: mass from density unless given,

@@ -5,6 +5,7 @@
 #include <cassert>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -21,14 +22,29 @@
 
 namespace reeve {
 
+/// How each iteration solves the joints and cables (contacts are always
+/// Gauss-Seidel).
+/// - GaussSeidel: one row (a joint's block, a cable span) after another,
+///   as the paper does (SCA 2018 sec. 3, SCA 2020). Converges only while
+///   every wheel is about as heavy as the loads it carries, and needs about
+///   one sweep per wheel for a load to travel along a cable.
+/// - Direct: every joint row and cable span together, in one sparse linear
+///   solve per iteration (direct_solver.h), and every wheel whose only
+///   joint is a hinge to a static body (or the world) through its centre
+///   of mass a rotor: it turns about its axle and nothing moves its centre
+///   (body.h). Right at any mass ratio, tension and cable length.
+enum class SolverKind { GaussSeidel, Direct };
+
 /// Solver knobs. A frame of length dt is split into `substeps` substeps of
-/// h = dt / substeps, each with `iterations` Gauss-Seidel sweeps over all
-/// constraints. More substeps: smaller h, stiffer and more accurate; more
-/// iterations: better convergence within one substep.
+/// h = dt / substeps, each with `iterations` solver iterations (sweeps or
+/// solves, per `solver`) over all constraints. More substeps: smaller h,
+/// stiffer and more accurate; more iterations: better convergence within
+/// one substep.
 struct SolverSettings {
   Vec3 gravity = Vec3(0.0, -9.81, 0.0);  // m/s^2
   int substeps = 10;
   int iterations = 2;
+  SolverKind solver = SolverKind::Direct;
   /// Speed guards: after each substep a body's linear speed (m/s) and
   /// angular speed (rad/s) are clamped to these, so a bad set-up cannot
   /// fling bodies out to infinity. Infinite by default (no effect).
@@ -44,6 +60,8 @@ using FixedId = int;
 using DistanceId = int;
 using PathId = int;
 
+class DirectSolver;
+
 class World {
  public:
   /// Called once per substep after integration and before the position
@@ -52,6 +70,9 @@ class World {
   using SubstepHook = std::function<void(World&, double h)>;
 
   explicit World(SolverSettings settings = {});
+  ~World();
+  World(World&&) noexcept;
+  World& operator=(World&&) noexcept;
 
   /// Adds a body; throws std::invalid_argument for a dynamic body without
   /// a finite positive mass.
@@ -114,6 +135,9 @@ class World {
     assert(id >= 0 && id < bodyCount());
     return defs_[id];
   }
+  /// Mass (kg) of body `id`; 0 for a static body and the world. A rotor's
+  /// BodyState has zero inverse mass, this its real mass.
+  double bodyMass(BodyId id) const { return id == kWorldBody ? 0.0 : mass_[id]; }
   /// The first body whose position, orientation or velocity is not
   /// finite, if any: check after step(), which never throws, to stop a run
   /// with the body's name instead of writing NaN frames.
@@ -187,6 +211,10 @@ class World {
   /// Throws std::invalid_argument unless a and b are two different
   /// existing bodies (kWorldBody allowed).
   void checkJointBodies(const char* kind, BodyId a, BodyId b) const;
+  /// Makes rotors of the wheels on fixed axles for the direct solver, or
+  /// turns them back into free bodies for Gauss-Seidel (SolverKind), when
+  /// the solver or the bodies and joints changed since the last step.
+  void refreshRotors();
   void integrate(double h);
   void solvePositions(double h);
   void updateVelocities(double h);
@@ -213,6 +241,10 @@ class World {
   std::vector<ContactManifold> manifolds_;  // ranges of contacts_, one per touching pair
   double time_ = 0.0;
   double last_h_ = 0.0;
+  std::vector<double> mass_;  // kg per body, 0 when static
+  std::unique_ptr<DirectSolver> direct_;
+  bool rotors_dirty_ = true;  // bodies or joints added since refreshRotors()
+  SolverKind rotors_for_ = SolverKind::GaussSeidel;
 };
 
 }  // namespace reeve

@@ -18,6 +18,7 @@ namespace reeve::machines {
 struct Budget {
   int substeps = 10;
   int iterations = 2;
+  SolverKind solver = SolverKind::Direct;
 };
 
 /// Two boxes on a cable over one wheel of radius `radius_m` hinged at the

@@ -1,0 +1,106 @@
+// The direct solver (SolverKind::Direct, world.h). Each iteration takes
+// every joint row and every cable path at the current poses, linearized,
+// and solves them together instead of one after another:
+//   (J W J^T + alpha~) dlambda = -C - alpha~ lambda,   dx = W J^T dlambda,
+// J the rows' gradients (one 6-vector [linear; angular] per row and moving
+// body), W each body's inverse mass and world inverse inertia, alpha~ =
+// compliance / h^2 (SCA 2020 eq. 4 for all rows at once). Gauss-Seidel
+// passes a correction one row further per sweep and stalls where light
+// bodies sit between heavy ones (a light wheel between a heavy load and its
+// axle, a long cable over many wheels); the joint solve does not care about
+// mass ratios and chain lengths, and with the cable on rotors (body.h) the
+// matrix of one cable is tridiagonal, so it costs O(rows).
+//
+// Unilateral rows (cables pull, limits push one way, drives are bounded)
+// are handled by an active set per iteration: a row whose lambda leaves its
+// bounds is fixed at the bound and the rest solved again; a slack row that
+// the solution would stretch joins in. Rows that depend on others (a belt
+// over two rotors: its two spans cannot be stretched apart) are dropped by
+// the factorization (sparse_ldlt.h), which keeps one of them.
+// Contacts stay Gauss-Seidel, after each iteration. Private to
+// reeve_engine.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "reeve/engine/body.h"
+#include "sparse_ldlt.h"
+
+namespace reeve {
+
+class World;
+
+class DirectSolver {
+ public:
+  /// Starts a substep of `h` s (after the joints' prepare functions):
+  /// rebuilds the row layout if the world's joints, paths or distance
+  /// constraints changed since the last substep, clears the lambdas.
+  void prepare(World& world, double h);
+  /// One iteration: linearize, solve, move the bodies.
+  void iterate(World& world, double h);
+  /// Ends the substep: the force on each rotor's axle, for its hinge's
+  /// wrench (what the axle absorbed of the rows' impulses, and gravity).
+  void finish(World& world, double h);
+
+ private:
+  enum class Source : unsigned char { Hinge, Prismatic, Spherical, Fixed, Distance, Path };
+  struct Entry {  // one moving body of one row
+    int body = 0;  // index into bodies_
+    Vec3 lin = Vec3::Zero(), ang = Vec3::Zero();    // dC / d(position, rotation)
+    Vec3 wlin = Vec3::Zero(), wang = Vec3::Zero();  // W times those
+  };
+  struct Row {
+    Source source;
+    int index;        // of the joint, distance or path
+    int first_entry;  // entries_[first_entry, first_entry + entry_count)
+    int entry_count;
+    int position;     // in the factorization's elimination order
+    int slots_begin;  // off-diagonal slots_: [slots_begin, slots_end)
+    int slots_end;
+  };
+  struct Pair {  // a term J_e1 W J_e2^T of the matrix
+    int e1, e2, slot;
+  };
+  struct Slot {  // an off-diagonal value and the row on its other side
+    int value, other_row;
+  };
+
+  /// Appends the layout of the world's rows to `signature`: for each row
+  /// its source, index and moving bodies. Unchanged signature, unchanged
+  /// layout.
+  void describe(World& world, std::vector<int>& signature) const;
+  void build(World& world);
+  /// Fills C, bounds, activity and the entries' gradients of every row.
+  void evaluate(World& world, double h);
+  /// Solves the active set; leaves dlambda_ and the bodies' dx, dphi.
+  void solveActiveSet();
+  void bodyMotion();
+
+  std::vector<int> signature_, scratch_;
+  std::vector<Row> rows_;
+  std::vector<Entry> entries_;
+  std::vector<Pair> pairs_;
+  std::vector<Slot> slots_;
+  std::vector<BodyId> bodies_;    // moving bodies in some row
+  std::vector<int> body_index_;   // per world body: its index in bodies_, or -1
+  SparseLdlt ldlt_;
+  // Per row: value, compliance term, bounds, accumulated and new lambda,
+  // its state in the active set, where its lambda is mirrored, and for
+  // joint rows the 6-D direction and the joint's impulse accumulators.
+  enum class State : unsigned char { Free, Fixed, Off };
+  std::vector<double> C_, alpha_, lo_, hi_, lambda_, dlambda_, rhs_, x_;
+  std::vector<State> state_;
+  std::vector<char> pulled_;  // per row: its lambda was < 0 when the last substep ended
+  std::vector<double*> mirror_;
+  std::vector<Eigen::Matrix<double, 6, 1>> dir_;
+  std::vector<Vec3*> linear_a_, angular_a_;
+  std::vector<double> full_;  // the assembled matrix values
+  // Per body: inverse mass and world inverse inertia, motion this iteration,
+  // and (rotors) the linear impulse the axle absorbed this substep.
+  std::vector<double> inv_mass_;
+  std::vector<Mat3> inv_inertia_;
+  std::vector<Vec3> dx_, dphi_, absorbed_;
+};
+
+}  // namespace reeve

@@ -1,0 +1,47 @@
+// Sparse LDL^T factorization of a symmetric positive semi-definite matrix
+// whose pattern is fixed between factorizations (Davis, "Algorithm 849: a
+// concise sparse Cholesky factorization package", ACM TOMS 31(4), 2005:
+// elimination tree, up-looking numeric factorization). Private to
+// reeve_engine; the direct solver (direct_solver.h) factors its constraint
+// matrix with it once or twice per iteration, so nothing here allocates
+// after analyze().
+#pragma once
+
+#include <utility>
+#include <vector>
+
+namespace reeve {
+
+class SparseLdlt {
+ public:
+  /// Sets the pattern of an n x n symmetric matrix from its upper triangle:
+  /// `entries` are (row, column) pairs with row <= column, in the order the
+  /// rows and columns are eliminated (permute before calling); duplicates
+  /// share a value. Every diagonal entry must be present. Returns, for each
+  /// pair, the index of its value in values().
+  std::vector<int> analyze(int n, const std::vector<std::pair<int, int>>& entries);
+
+  int size() const { return n_; }
+  /// The matrix's upper-triangle values, as laid out by analyze(); the
+  /// caller fills them before factor().
+  std::vector<double>& values() { return Ax_; }
+  /// Index in values() of diagonal entry k.
+  int diagonalSlot(int k) const { return diagonal_[k]; }
+
+  /// Factors the matrix in values() as L D L^T. A pivot that falls to
+  /// `drop_tolerance` times its diagonal entry or below marks a row that
+  /// depends on earlier ones (a redundant constraint): it is dropped, its
+  /// unknown set to 0 by solve(). Returns the number of rows dropped.
+  int factor(double drop_tolerance);
+  /// Solves L D L^T x = b in place (b in, x out; size n), dropped rows 0.
+  void solve(double* x) const;
+
+ private:
+  int n_ = 0;
+  std::vector<int> Ap_, Ai_, diagonal_;  // upper triangle, column by column
+  std::vector<double> Ax_;
+  std::vector<int> parent_, Lp_, Lnz_, Li_, flag_, pattern_;  // L, column by column
+  std::vector<double> Lx_, inv_d_, y_;
+};
+
+}  // namespace reeve

@@ -52,3 +52,22 @@ TEST(FastSpin, ThinRodSpunOffItsAxesNeverGainsEnergy) {
 
 }  // namespace
 }  // namespace reeve
+
+namespace reeve {
+namespace {
+
+TEST(FastSpin, RotateExactlyIsTheExponentialMapAtEveryAngle) {
+  // Small angles take a series, large ones sin and cos: both must give
+  // the rotation by |phi| about phi (to rounding), on either side of 0.1.
+  for (const double angle : {1e-12, 1e-6, 0.01, 0.0999999, 0.1, 0.2, 1.0, 3.0, 3.0 * kPi}) {
+    const Vec3 axis = Vec3(0.3, -0.5, 0.8).normalized();
+    const Quat start(Eigen::AngleAxisd(0.7, Vec3(1.0, 2.0, -1.0).normalized()));
+    Quat q = start;
+    rotateExactly(q, angle * axis);
+    const Quat expected = (Quat(Eigen::AngleAxisd(angle, axis)) * start).normalized();
+    EXPECT_LT(q.angularDistance(expected), 1e-14) << angle;
+  }
+}
+
+}  // namespace
+}  // namespace reeve

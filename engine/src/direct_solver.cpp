@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cmath>
 
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseCore>
@@ -14,6 +15,7 @@ namespace {
 
 using joint_rows::JointRowSet;
 using joint_rows::kInf;
+using joint_rows::Vec6;
 
 // A pivot this small against its diagonal marks a row that depends on
 // earlier ones (sparse_ldlt.h). Rows of light wheels between heavy loads
@@ -21,6 +23,8 @@ using joint_rows::kInf;
 constexpr double kDropTolerance = 1e-12;
 // Active-set passes per iteration; almost always one or two are enough.
 constexpr int kMaxPasses = 8;
+// Points of a path (a cable's run through pinholes); as path_constraint.cpp.
+constexpr std::size_t kMaxPathPoints = 64;
 
 // The number of rows of a joint with `bilateral` locked rows and the
 // given drive and limits (JointRowSet's layout).
@@ -109,6 +113,7 @@ void DirectSolver::build(World& world) {
       for (const BodyId id : moving) {
         Entry e;
         e.body = bodyIndex(id);
+        e.row = static_cast<int>(rows_.size());
         entries_.push_back(e);
       }
       rows_.push_back(row);
@@ -167,23 +172,50 @@ void DirectSolver::build(World& world) {
   state_.assign(n, State::Free);
   pulled_.assign(n, false);
   mirror_.assign(n, nullptr);
-  dir_.assign(n, Eigen::Matrix<double, 6, 1>::Zero());
+  dir_.assign(n, Vec6::Zero());
   linear_a_.assign(n, nullptr);
   angular_a_.assign(n, nullptr);
   full_.assign(ldlt_.values().size(), 0.0);
   const std::size_t m = bodies_.size();
-  inv_mass_.assign(m, 0.0);
-  inv_inertia_.assign(m, Mat3::Zero());
+  frames_.assign(m, BodyFrame{});
   dx_.assign(m, Vec3::Zero());
   dphi_.assign(m, Vec3::Zero());
   absorbed_.assign(m, Vec3::Zero());
 }
 
-void DirectSolver::prepare(World& world, double /*h*/) {
+void DirectSolver::prepare(World& world, double h) {
   describe(world, scratch_);
   if (scratch_ != signature_) {
-    signature_.swap(scratch_);
+    signature_ = scratch_;  // a copy: scratch_ keeps its capacity for the next substeps
     build(world);
+  }
+  // What stays put over the substep: inverse masses, rotors' axles (they
+  // turn about them), and the paths' compliance, bounds and lambdas.
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    const BodyState& b = world.body(bodies_[i]);
+    BodyFrame& f = frames_[i];
+    f.inv_mass = b.inv_mass;
+    f.inv_axial = b.isRotor() ? b.rotor_axis.dot(b.inv_inertia * b.rotor_axis) : 0.0;
+    f.axle = b.q * b.rotor_axis;
+  }
+  const double inv_h2 = 1.0 / (h * h);
+  for (std::size_t r = 0; r < rows_.size(); ++r) {
+    const Row& row = rows_[r];
+    if (row.source != Source::Path && row.source != Source::Distance) continue;
+    bool unilateral = true;
+    if (row.source == Source::Path) {
+      PathConstraint& p = world.path(row.index);
+      alpha_[r] = p.compliance * inv_h2;
+      mirror_[r] = &p.lambda;
+    } else {
+      DistanceConstraint& c = world.distance(row.index);
+      alpha_[r] = c.compliance * inv_h2;
+      mirror_[r] = &c.lambda;
+      unilateral = c.unilateral;
+    }
+    lo_[r] = -kInf;
+    hi_[r] = unilateral ? 0.0 : kInf;
+    linear_a_[r] = angular_a_[r] = nullptr;
   }
   // A cable that pulled at the end of the last substep starts this one in
   // the active set, even if it is exactly taut (C = 0) after integration:
@@ -193,175 +225,216 @@ void DirectSolver::prepare(World& world, double /*h*/) {
   std::fill(absorbed_.begin(), absorbed_.end(), Vec3::Zero());
 }
 
-void DirectSolver::evaluate(World& world, double h) {
-  const double inv_h2 = 1.0 / (h * h);
+void DirectSolver::evaluateBodies(World& world) {
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     const BodyState& b = world.body(bodies_[i]);
-    inv_mass_[i] = b.inv_mass;
-    const Mat3 R = b.q.toRotationMatrix();
-    inv_inertia_[i] = R * b.inv_inertia * R.transpose();
+    BodyFrame& f = frames_[i];
+    f.R = b.q.toRotationMatrix();
+    if (f.inv_axial == 0.0) f.inv_inertia = f.R * b.inv_inertia * f.R.transpose();
   }
+}
+
+void DirectSolver::weigh(Entry& e) const {
+  // W J: a rotor's angular part is u u^T / I_u (prepare()).
+  const BodyFrame& f = frames_[e.body];
+  e.wlin = f.inv_mass * e.lin;
+  e.wang = f.inv_axial > 0.0 ? Vec3(f.axle * (f.inv_axial * f.axle.dot(e.ang))) : Vec3(f.inv_inertia * e.ang);
+}
+
+Vec3 DirectSolver::arm(const World& world, const PathPoint& point, int slot) const {
+  return slot >= 0 ? Vec3(frames_[slot].R * point.local) : Vec3(world.body(point.body).q * point.local);
+}
+
+void DirectSolver::evaluateSpan(const World& world, int r, const PathPoint& p0, const PathPoint& p1) {
+  // A plain span: C = |p1 - p0| - rest, gradient -u at p0 and u at p1.
+  const Row& row = rows_[r];
+  const int s0 = p0.body == kWorldBody ? -1 : body_index_[p0.body];
+  const int s1 = p1.body == kWorldBody ? -1 : body_index_[p1.body];
+  const Vec3 a0 = arm(world, p0, s0), a1 = arm(world, p1, s1);
+  const Vec3 d = (world.body(p1.body).x + a1) - (world.body(p0.body).x + a0);
+  const double l = d.norm();
+  const Vec3 u = l >= 1e-12 ? Vec3(d / l) : Vec3::Zero();
+  int e = row.first_entry;
+  if (s0 >= 0) {
+    entries_[e].lin = -u;
+    entries_[e].ang = u.cross(a0);
+    ++e;
+  }
+  if (s1 >= 0) {
+    if (s1 == s0) {  // both ends on one body
+      entries_[e - 1].lin.setZero();
+      entries_[e - 1].ang += a1.cross(u);
+    } else {
+      entries_[e].lin = u;
+      entries_[e].ang = a1.cross(u);
+    }
+  }
+  for (e = row.first_entry; e < row.first_entry + row.entry_count; ++e) weigh(entries_[e]);
+  C_[r] = l;  // minus the rest length, by the caller
+}
+
+void DirectSolver::evaluatePath(const World& world, int r) {
+  // C = sum of segment lengths - rest, dC/dp_i = u_{i-1} - u_i (a distance
+  // constraint is a two-point path, pull-only if unilateral).
+  const Row& row = rows_[r];
+  if (row.source == Source::Path) {
+    const PathConstraint& p = world.path(row.index);
+    if (p.points.size() == 2) evaluateSpan(world, r, p.points[0], p.points[1]);
+    else evaluateRun(world, r, p.points.data(), p.points.size());
+    C_[r] -= p.rest_length;
+  } else {
+    const DistanceConstraint& c = world.distance(row.index);
+    evaluateSpan(world, r, PathPoint{c.a, c.local_a}, PathPoint{c.b, c.local_b});
+    C_[r] -= c.rest_length;
+  }
+  // Taut (C >= 0: a cable exactly at its rest length touches too), or
+  // already pulling: in the active set.
+  const bool unilateral = hi_[r] == 0.0;
+  state_[r] = !unilateral || C_[r] >= 0.0 || lambda_[r] < 0.0 || pulled_[r] ? State::Free : State::Off;
+}
+
+void DirectSolver::evaluateRun(const World& world, int r, const PathPoint* points, std::size_t count) {
+  // A run through pinholes: a body holding several points gets the sum of
+  // their gradients.
+  const Row& row = rows_[r];
+  assert(count <= kMaxPathPoints);
+  std::array<Vec3, kMaxPathPoints> arm, pos;
+  std::array<int, kMaxPathPoints> entry;
+  for (std::size_t i = 0; i < count; ++i) {
+    const BodyId id = points[i].body;
+    const int slot = id == kWorldBody ? -1 : body_index_[id];
+    arm[i] = this->arm(world, points[i], slot);
+    pos[i] = world.body(id).x + arm[i];
+    entry[i] = -1;
+    for (int e = row.first_entry; slot >= 0 && e < row.first_entry + row.entry_count; ++e)
+      if (entries_[e].body == slot) entry[i] = e;
+  }
+  for (int e = row.first_entry; e < row.first_entry + row.entry_count; ++e) {
+    entries_[e].lin.setZero();
+    entries_[e].ang.setZero();
+  }
+  double length = 0.0;
+  Vec3 prev_u = Vec3::Zero();
+  for (std::size_t i = 0; i < count; ++i) {
+    Vec3 u = Vec3::Zero();
+    if (i + 1 < count) {
+      const Vec3 d = pos[i + 1] - pos[i];
+      const double l = d.norm();
+      length += l;
+      if (l >= 1e-12) u = d / l;
+    }
+    if (entry[i] >= 0) {
+      const Vec3 grad = prev_u - u;
+      entries_[entry[i]].lin += grad;
+      entries_[entry[i]].ang += arm[i].cross(grad);
+    }
+    prev_u = u;
+  }
+  for (int e = row.first_entry; e < row.first_entry + row.entry_count; ++e) weigh(entries_[e]);
+  C_[r] = length;  // minus the rest length, by the caller
+}
+
+int DirectSolver::evaluateJoint(World& world, int r, double inv_h2) {
+  // All the joint's rows at once.
+  const Row& first = rows_[r];
   JointRowSet set;
+  BodyId a, b;
+  Vec3 *linear_a, *angular_a;
+  double compliance;
+  switch (first.source) {
+    case Source::Hinge: {
+      HingeJoint& j = world.hinge(first.index);
+      joint_rows::hingeRowSet(j, world.body(j.a), world.body(j.b), set);
+      a = j.a, b = j.b, linear_a = &j.impulse_point, angular_a = &j.impulse_axis, compliance = j.compliance;
+      break;
+    }
+    case Source::Prismatic: {
+      PrismaticJoint& j = world.prismatic(first.index);
+      joint_rows::prismaticRowSet(j, world.body(j.a), world.body(j.b), set);
+      a = j.a, b = j.b, linear_a = &j.impulse_linear, angular_a = &j.impulse_angular, compliance = j.compliance;
+      break;
+    }
+    case Source::Spherical: {
+      SphericalJoint& j = world.spherical(first.index);
+      joint_rows::sphericalRowSet(j, world.body(j.a), world.body(j.b), set);
+      a = j.a, b = j.b, linear_a = &j.impulse_linear, angular_a = &j.impulse_angular, compliance = j.compliance;
+      break;
+    }
+    default: {
+      FixedJoint& j = world.fixedJoint(first.index);
+      joint_rows::fixedRowSet(j, world.body(j.a), world.body(j.b), set);
+      a = j.a, b = j.b, linear_a = &j.impulse_linear, angular_a = &j.impulse_angular, compliance = j.compliance;
+      break;
+    }
+  }
+  const int count = set.bilateral.count + set.clamped_count;
+  assert(r + count <= static_cast<int>(rows_.size()));
+  assert(rows_[r + count - 1].source == first.source && rows_[r + count - 1].index == first.index);
+  const bool a_moves = world.body(a).moves(), b_moves = world.body(b).moves();
+  for (int k = 0; k < count; ++k, ++r) {
+    const bool bilateral = k < set.bilateral.count;
+    const int c = k - set.bilateral.count;
+    const Vec6 s = bilateral ? Vec6(set.bilateral.dirs.col(k)) : set.clamped[c].dir;
+    // Row C along s = [s_p; s_w]: b's anchor along s_p, a's rotation
+    // relative to b about s_w (joint_rows.h), so
+    //   J_a = [-s_p; -(r_a x s_p) + s_w],  J_b = [s_p; r_b x s_p - s_w].
+    const Vec3 sp = s.head<3>(), sw = s.tail<3>();
+    int e = rows_[r].first_entry;
+    if (a_moves) {
+      entries_[e].lin = -sp;
+      entries_[e].ang = sw - set.r_a.cross(sp);
+      ++e;
+    }
+    if (b_moves) {
+      entries_[e].lin = sp;
+      entries_[e].ang = set.r_b.cross(sp) - sw;
+    }
+    for (e = rows_[r].first_entry; e < rows_[r].first_entry + rows_[r].entry_count; ++e) weigh(entries_[e]);
+    dir_[r] = s;
+    linear_a_[r] = linear_a;
+    angular_a_[r] = angular_a;
+    if (bilateral) {
+      C_[r] = set.bilateral.values[k];
+      alpha_[r] = compliance * inv_h2;
+      lo_[r] = -kInf;
+      hi_[r] = kInf;
+      mirror_[r] = nullptr;
+      state_[r] = State::Free;
+    } else {
+      const joint_rows::ClampedRow& clamped = set.clamped[c];
+      C_[r] = clamped.C;
+      alpha_[r] = 0.0;
+      lo_[r] = clamped.lo;
+      hi_[r] = clamped.hi;
+      mirror_[r] = clamped.lambda;
+      lambda_[r] = *clamped.lambda;
+      state_[r] = set.active[c] ? State::Free : State::Off;
+    }
+  }
+  return count;
+}
+
+void DirectSolver::evaluate(World& world, double h) {
+  const double inv_h2 = 1.0 / (h * h);
+  evaluateBodies(world);
   const int n = static_cast<int>(rows_.size());
   for (int r = 0; r < n;) {
-    const Row& first = rows_[r];
-    if (first.source == Source::Path || first.source == Source::Distance) {
-      // C = sum of segment lengths - rest; dC/dp_i = u_{i-1} - u_i (a
-      // distance constraint is a two-point path, pull-only if unilateral).
-      std::array<PathPoint, 2> pair;
-      const PathPoint* points;
-      std::size_t count;
-      double rest, compliance;
-      double* lambda;
-      bool unilateral = true;
-      if (first.source == Source::Path) {
-        PathConstraint& p = world.path(first.index);
-        points = p.points.data();
-        count = p.points.size();
-        rest = p.rest_length;
-        compliance = p.compliance;
-        lambda = &p.lambda;
-      } else {
-        DistanceConstraint& c = world.distance(first.index);
-        pair = {PathPoint{c.a, c.local_a}, PathPoint{c.b, c.local_b}};
-        points = pair.data();
-        count = 2;
-        rest = c.rest_length;
-        compliance = c.compliance;
-        lambda = &c.lambda;
-        unilateral = c.unilateral;
-      }
-      for (int e = first.first_entry; e < first.first_entry + first.entry_count; ++e) {
-        entries_[e].lin.setZero();
-        entries_[e].ang.setZero();
-      }
-      double length = 0.0;
-      Vec3 prev_u = Vec3::Zero();
-      for (std::size_t i = 0; i < count; ++i) {
-        const BodyState& b = world.body(points[i].body);
-        const Vec3 arm = b.q * points[i].local, pos = b.x + arm;
-        Vec3 u = Vec3::Zero();
-        if (i + 1 < count) {
-          const BodyState& next = world.body(points[i + 1].body);
-          const Vec3 d = next.x + next.q * points[i + 1].local - pos;
-          const double l = d.norm();
-          length += l;
-          if (l >= 1e-12) u = d / l;
-        }
-        const Vec3 grad = prev_u - u;
-        prev_u = u;
-        if (!b.moves()) continue;
-        for (int e = first.first_entry; e < first.first_entry + first.entry_count; ++e) {
-          if (bodies_[entries_[e].body] != points[i].body) continue;
-          entries_[e].lin += grad;
-          entries_[e].ang += arm.cross(grad);
-          break;
-        }
-      }
-      C_[r] = length - rest;
-      alpha_[r] = compliance * inv_h2;
-      lambda_[r] = *lambda;
-      mirror_[r] = lambda;
-      lo_[r] = -kInf;
-      hi_[r] = unilateral ? 0.0 : kInf;
-      // Taut (C >= 0: a cable exactly at its rest length touches too), or
-      // already pulling: in the active set.
-      state_[r] = !unilateral || C_[r] >= 0.0 || lambda_[r] < 0.0 || pulled_[r] ? State::Free : State::Off;
-      linear_a_[r] = angular_a_[r] = nullptr;
+    if (rows_[r].source == Source::Path || rows_[r].source == Source::Distance) {
+      evaluatePath(world, r);
       ++r;
-      continue;
+    } else {
+      r += evaluateJoint(world, r, inv_h2);
     }
-    // A joint: all its rows at once.
-    BodyId a, b;
-    Vec3 *linear_a, *angular_a;
-    double compliance;
-    switch (first.source) {
-      case Source::Hinge: {
-        HingeJoint& j = world.hinge(first.index);
-        joint_rows::hingeRowSet(j, world.body(j.a), world.body(j.b), set);
-        a = j.a, b = j.b, linear_a = &j.impulse_point, angular_a = &j.impulse_axis, compliance = j.compliance;
-        break;
-      }
-      case Source::Prismatic: {
-        PrismaticJoint& j = world.prismatic(first.index);
-        joint_rows::prismaticRowSet(j, world.body(j.a), world.body(j.b), set);
-        a = j.a, b = j.b, linear_a = &j.impulse_linear, angular_a = &j.impulse_angular, compliance = j.compliance;
-        break;
-      }
-      case Source::Spherical: {
-        SphericalJoint& j = world.spherical(first.index);
-        joint_rows::sphericalRowSet(j, world.body(j.a), world.body(j.b), set);
-        a = j.a, b = j.b, linear_a = &j.impulse_linear, angular_a = &j.impulse_angular, compliance = j.compliance;
-        break;
-      }
-      default: {
-        FixedJoint& j = world.fixedJoint(first.index);
-        joint_rows::fixedRowSet(j, world.body(j.a), world.body(j.b), set);
-        a = j.a, b = j.b, linear_a = &j.impulse_linear, angular_a = &j.impulse_angular, compliance = j.compliance;
-        break;
-      }
-    }
-    const int count = set.bilateral.count + set.clamped_count;
-    assert(r + count <= n && rows_[r + count - 1].source == first.source && rows_[r + count - 1].index == first.index);
-    assert(r + count == n || rows_[r + count].source != first.source || rows_[r + count].index != first.index);
-    const bool a_moves = world.body(a).moves(), b_moves = world.body(b).moves();
-    for (int k = 0; k < count; ++k, ++r) {
-      const bool bilateral = k < set.bilateral.count;
-      const int c = k - set.bilateral.count;
-      const Eigen::Matrix<double, 6, 1> s = bilateral ? Eigen::Matrix<double, 6, 1>(set.bilateral.dirs.col(k))
-                                                      : set.clamped[c].dir;
-      // Row C along s = [s_p; s_w]: b's anchor along s_p, a's rotation
-      // relative to b about s_w (joint_rows.h), so
-      //   J_a = [-s_p; -(r_a x s_p) + s_w],  J_b = [s_p; r_b x s_p - s_w].
-      const Vec3 sp = s.head<3>(), sw = s.tail<3>();
-      int e = rows_[r].first_entry;
-      if (a_moves) {
-        entries_[e].lin = -sp;
-        entries_[e].ang = sw - set.r_a.cross(sp);
-        ++e;
-      }
-      if (b_moves) {
-        entries_[e].lin = sp;
-        entries_[e].ang = set.r_b.cross(sp) - sw;
-      }
-      dir_[r] = s;
-      linear_a_[r] = linear_a;
-      angular_a_[r] = angular_a;
-      if (bilateral) {
-        C_[r] = set.bilateral.values[k];
-        alpha_[r] = compliance * inv_h2;
-        lo_[r] = -kInf;
-        hi_[r] = kInf;
-        mirror_[r] = nullptr;
-        state_[r] = State::Free;
-      } else {
-        const joint_rows::ClampedRow& row = set.clamped[c];
-        C_[r] = row.C;
-        alpha_[r] = 0.0;
-        lo_[r] = row.lo;
-        hi_[r] = row.hi;
-        mirror_[r] = row.lambda;
-        lambda_[r] = *row.lambda;
-        state_[r] = set.active[c] ? State::Free : State::Off;
-      }
-    }
-  }
-  for (Entry& e : entries_) {
-    e.wlin = inv_mass_[e.body] * e.lin;
-    e.wang = inv_inertia_[e.body] * e.ang;
   }
 }
 
 void DirectSolver::bodyMotion() {
   std::fill(dx_.begin(), dx_.end(), Vec3::Zero());
   std::fill(dphi_.begin(), dphi_.end(), Vec3::Zero());
-  for (std::size_t r = 0; r < rows_.size(); ++r) {
-    const double dl = dlambda_[r];
-    if (dl == 0.0) continue;
-    for (int e = rows_[r].first_entry; e < rows_[r].first_entry + rows_[r].entry_count; ++e) {
-      dx_[entries_[e].body] += dl * entries_[e].wlin;
-      dphi_[entries_[e].body] += dl * entries_[e].wang;
-    }
+  for (const Entry& e : entries_) {
+    const double dl = dlambda_[e.row];
+    dx_[e.body] += dl * e.wlin;
+    dphi_[e.body] += dl * e.wang;
   }
 }
 
@@ -424,9 +497,22 @@ void DirectSolver::solveActiveSet() {
   }
 }
 
-void DirectSolver::iterate(World& world, double h) {
-  if (rows_.empty()) return;
+bool DirectSolver::converged(double tolerance) const {
+  if (!(tolerance > 0.0)) return false;
+  for (std::size_t r = 0; r < rows_.size(); ++r) {
+    if (state_[r] != State::Free) continue;  // an off row is met (evaluatePath, addCoordinateRows)
+    const double residual = C_[r] + alpha_[r] * lambda_[r];
+    // A row held at a bound is met when it asks to go further.
+    if ((lambda_[r] >= hi_[r] && residual <= 0.0) || (lambda_[r] <= lo_[r] && residual >= 0.0)) continue;
+    if (std::abs(residual) > tolerance) return false;
+  }
+  return true;
+}
+
+bool DirectSolver::iterate(World& world, double h) {
+  if (rows_.empty()) return false;
   evaluate(world, h);
+  if (converged(world.settings().tolerance)) return false;
   solveActiveSet();
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     BodyState& b = world.body(bodies_[i]);
@@ -444,9 +530,9 @@ void DirectSolver::iterate(World& world, double h) {
       *linear_a_[r] -= dl * dir_[r].head<3>();
       *angular_a_[r] += dl * dir_[r].tail<3>();
     }
-    for (int e = rows_[r].first_entry; e < rows_[r].first_entry + rows_[r].entry_count; ++e)
-      absorbed_[entries_[e].body] += dl * entries_[e].lin;
   }
+  for (const Entry& e : entries_) absorbed_[e.body] += dlambda_[e.row] * e.lin;
+  return true;
 }
 
 void DirectSolver::finish(World& world, double h) {

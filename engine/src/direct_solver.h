@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "reeve/engine/body.h"
+#include "reeve/engine/path_constraint.h"
 #include "sparse_ldlt.h"
 
 namespace reeve {
@@ -35,10 +36,14 @@ class DirectSolver {
  public:
   /// Starts a substep of `h` s (after the joints' prepare functions):
   /// rebuilds the row layout if the world's joints, paths or distance
-  /// constraints changed since the last substep, clears the lambdas.
+  /// constraints changed since the last substep, clears the lambdas, sets
+  /// what stays put over the substep.
   void prepare(World& world, double h);
-  /// One iteration: linearize, solve, move the bodies.
-  void iterate(World& world, double h);
+  /// One iteration: linearize, solve, move the bodies. Returns false, and
+  /// moves nothing, when every row is already met to the settings'
+  /// tolerance: the iterations left would do nothing either, unless
+  /// something else (a contact) moves a body.
+  bool iterate(World& world, double h);
   /// Ends the substep: the force on each rotor's axle, for its hinge's
   /// wrench (what the axle absorbed of the rows' impulses, and gravity).
   void finish(World& world, double h);
@@ -47,6 +52,7 @@ class DirectSolver {
   enum class Source : unsigned char { Hinge, Prismatic, Spherical, Fixed, Distance, Path };
   struct Entry {  // one moving body of one row
     int body = 0;  // index into bodies_
+    int row = 0;
     Vec3 lin = Vec3::Zero(), ang = Vec3::Zero();    // dC / d(position, rotation)
     Vec3 wlin = Vec3::Zero(), wang = Vec3::Zero();  // W times those
   };
@@ -73,6 +79,22 @@ class DirectSolver {
   void build(World& world);
   /// Fills C, bounds, activity and the entries' gradients of every row.
   void evaluate(World& world, double h);
+  void evaluateBodies(World& world);
+  /// The entry's W J from its gradient.
+  void weigh(Entry& e) const;
+  /// Every free row meets its equation C + alpha~ lambda = 0 to within
+  /// `tolerance` (m or rad), or is held at a bound it presses against.
+  bool converged(double tolerance) const;
+  void evaluatePath(const World& world, int row);
+  /// The length (in C_) and gradients of a two-point path, and of a longer
+  /// one (a run through pinholes).
+  void evaluateSpan(const World& world, int row, const PathPoint& p0, const PathPoint& p1);
+  void evaluateRun(const World& world, int row, const PathPoint* points, std::size_t count);
+  /// World arm (m) of a path point on the body with index `slot` in
+  /// bodies_ (-1: a body that does not move).
+  Vec3 arm(const World& world, const PathPoint& point, int slot) const;
+  /// Returns the number of rows the joint has.
+  int evaluateJoint(World& world, int first_row, double inv_h2);
   /// Solves the active set; leaves dlambda_ and the bodies' dx, dphi.
   void solveActiveSet();
   void bodyMotion();
@@ -93,13 +115,18 @@ class DirectSolver {
   std::vector<State> state_;
   std::vector<char> pulled_;  // per row: its lambda was < 0 when the last substep ended
   std::vector<double*> mirror_;
-  std::vector<Eigen::Matrix<double, 6, 1>> dir_;
+  std::vector<Eigen::Matrix<double, 6, 1>> dir_;  // joint_rows::Vec6
   std::vector<Vec3*> linear_a_, angular_a_;
   std::vector<double> full_;  // the assembled matrix values
-  // Per body: inverse mass and world inverse inertia, motion this iteration,
-  // and (rotors) the linear impulse the axle absorbed this substep.
-  std::vector<double> inv_mass_;
-  std::vector<Mat3> inv_inertia_;
+  // Per body: its rotation and W this iteration (a rotor's world axle and
+  // 1 / I about it instead of the inverse inertia), its motion, and the
+  // linear impulse the rows gave it this substep (a rotor's axle took it).
+  struct BodyFrame {
+    Mat3 R = Mat3::Identity(), inv_inertia = Mat3::Zero();
+    Vec3 axle = Vec3::Zero();
+    double inv_mass = 0.0, inv_axial = 0.0;
+  };
+  std::vector<BodyFrame> frames_;
   std::vector<Vec3> dx_, dphi_, absorbed_;
 };
 

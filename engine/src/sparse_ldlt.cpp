@@ -53,42 +53,54 @@ std::vector<int> SparseLdlt::analyze(int n, const std::vector<std::pair<int, int
   Lx_.assign(Lp_[n], 0.0);
   inv_d_.assign(n, 0.0);
   y_.assign(n, 0.0);
-  pattern_.assign(n, 0);
+  // The pattern of each row of L, in the order the numeric factorization
+  // visits it (the reach of the row's column in the tree, topologically),
+  // with where each L(k, i) goes: computed once, so factor() only does
+  // arithmetic.
+  std::vector<int> pattern(n), filled(n, 0);
+  row_start_.assign(n + 1, 0);
+  row_column_.clear();
+  row_slot_.clear();
+  std::fill(flag_.begin(), flag_.end(), -1);
+  for (int k = 0; k < n; ++k) {
+    int top = n;
+    flag_[k] = k;
+    for (int p = Ap_[k]; p < Ap_[k + 1]; ++p) {
+      int len = 0;
+      for (int i = Ai_[p]; flag_[i] != k; i = parent_[i]) {
+        pattern[len++] = i;
+        flag_[i] = k;
+      }
+      while (len > 0) pattern[--top] = pattern[--len];
+    }
+    for (; top < n; ++top) {
+      const int i = pattern[top];
+      const int slot = Lp_[i] + filled[i]++;
+      Li_[slot] = k;
+      row_column_.push_back(i);
+      row_slot_.push_back(slot);
+    }
+    row_start_[k + 1] = static_cast<int>(row_column_.size());
+  }
   return slots;
 }
 
 int SparseLdlt::factor(double drop_tolerance) {
-  // Davis, ldl_numeric: row k of L from a sparse triangular solve with the
-  // rows above it, whose pattern is the reach of column k in the tree.
+  // Davis, ldl_numeric, on the pattern analyze() found: row k of L from a
+  // sparse triangular solve with the rows above it.
   int dropped = 0;
   for (int k = 0; k < n_; ++k) {
-    y_[k] = 0.0;
-    int top = n_;
-    flag_[k] = k;
-    Lnz_[k] = 0;
-    for (int p = Ap_[k]; p < Ap_[k + 1]; ++p) {
-      int i = Ai_[p];
-      y_[i] += Ax_[p];
-      int len = 0;
-      for (; flag_[i] != k; i = parent_[i]) {
-        pattern_[len++] = i;
-        flag_[i] = k;
-      }
-      while (len > 0) pattern_[--top] = pattern_[--len];
-    }
+    for (int p = Ap_[k]; p < Ap_[k + 1]; ++p) y_[Ai_[p]] += Ax_[p];
     double d = y_[k];
     y_[k] = 0.0;
-    for (; top < n_; ++top) {
-      const int i = pattern_[top];
+    for (int t = row_start_[k]; t < row_start_[k + 1]; ++t) {
+      const int i = row_column_[t], slot = row_slot_[t];
       const double yi = y_[i];
       y_[i] = 0.0;
-      const int end = Lp_[i] + Lnz_[i];
-      for (int p = Lp_[i]; p < end; ++p) y_[Li_[p]] -= Lx_[p] * yi;
+      for (int p = Lp_[i]; p < slot; ++p) y_[Li_[p]] -= Lx_[p] * yi;
       const double l_ki = yi * inv_d_[i];
       d -= l_ki * yi;
-      Li_[end] = k;
-      Lx_[end] = l_ki;
-      ++Lnz_[i];
+      Lx_[slot] = l_ki;
     }
     if (d > drop_tolerance * Ax_[diagonal_[k]]) {
       inv_d_[k] = 1.0 / d;
@@ -102,10 +114,10 @@ int SparseLdlt::factor(double drop_tolerance) {
 
 void SparseLdlt::solve(double* x) const {
   for (int j = 0; j < n_; ++j)
-    for (int p = Lp_[j]; p < Lp_[j] + Lnz_[j]; ++p) x[Li_[p]] -= Lx_[p] * x[j];
+    for (int p = Lp_[j]; p < Lp_[j + 1]; ++p) x[Li_[p]] -= Lx_[p] * x[j];
   for (int j = 0; j < n_; ++j) x[j] *= inv_d_[j];
   for (int j = n_ - 1; j >= 0; --j)
-    for (int p = Lp_[j]; p < Lp_[j] + Lnz_[j]; ++p) x[j] -= Lx_[p] * x[Li_[p]];
+    for (int p = Lp_[j]; p < Lp_[j + 1]; ++p) x[j] -= Lx_[p] * x[Li_[p]];
 }
 
 }  // namespace reeve

@@ -40,7 +40,8 @@ class SparseLdlt {
   int n_ = 0;
   std::vector<int> Ap_, Ai_, diagonal_;  // upper triangle, column by column
   std::vector<double> Ax_;
-  std::vector<int> parent_, Lp_, Lnz_, Li_, flag_, pattern_;  // L, column by column
+  std::vector<int> parent_, Lp_, Lnz_, Li_, flag_;  // L, column by column
+  std::vector<int> row_start_, row_column_, row_slot_;  // each row's pattern in L
   std::vector<double> Lx_, inv_d_, y_;
 };
 

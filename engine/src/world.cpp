@@ -322,6 +322,7 @@ double World::tension(DistanceId id) const {
 void World::step(double dt) {
   assert(settings_.substeps > 0 && settings_.iterations > 0);
   if (rotors_dirty_ || rotors_for_ != settings_.solver) refreshRotors();
+  last_iterations_ = 0;
   const double h = dt / settings_.substeps;
   for (int s = 0; s < settings_.substeps; ++s) {
     integrate(h);
@@ -383,7 +384,9 @@ void World::solvePositions(double h) {
   if (settings_.solver == SolverKind::Direct) {
     direct_->prepare(*this, h);
     for (int it = 0; it < settings_.iterations; ++it) {
-      direct_->iterate(*this, h);
+      const bool moved = direct_->iterate(*this, h);
+      if (!moved && manifolds_.empty()) break;  // converged: the rest would do nothing
+      ++last_iterations_;
       for (ContactManifold& m : manifolds_) {
         const Contact& c = contacts_[m.first];
         solveContactPositions(m, contacts_.data(), body(c.a), body(c.b));
@@ -393,6 +396,7 @@ void World::solvePositions(double h) {
     return;
   }
   const BodyTable table{bodies_.data(), &world_frame_};
+  last_iterations_ += settings_.iterations;
   for (int it = 0; it < settings_.iterations; ++it) {
     // Joints first (all types), then distances and paths (cables).
     for (HingeJoint& j : hinges_) solveHingeJoint(j, body(j.a), body(j.b), h);

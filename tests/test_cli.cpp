@@ -220,6 +220,19 @@ TEST_F(Cli, SegmentWritesAValidSegmentedRopeSceneAndRefusesToOverwrite) {
   EXPECT_NE(unknown.err.find("rope"), std::string::npos) << "lists the cable names: " << unknown.err;
 }
 
+TEST_F(Cli, SolverMethodComesFromTheSceneUnlessOverridden) {
+  const std::string atwood = std::string(REEVE_SCENES_DIR) + "/atwood.json";
+  const Result scene = reeve("run " + atwood + " --frames 2");
+  ASSERT_EQ(scene.code, 0) << scene.err;
+  EXPECT_NE(scene.out.find("10 substeps x 2 iterations, direct)"), std::string::npos) << scene.out;
+  const Result paper = reeve("run " + atwood + " --frames 2 --solver gauss-seidel --substeps 1 --iterations 10");
+  ASSERT_EQ(paper.code, 0) << paper.err;
+  EXPECT_NE(paper.out.find("1 substeps x 10 iterations, gauss-seidel)"), std::string::npos) << paper.out;
+  const Result bad = reeve("run " + atwood + " --solver jacobi");
+  EXPECT_EQ(bad.code, 64);
+  EXPECT_NE(bad.err.find("--solver: jacobi not in {direct,gauss-seidel}"), std::string::npos) << bad.err;
+}
+
 TEST_F(Cli, UsageErrorsAndHelp) {
   EXPECT_EQ(reeve("run --frames -3").code, 64);
   EXPECT_EQ(reeve("frobnicate").code, 64);

@@ -13,6 +13,7 @@ namespace {
 constexpr double kFrameRateHz = 60.0;
 constexpr int kSubsteps = 10;
 constexpr int kIterations = 2;
+constexpr const char* kMethod = "direct";
 constexpr double kDurationS = 5.0;
 const Vec3 kGravity(0.0, -9.81, 0.0);
 
@@ -22,6 +23,8 @@ SolverSettings solverOf(const nlohmann::json& solver) {
       solver.contains("gravity_m_per_s2") ? vec3(solver.at("gravity_m_per_s2")) : kGravity;
   settings.substeps = solver.value("substeps", kSubsteps);
   settings.iterations = solver.value("iterations", kIterations);
+  // The schema allows only the known names.
+  settings.solver = *solverMethodFromName(solver.value("method", std::string(kMethod)));
   settings.max_linear_speed = solver.value("max_linear_speed_m_per_s", settings.max_linear_speed);
   settings.max_angular_speed = solver.value("max_angular_speed_rad_per_s", settings.max_angular_speed);
   return settings;

@@ -80,6 +80,7 @@ TEST(SceneSchema, DefaultsAreWhatTheLoaderApplies) {
   EXPECT_DOUBLE_EQ(s.frame_rate_hz, solver.at("frame_rate_hz").at("default").get<double>());
   EXPECT_EQ(s.world->settings().substeps, solver.at("substeps").at("default").get<int>());
   EXPECT_EQ(s.world->settings().iterations, solver.at("iterations").at("default").get<int>());
+  EXPECT_EQ(solverMethodName(s.world->settings().solver), solver.at("method").at("default").get<std::string>());
   const auto gravity = solver.at("gravity_m_per_s2").at("default").get<std::vector<double>>();
   EXPECT_EQ(s.world->settings().gravity, Vec3(gravity[0], gravity[1], gravity[2]));
   EXPECT_DOUBLE_EQ(s.duration_s,

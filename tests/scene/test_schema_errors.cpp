@@ -46,7 +46,7 @@ TEST(SchemaErrors, AttachmentWithoutPoint) {
 
 TEST(SchemaErrors, UnknownFieldNameIsEscapedInThePointer) {
   expectError(baseWith(R"("solver": {})", R"("solver": {"a/b~c": 1})"), "/solver/a~1b~0c",
-              "no property \"a/b~c\" (allowed: frame_rate_hz, substeps, iterations, "
+              "no property \"a/b~c\" (allowed: frame_rate_hz, substeps, iterations, method, "
               "max_linear_speed_m_per_s, max_angular_speed_rad_per_s, gravity_m_per_s2)",
               "\"a/b~c\"");
 }
@@ -113,6 +113,11 @@ TEST(SchemaErrors, FieldOfViewOutOfRange) {
 TEST(SchemaErrors, UnknownShapeType) {
   expectError(baseWith(R"("type": "sphere")", R"("type": "cone")"), "/bodies/2/shape/type",
               "one of \"box\", \"cylinder\", \"sphere\"", "\"cone\"");
+}
+
+TEST(SchemaErrors, UnknownSolverMethod) {
+  expectError(baseWith(R"("solver": {})", R"("solver": {"method": "jacobi"})"), "/solver/method",
+              "one of \"direct\", \"gauss-seidel\"", "\"jacobi\"");
 }
 
 TEST(SchemaErrors, UnknownLinkOrientation) {

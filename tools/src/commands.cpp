@@ -69,6 +69,7 @@ int simulate(const RunOptions& o) {
                                 : loadScene(o.scene);
   if (o.substeps) scene.world->settings().substeps = *o.substeps;
   if (o.iterations) scene.world->settings().iterations = *o.iterations;
+  if (!o.solver.empty()) scene.world->settings().solver = *solverMethodFromName(o.solver);
   const int frames = o.frames.value_or(scene.frameCount());
   checkOutputs(o, frames);
 
@@ -120,9 +121,10 @@ int simulate(const RunOptions& o) {
   }
   if (video) video->finish();
 
-  std::printf("reeve: simulated %d frames of '%s' (%.3f s, %d substeps x %d iterations) in %.3f ms/frame of physics\n",
+  std::printf("reeve: simulated %d frames of '%s' (%.3f s, %d substeps x %d iterations, %s) in %.3f ms/frame of physics\n",
               frames, scene.name.c_str(), frames * dt, scene.world->settings().substeps,
-              scene.world->settings().iterations, 1e3 * physics_s / frames);
+              scene.world->settings().iterations, solverMethodName(scene.world->settings().solver),
+              1e3 * physics_s / frames);
   if (!o.png_dir.empty())
     std::printf("  PNG frames: %s .. %s\n", framePath(o.png_dir, 0).c_str(),
                 framePath(o.png_dir, frames - 1).filename().c_str());

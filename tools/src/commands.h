@@ -15,6 +15,7 @@ inline constexpr int kExitUsage = 64;        ///< bad command line
 struct RunOptions {
   std::string scene;  ///< empty: the built-in default scene
   std::optional<int> frames, substeps, iterations;
+  std::string solver;  ///< "direct" or "gauss-seidel" (checked by the parser); empty: the scene's
   std::filesystem::path png_dir, video, csv, events;
   int width = 1280, height = 720;
   bool force = false;

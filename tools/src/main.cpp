@@ -22,6 +22,9 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   run_cmd->add_option("--iterations", run.iterations, "Solver iterations per substep (overrides the scene)")
       ->check(CLI::PositiveNumber);
+  run_cmd->add_option("--solver", run.solver,
+                      "direct (joints and cables solved together) or gauss-seidel (the paper's); overrides the scene")
+      ->check(CLI::IsMember({"direct", "gauss-seidel"}));
   run_cmd->add_option("--png", run.png_dir, "Write frame_NNNNN.png files into this folder");
   run_cmd->add_option("--video", run.video, "Write an H.264 MP4 video (needs the ffmpeg program)");
   run_cmd->add_option("--csv", run.csv, "Write time, body positions and cable tensions per frame");

@@ -97,6 +97,12 @@ Scene loadScene(const std::filesystem::path& path);
 /// Throws SceneError at the first problem.
 Scene parseScene(const std::string& json_text, const std::string& source_name);
 
+/// The scene format's name of a solver method (`solver.method`):
+/// "direct" or "gauss-seidel".
+const char* solverMethodName(SolverKind method);
+/// The solver method called `name` in the scene format, if there is one.
+std::optional<SolverKind> solverMethodFromName(std::string_view name);
+
 /// The text of scenes/simple.json (paper Fig. 12, left), embedded at build
 /// time so programs work from any folder.
 std::string_view defaultSceneJson();

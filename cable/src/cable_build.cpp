@@ -152,6 +152,7 @@ int CableSystem::addCable(const CableDef& def) {
     }
     last_q_[link.body] = world_.body(link.body).q;
   }
+  cable.total_length = total;
   cables_.push_back(std::move(cable));
   return static_cast<int>(cables_.size() - 1);
 }

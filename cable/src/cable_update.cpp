@@ -1,6 +1,8 @@
 // The per-substep cable update: paper Alg. 1 (tangent points, rest
 // lengths, pinholes) and Alg. 2 (stored cable, hybrid links, merge, split).
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <numbers>
 
 #include "link_geometry.h"
@@ -50,6 +52,12 @@ void CableSystem::update(double time_s, double h) {
     splitAtCrossedLinks(cable, c, time_s);
     syncRuns(cable);
   }
+#ifndef NDEBUG
+  if (const auto broken = invariantViolation()) {
+    std::fprintf(stderr, "reeve: cable bookkeeping broken at t = %g s: %s\n", time_s, broken->c_str());
+    std::abort();
+  }
+#endif
 }
 
 void CableSystem::updateJoint(Cable& cable, int j) {

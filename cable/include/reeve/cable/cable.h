@@ -147,6 +147,7 @@ struct Cable {
   std::string name;
   bool closed = false;
   double compliance_per_m = 0.0;  // 1/N: span compliance = this x rest length
+  double total_length = 0.0;      // m: rest lengths plus stored cable, as made or set
   std::vector<Link> links;
   std::vector<CableJoint> joints;  // joints[j] leaves links[j]
 };
@@ -197,6 +198,14 @@ class CableSystem {
   Vec3 endPoint(int c, int j) const;
   /// Rest lengths plus stored cable of cable c (m): conserved by update().
   double totalLength(int c) const;
+  /// The bookkeeping's invariants after an update, or what breaks them: no
+  /// active span's rest length and no rolling link's stored cable below 0
+  /// (a spool's cable running out and a link emptying are events that end
+  /// there, Alg. 2), and each cable's total length what it was made with
+  /// or set to (setRestLength). Rounding is allowed 1e-9 of the total.
+  /// Debug builds check it at the end of every update() and abort with
+  /// the message; tests call it.
+  std::optional<std::string> invariantViolation() const;
   /// Sets the rest length (m, >= 0) of joint j of cable c: a winch paying
   /// out or hauling in cable, or slack given after set-up.
   void setRestLength(int c, int j, double rest_length_m);

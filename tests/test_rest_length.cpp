@@ -11,17 +11,19 @@ namespace reeve {
 namespace {
 
 // A static post, a wheel (radius 0.5, axis z) and a second post: the cable
-// runs post A -> over the wheel clockwise -> down to post B.
+// runs post A -> over the wheel clockwise -> down to post B. Post A at
+// `post_a`: far enough for span 0 to give up what a test turns the wheel
+// by (rest lengths never go below zero).
 struct WheelRig {
   double radius = 0.5;
   World world;
   CableSystem cables{world};
   BodyId wheel;
   int cable;
-  explicit WheelRig(int orientation = -1) {
+  explicit WheelRig(int orientation = -1, const Vec3& post_a = Vec3(-2.0, -1.0, 0.0)) {
     BodyDef post;
     post.is_static = true;
-    post.position = Vec3(-2.0, -1.0, 0.0);
+    post.position = post_a;
     const BodyId a = world.addBody(post);
     post.position = Vec3(1.5, -2.0, 0.0);
     const BodyId b = world.addBody(post);
@@ -47,7 +49,7 @@ TEST(RestLength, TurningInThePayingOutSenseLengthensTheLeavingSpanByRadiusTimesA
   // The cable leaves the wheel into span 1 travelling clockwise; turning the
   // wheel clockwise (negative about z) by 1.5 turns pays out r * 3 pi into
   // span 1 and takes the same from span 0.
-  WheelRig rig(-1);
+  WheelRig rig(-1, Vec3(-8.0, -1.0, 0.0));
   const double d0 = rig.cables.restLength(rig.cable, 0);
   const double d1 = rig.cables.restLength(rig.cable, 1);
   const double angle = 3.0 * std::numbers::pi;
@@ -61,7 +63,7 @@ TEST(RestLength, AWheelTurningOneAndAHalfTurnsInOneSubstepPaysOutEveryTurn) {
   // omega: geometrically the tangent point is where it was a half turn
   // ago, either way round; the wheel's own turn says which and how often.
   for (const double angle : {3.0 * std::numbers::pi, 7.9, 0.5 * std::numbers::pi}) {
-    WheelRig rig(-1);
+    WheelRig rig(-1, Vec3(-8.0, -1.0, 0.0));
     const double d1 = rig.cables.restLength(rig.cable, 1);
     const double h = 1.0 / 600.0;
     BodyState& wheel = rig.world.body(rig.wheel);

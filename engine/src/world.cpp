@@ -64,8 +64,10 @@ Mat3 skew(const Vec3& v) {
 // spinning off their axes and overflows once h |w| nears 1.
 Vec3 gyroscopicStep(const Mat3& inertia, const Vec3& w, double h) {
   const Vec3 Iw = inertia * w;
+  const Vec3 torque = w.cross(Iw);  // 0 for a spin about a principal axis, or any spin of a cube
+  if (torque.squaredNorm() == 0.0) return w;
   const Mat3 J = inertia + h * (skew(w) * inertia - skew(Iw));
-  return w - J.partialPivLu().solve(h * w.cross(Iw));
+  return w - J.partialPivLu().solve(h * torque);
 }
 constexpr double kAny = std::numeric_limits<double>::infinity();
 

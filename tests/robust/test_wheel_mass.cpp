@@ -63,6 +63,29 @@ TEST(WheelMass, AtwoodCarriesKilonewtonLoadsOnALightWheel) {
     }
 }
 
+TEST(WheelMass, TheAxleCarriesBothStrandsAndTheWheelsWeight) {
+  // A wheel on a fixed axle does not move, so the hinge holds it up with
+  // T1 + T2 + M g: with the direct solver the wheel is a rotor with no
+  // hinge rows, and the force is what its axle absorbed of the cable's
+  // pull plus its weight; with Gauss-Seidel, the hinge's point rows.
+  for (const SolverKind method : {SolverKind::Direct, SolverKind::GaussSeidel}) {
+    AtwoodSpec spec;
+    spec.budget.solver = method;
+    machines::Atwood m = machines::atwood(spec);
+    World& w = *m.scene.world;
+    for (int f = 0; f < 30; ++f) w.step(1.0 / 60.0);
+    EXPECT_EQ(w.body(m.wheel).isRotor(), method == SolverKind::Direct);
+    const auto want = machines::atwoodMotion(spec.light_kg, spec.heavy_kg, spec.wheel_kg, spec.gravity);
+    const double expected = want.tension_light + want.tension_heavy + spec.wheel_kg * spec.gravity;
+    const JointWrench wrench = w.hingeWrench(m.axle);
+    std::printf("[ measured ] axle force, %s: %.6f N vs T1 + T2 + M g = %.6f N\n", solverMethodName(method),
+                wrench.force.y(), expected);
+    EXPECT_NEAR(wrench.force.y(), expected, 1e-3 * expected);
+    EXPECT_NEAR(wrench.force.x(), 0.0, 1e-6 * expected);
+    EXPECT_NEAR(wrench.torque.norm(), 0.0, 1e-6 * expected);
+  }
+}
+
 TEST(WheelMass, SimpleSceneMeetsItsClosedFormForAnyWheelMass) {
   // Paper Fig. 12 with the right box made 3 kg so that it falls, the push
   // on the bottom left box taken away, and both wheels of mass M: the

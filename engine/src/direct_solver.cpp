@@ -109,7 +109,7 @@ void DirectSolver::build(World& world) {
       k += 5;
     }
     for (int r = 0; r < count; ++r) {
-      Row row{source, index, static_cast<int>(entries_.size()), static_cast<int>(moving.size()), 0, 0, 0};
+      Row row{source, index, static_cast<int>(entries_.size()), static_cast<int>(moving.size()), 0, 0, 0, 0};
       for (const BodyId id : moving) {
         Entry e;
         e.body = bodyIndex(id);
@@ -120,6 +120,9 @@ void DirectSolver::build(World& world) {
     }
   }
   const int n = static_cast<int>(rows_.size());
+  rotor_entries_.clear();
+  for (int e = 0; e < static_cast<int>(entries_.size()); ++e)
+    if (world.body(bodies_[entries_[e].body]).isRotor()) rotor_entries_.push_back(e);
   // Rows that share a moving body are coupled; order them to keep the
   // factor sparse (approximate minimum degree).
   std::vector<std::vector<int>> on_body(bodies_.size());
@@ -150,6 +153,7 @@ void DirectSolver::build(World& world) {
         upper.emplace_back(std::min(p, q), std::max(p, q));
       }
   const std::vector<int> slot = ldlt_.analyze(n, upper);
+  for (Row& row : rows_) row.diagonal = ldlt_.diagonalSlot(row.position);
   std::vector<std::vector<Slot>> coupled(n);
   for (std::size_t i = 0; i < pairs_.size(); ++i) {
     pairs_[i].slot = slot[i];
@@ -447,30 +451,34 @@ void DirectSolver::solveActiveSet() {
   }
   std::vector<double>& A = ldlt_.values();
   for (int pass = 0; pass < kMaxPasses; ++pass) {
-    // The free rows' system; fixed rows move to the right-hand side, and
-    // fixed and off rows become identity rows.
+    // The free rows' system: fixed rows move to the right-hand side, and
+    // fixed and off rows become identity rows (x = their known dlambda).
     std::copy(full_.begin(), full_.end(), A.begin());
+    bool all_free = true;
     for (int r = 0; r < n; ++r) {
       const Row& row = rows_[r];
-      const int d = ldlt_.diagonalSlot(row.position);
       if (state_[r] == State::Free) {
-        A[d] += alpha_[r];
-        rhs_[r] = -C_[r] - alpha_[r] * lambda_[r];
+        A[row.diagonal] += alpha_[r];
+        x_[row.position] = -C_[r] - alpha_[r] * lambda_[r];
         continue;
       }
+      all_free = false;
       for (int s = row.slots_begin; s < row.slots_end; ++s) A[slots_[s].value] = 0.0;
-      A[d] = 1.0;
-      rhs_[r] = state_[r] == State::Fixed ? dlambda_[r] : 0.0;
+      A[row.diagonal] = 1.0;
+      if (state_[r] == State::Off) dlambda_[r] = 0.0;
+      x_[row.position] = dlambda_[r];
     }
-    for (int r = 0; r < n; ++r) {
-      if (state_[r] != State::Fixed) continue;
-      for (int s = rows_[r].slots_begin; s < rows_[r].slots_end; ++s)
-        if (state_[slots_[s].other_row] == State::Free) rhs_[slots_[s].other_row] -= full_[slots_[s].value] * dlambda_[r];
-    }
-    for (int r = 0; r < n; ++r) x_[rows_[r].position] = rhs_[r];
+    if (!all_free)
+      for (int r = 0; r < n; ++r) {
+        if (state_[r] != State::Fixed) continue;
+        for (int s = rows_[r].slots_begin; s < rows_[r].slots_end; ++s) {
+          const int other = slots_[s].other_row;
+          if (state_[other] == State::Free) x_[rows_[other].position] -= full_[slots_[s].value] * dlambda_[r];
+        }
+      }
     ldlt_.factor(kDropTolerance);
     ldlt_.solve(x_.data());
-    for (int r = 0; r < n; ++r) dlambda_[r] = state_[r] == State::Off ? 0.0 : x_[rows_[r].position];
+    for (int r = 0; r < n; ++r) dlambda_[r] = x_[rows_[r].position];
     bodyMotion();
     if (pass + 1 == kMaxPasses) break;
     bool changed = false;
@@ -518,7 +526,7 @@ bool DirectSolver::iterate(World& world, double h) {
     BodyState& b = world.body(bodies_[i]);
     // The exact rotation: a light wheel may turn radians in one solve, and
     // the first-order rotateBy() would turn it less than the solve asked.
-    b.x += dx_[i];
+    if (frames_[i].inv_mass > 0.0) b.x += dx_[i];
     rotateExactly(b.q, dphi_[i]);
   }
   for (std::size_t r = 0; r < rows_.size(); ++r) {
@@ -531,7 +539,7 @@ bool DirectSolver::iterate(World& world, double h) {
       *angular_a_[r] += dl * dir_[r].tail<3>();
     }
   }
-  for (const Entry& e : entries_) absorbed_[e.body] += dlambda_[e.row] * e.lin;
+  for (const int e : rotor_entries_) absorbed_[entries_[e].body] += dlambda_[entries_[e].row] * entries_[e].lin;
   return true;
 }
 

@@ -62,6 +62,7 @@ class DirectSolver {
     int first_entry;  // entries_[first_entry, first_entry + entry_count)
     int entry_count;
     int position;     // in the factorization's elimination order
+    int diagonal;     // index of its diagonal value in the factorization
     int slots_begin;  // off-diagonal slots_: [slots_begin, slots_end)
     int slots_end;
   };
@@ -102,6 +103,7 @@ class DirectSolver {
   std::vector<int> signature_, scratch_;
   std::vector<Row> rows_;
   std::vector<Entry> entries_;
+  std::vector<int> rotor_entries_;  // entries on rotors: their axles' loads (finish())
   std::vector<Pair> pairs_;
   std::vector<Slot> slots_;
   std::vector<BodyId> bodies_;    // moving bodies in some row

@@ -119,7 +119,7 @@ double ropeMass(const std::string& file) {
   reeve::Scene s = reeve::loadScene(file);
   double m = 0.0;
   for (reeve::BodyId id = 0; id < s.world->bodyCount(); ++id)
-    if (isSegment(*s.world, id)) m += s.world->body(id).mass();
+    if (isSegment(*s.world, id)) m += s.world->bodyMass(id);
   return m;
 }
 

@@ -3,7 +3,9 @@
 // off its axes does not gain energy from the gyroscopic update.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <numbers>
+#include <random>
 
 #include "reeve/engine/world.h"
 
@@ -55,6 +57,41 @@ TEST(FastSpin, ThinRodSpunOffItsAxesNeverGainsEnergy) {
 
 namespace reeve {
 namespace {
+
+TEST(FastSpin, FlatBoxesSpunNearTheirMiddleAxisNeverGainEnergyOrMomentum) {
+  // Three different moments: one Newton step of implicit Euler can blow up
+  // near a spin about the middle axis at h |w| near 1 (its Jacobian goes
+  // singular; one such plate gained 1e5 times its energy in a step). Over
+  // many spins of flat boxes at h |w| from 0.2 to 4.5 per substep, the
+  // kinetic energy and |L| (both conserved by the free motion) never grow.
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  const double h = 1.0 / 60.0;
+  for (int run = 0; run < 100; ++run) {
+    World world(SolverSettings{Vec3::Zero(), 1, 1});
+    BodyDef def;
+    def.shape = Shape::box(Vec3(1.0, 0.3 + 0.5 * std::abs(uniform(rng)), 0.02 + 0.1 * std::abs(uniform(rng))));
+    def.mass = 1.0;
+    def.angular_velocity = Vec3(uniform(rng), uniform(rng), uniform(rng)).normalized() *
+                           (std::exp(1.5 * uniform(rng)) / h);
+    const BodyId id = world.addBody(def);
+    const auto energy = [&] {
+      const BodyState& b = world.body(id);
+      const Vec3 w = b.q.conjugate() * b.omega;
+      return 0.5 * w.dot(b.inertia * w);
+    };
+    const auto momentum = [&] {
+      const BodyState& b = world.body(id);
+      return (b.inertia * (b.q.conjugate() * b.omega)).norm();
+    };
+    const double e0 = energy(), l0 = momentum();
+    for (int f = 0; f < 120; ++f) {
+      world.step(h);
+      ASSERT_LE(energy(), e0 * (1.0 + 1e-9)) << "run " << run << ", frame " << f;
+      ASSERT_LE(momentum(), l0 * (1.0 + 1e-9)) << "run " << run << ", frame " << f;
+    }
+  }
+}
 
 TEST(FastSpin, RotateExactlyIsTheExponentialMapAtEveryAngle) {
   // Small angles take a series, large ones sin and cos: both must give

@@ -55,7 +55,7 @@ TEST(RopeSegments, SegmentedAtwoodIsValidFollowsThePathAndHoldsTheBoxes) {
   EXPECT_LT((prev - w.body(heavy).toWorld(Vec3(0, 0.1, 0))).norm(), 1e-9);
   EXPECT_NEAR(chain, cable_length, 1e-6 * cable_length);
   double rope_mass = 0.0;
-  for (BodyId id = original.world->bodyCount(); id < w.bodyCount(); ++id) rope_mass += w.body(id).mass();
+  for (BodyId id = original.world->bodyCount(); id < w.bodyCount(); ++id) rope_mass += w.bodyMass(id);
   EXPECT_NEAR(rope_mass, 0.01 * 1.0, 1e-12);  // 1 % of the lighter box
 
   // The rope transmits force: the heavy box goes down, the light one up.

@@ -29,17 +29,22 @@ double payOut(const Link& link, const Vec3& old_anchor, const Vec3& new_anchor, 
 
 void CableSystem::measureTurns(double h) {
   // The geometric turn since the last update is known only up to whole
-  // turns; the integration's h omega supplies them, the solver's last
-  // correction (small) the rest.
+  // turns; the last solve's own turn (BodyState::solve_turn, as far as the
+  // direct solver turned it) and this substep's integration (h omega)
+  // supply them, the geometry the rest.
   for (const BodyId b : rolling_bodies_) {
     const BodyState& body = world_.body(b);
     const Vec3 n = body.q * Vec3::UnitZ();
     const Quat dq = body.q * last_q_[b].conjugate();
     const double twist = 2.0 * std::atan2(dq.vec().dot(n), dq.w());
-    const double integrated = h * body.omega.dot(n);
-    turn_[b] = integrated + std::remainder(twist - integrated, 2.0 * std::numbers::pi);
+    const Vec3 solved = solve_turn_counted_ ? Vec3::Zero() : body.solve_turn;
+    const double expected = (h * body.omega + solved).dot(n);
+    turn_[b] = expected + std::remainder(twist - expected, 2.0 * std::numbers::pi);
     last_q_[b] = body.q;
   }
+  // An update by hand between steps (h = 0) has counted the last solve's
+  // turn; the next substep's must not count it again.
+  solve_turn_counted_ = h == 0.0;
 }
 
 void CableSystem::update(double time_s, double h) {

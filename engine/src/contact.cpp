@@ -47,6 +47,8 @@ void solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, 
   const double radius = m.patch_radius;
   const Vec3 xa = a.x, xb = b.x, friction_before = m.friction_impulse;
   const Quat qa = a.q, qb = b.q;
+  const Vec3 impulse_a = a.impulse, impulse_b = b.impulse;
+  const Vec3 angular_a = a.angular_impulse, angular_b = b.angular_impulse;
   const double twist_before = m.twist_impulse;
   for (int sweep = 0; sweep < kManifoldSweeps; ++sweep) {
     // Tangential: C = |dp_t| of the centre, gradient dp_t / |dp_t| wrt b.
@@ -77,6 +79,10 @@ void solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, 
     a.q = qa;
     b.x = xb;
     b.q = qb;
+    a.impulse = impulse_a;
+    b.impulse = impulse_b;
+    a.angular_impulse = angular_a;
+    b.angular_impulse = angular_b;
     m.friction_impulse = friction_before;
     m.twist_impulse = twist_before;
   }

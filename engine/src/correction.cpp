@@ -21,6 +21,10 @@ void applyPositionalImpulse(BodyState& a, BodyState& b, const Vec3& r_a, const V
   rotateBy(b.q, b.applyInvInertia(r_b.cross(P)));
   a.x -= P * a.inv_mass;
   rotateBy(a.q, -a.applyInvInertia(r_a.cross(P)));
+  b.impulse += P;
+  b.angular_impulse += r_b.cross(P);
+  a.impulse -= P;
+  a.angular_impulse -= r_a.cross(P);
 }
 
 double angularDeltaLambda(const BodyState& a, const BodyState& b, const Vec3& n, double C,
@@ -33,6 +37,8 @@ double angularDeltaLambda(const BodyState& a, const BodyState& b, const Vec3& n,
 void applyAngularImpulse(BodyState& a, BodyState& b, const Vec3& P) {
   rotateBy(b.q, b.applyInvInertia(P));
   rotateBy(a.q, -a.applyInvInertia(P));
+  b.angular_impulse += P;
+  a.angular_impulse -= P;
 }
 
 Eigen::Matrix3d inverseInertiaWorld(const BodyState& body) {

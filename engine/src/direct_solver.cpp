@@ -18,9 +18,11 @@ using joint_rows::kInf;
 using joint_rows::Vec6;
 
 // A pivot this small against its diagonal marks a row that depends on
-// earlier ones (sparse_ldlt.h). Rows of light wheels between heavy loads
-// stay far above it (a 1e-6 kg wheel under 1 kg loads: 1e-6).
-constexpr double kDropTolerance = 1e-12;
+// earlier ones (sparse_ldlt.h): rounding leaves such a pivot near 1e-16 of
+// its diagonal (two spans of a belt over two rotors). A light wheel between
+// heavy loads leaves the ratio of their masses: 1e-6 for a 1e-6 kg wheel
+// under 1 kg loads, 1e-12 for a 1e-9 kg wheel under 1000 kg, both kept.
+constexpr double kDropTolerance = 1e-13;
 // Active-set passes per iteration; almost always one or two are enough.
 constexpr int kMaxPasses = 8;
 // Points of a path (a cable's run through pinholes); as path_constraint.cpp.
@@ -120,9 +122,6 @@ void DirectSolver::build(World& world) {
     }
   }
   const int n = static_cast<int>(rows_.size());
-  rotor_entries_.clear();
-  for (int e = 0; e < static_cast<int>(entries_.size()); ++e)
-    if (world.body(bodies_[entries_[e].body]).isRotor()) rotor_entries_.push_back(e);
   // Rows that share a moving body are coupled; order them to keep the
   // factor sparse (approximate minimum degree).
   std::vector<std::vector<int>> on_body(bodies_.size());
@@ -184,7 +183,6 @@ void DirectSolver::build(World& world) {
   frames_.assign(m, BodyFrame{});
   dx_.assign(m, Vec3::Zero());
   dphi_.assign(m, Vec3::Zero());
-  absorbed_.assign(m, Vec3::Zero());
 }
 
 void DirectSolver::prepare(World& world, double h) {
@@ -226,7 +224,6 @@ void DirectSolver::prepare(World& world, double h) {
   // otherwise a long taut cable would join in one span per pass.
   for (std::size_t r = 0; r < rows_.size(); ++r) pulled_[r] = lambda_[r] < 0.0;
   std::fill(lambda_.begin(), lambda_.end(), 0.0);
-  std::fill(absorbed_.begin(), absorbed_.end(), Vec3::Zero());
 }
 
 void DirectSolver::evaluateBodies(World& world) {
@@ -415,7 +412,30 @@ int DirectSolver::evaluateJoint(World& world, int r, double inv_h2) {
       state_[r] = set.active[c] ? State::Free : State::Off;
     }
   }
+  if (set.drive >= 0) driveAgainstLimit(r - set.clamped_count, set);
   return count;
+}
+
+void DirectSolver::driveAgainstLimit(int first_clamped, const JointRowSet& set) {
+  // A drive and a limit on one coordinate are one direction twice: a limit
+  // in touch makes them dependent, and the factorization would keep either.
+  // The limit wins, as in Gauss-Seidel (joint_rows.h): a drive pushing into
+  // it pushes with all it has (an unlimited one with what it has so far),
+  // and a drive pulling away lifts it off.
+  const int d = first_clamped + set.drive;
+  for (const int limit : {set.lower, set.upper}) {
+    if (limit < 0 || state_[first_clamped + limit] != State::Free) continue;
+    const bool lower = limit == set.lower;
+    // lambda > 0 pushes the coordinate up; the drive pushes against C.
+    const bool into = lower ? C_[d] > 0.0 : C_[d] < 0.0;
+    if (!into) {
+      state_[first_clamped + limit] = State::Off;
+      continue;
+    }
+    const double bound = lower ? lo_[d] : hi_[d];
+    state_[d] = State::Fixed;
+    dlambda_[d] = std::isfinite(bound) ? bound - lambda_[d] : 0.0;
+  }
 }
 
 void DirectSolver::evaluate(World& world, double h) {
@@ -479,8 +499,13 @@ void DirectSolver::solveActiveSet() {
     ldlt_.factor(kDropTolerance);
     ldlt_.solve(x_.data());
     for (int r = 0; r < n; ++r) dlambda_[r] = x_[rows_[r].position];
+    if (pass + 1 == kMaxPasses) {  // out of passes: every lambda within its bounds all the same
+      for (int r = 0; r < n; ++r)
+        dlambda_[r] = std::clamp(lambda_[r] + dlambda_[r], lo_[r], hi_[r]) - lambda_[r];
+      bodyMotion();
+      break;
+    }
     bodyMotion();
-    if (pass + 1 == kMaxPasses) break;
     bool changed = false;
     for (int r = 0; r < n; ++r) {
       if (state_[r] == State::Free) {
@@ -528,6 +553,12 @@ bool DirectSolver::iterate(World& world, double h) {
     // the first-order rotateBy() would turn it less than the solve asked.
     if (frames_[i].inv_mass > 0.0) b.x += dx_[i];
     rotateExactly(b.q, dphi_[i]);
+    b.solve_turn += dphi_[i];
+  }
+  for (const Entry& e : entries_) {
+    BodyState& b = world.body(bodies_[e.body]);
+    b.impulse += dlambda_[e.row] * e.lin;
+    b.angular_impulse += dlambda_[e.row] * e.ang;
   }
   for (std::size_t r = 0; r < rows_.size(); ++r) {
     const double dl = dlambda_[r];
@@ -539,23 +570,7 @@ bool DirectSolver::iterate(World& world, double h) {
       *angular_a_[r] += dl * dir_[r].tail<3>();
     }
   }
-  for (const int e : rotor_entries_) absorbed_[entries_[e].body] += dlambda_[entries_[e].row] * entries_[e].lin;
   return true;
-}
-
-void DirectSolver::finish(World& world, double h) {
-  // A rotor's centre does not move, so its axle took whatever the rows
-  // pushed it with, and its weight: F_axle = -(absorbed / h^2 + m g).
-  for (int i = 0; i < static_cast<int>(world.hinges().size()); ++i) {
-    HingeJoint& j = world.hinge(i);
-    const bool a_rotor = world.body(j.a).isRotor();
-    if (!a_rotor && !world.body(j.b).isRotor()) continue;
-    const BodyId rotor = a_rotor ? j.a : j.b;
-    const int index = rotor < static_cast<int>(body_index_.size()) ? body_index_[rotor] : -1;
-    const Vec3 absorbed = index < 0 ? Vec3::Zero() : absorbed_[index];
-    const Vec3 on_rotor = -(absorbed + world.bodyMass(rotor) * world.settings().gravity * h * h);
-    j.impulse_point = a_rotor ? on_rotor : Vec3(-on_rotor);
-  }
 }
 
 }  // namespace reeve

@@ -26,6 +26,7 @@
 
 #include "reeve/engine/body.h"
 #include "reeve/engine/path_constraint.h"
+#include "joint_row_sets.h"
 #include "sparse_ldlt.h"
 
 namespace reeve {
@@ -44,9 +45,6 @@ class DirectSolver {
   /// tolerance: the iterations left would do nothing either, unless
   /// something else (a contact) moves a body.
   bool iterate(World& world, double h);
-  /// Ends the substep: the force on each rotor's axle, for its hinge's
-  /// wrench (what the axle absorbed of the rows' impulses, and gravity).
-  void finish(World& world, double h);
 
  private:
   enum class Source : unsigned char { Hinge, Prismatic, Spherical, Fixed, Distance, Path };
@@ -96,6 +94,10 @@ class DirectSolver {
   Vec3 arm(const World& world, const PathPoint& point, int slot) const;
   /// Returns the number of rows the joint has.
   int evaluateJoint(World& world, int first_row, double inv_h2);
+  /// The states of a coordinate's drive and limit rows, which share their
+  /// direction, when a limit is touched; `first_clamped` is the row of the
+  /// joint's first clamped row.
+  void driveAgainstLimit(int first_clamped, const joint_rows::JointRowSet& set);
   /// Solves the active set; leaves dlambda_ and the bodies' dx, dphi.
   void solveActiveSet();
   void bodyMotion();
@@ -103,7 +105,6 @@ class DirectSolver {
   std::vector<int> signature_, scratch_;
   std::vector<Row> rows_;
   std::vector<Entry> entries_;
-  std::vector<int> rotor_entries_;  // entries on rotors: their axles' loads (finish())
   std::vector<Pair> pairs_;
   std::vector<Slot> slots_;
   std::vector<BodyId> bodies_;    // moving bodies in some row
@@ -121,15 +122,14 @@ class DirectSolver {
   std::vector<Vec3*> linear_a_, angular_a_;
   std::vector<double> full_;  // the assembled matrix values
   // Per body: its rotation and W this iteration (a rotor's world axle and
-  // 1 / I about it instead of the inverse inertia), its motion, and the
-  // linear impulse the rows gave it this substep (a rotor's axle took it).
+  // 1 / I about it instead of the inverse inertia), and its motion.
   struct BodyFrame {
     Mat3 R = Mat3::Identity(), inv_inertia = Mat3::Zero();
     Vec3 axle = Vec3::Zero();
     double inv_mass = 0.0, inv_axial = 0.0;
   };
   std::vector<BodyFrame> frames_;
-  std::vector<Vec3> dx_, dphi_, absorbed_;
+  std::vector<Vec3> dx_, dphi_;
 };
 
 }  // namespace reeve

@@ -48,6 +48,7 @@ void joint_rows::fixedRowSet(FixedJoint& j, const BodyState& a, const BodyState&
   out.r_b = b.q * j.anchor_b;
   out.bilateral = bilateralRows(j, a, b, out.r_a, out.r_b);
   out.clamped_count = 0;
+  out.drive = out.lower = out.upper = -1;
 }
 
 JointWrench fixedWrench(const FixedJoint& j, double h) {

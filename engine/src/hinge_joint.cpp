@@ -115,6 +115,7 @@ void joint_rows::hingeRowSet(HingeJoint& j, const BodyState& a, const BodyState&
   const bool rotor = a.isRotor() || b.isRotor();
   out.bilateral = rotor ? BilateralRows{} : bilateralRows(j, a, b, out.r_a, out.r_b);
   out.clamped_count = 0;
+  out.drive = out.lower = out.upper = -1;
   Vec6 dir = Vec6::Zero();
   dir.tail<3>() = a.q * j.frame.axis_a;
   addCoordinateRows(j.angle, j.limit, j.drive.mode != HingeDrive::Mode::None, true, hingeAngle(j, a.q, b.q), dir,

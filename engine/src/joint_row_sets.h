@@ -24,6 +24,8 @@ struct JointRowSet {
   std::array<ClampedRow, 3> clamped;
   std::array<bool, 3> active = {false, false, false};
   int clamped_count = 0;
+  // Which clamped rows are a coordinate's drive and limits (-1: none).
+  int drive = -1, lower = -1, upper = -1;
 
   void addClamped(const Vec6& dir, double C, double lo, double hi, double* lambda, bool is_active) {
     ClampedRow& row = clamped[clamped_count];
@@ -43,11 +45,14 @@ inline void addCoordinateRows(JointCoordinate& c, const JointLimit& limit, bool 
   if (driven) {
     double moved = value - c.start;
     if (angle) moved = wrapAngle(moved);
+    out.drive = out.clamped_count;
     out.addClamped(dir, moved - c.drive_step, -c.max_drive_lambda, c.max_drive_lambda, &c.lambda_drive, true);
   }
   if (limit.enabled) {
     const double below = value - limit.lower, above = value - limit.upper;
+    out.lower = out.clamped_count;
     out.addClamped(dir, below, 0.0, kInf, &c.lambda_lower, below < 0.0 || c.lambda_lower > 0.0);
+    out.upper = out.clamped_count;
     out.addClamped(dir, above, -kInf, 0.0, &c.lambda_upper, above > 0.0 || c.lambda_upper < 0.0);
   }
 }

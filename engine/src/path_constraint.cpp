@@ -57,6 +57,8 @@ void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double a
     BodyState& b = bodies(path.points[i].body);
     b.x += dl * b.inv_mass * grad[i];
     rotateBy(b.q, dl * b.applyInvInertia(arm[i].cross(grad[i])));
+    b.impulse += dl * grad[i];
+    b.angular_impulse += dl * arm[i].cross(grad[i]);
   }
 }
 

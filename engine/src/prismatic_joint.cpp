@@ -114,6 +114,7 @@ void joint_rows::prismaticRowSet(PrismaticJoint& j, const BodyState& a, const Bo
   out.r_b = b.q * j.anchor_b;
   out.bilateral = bilateralRows(j, a, b, out.r_a, out.r_b);
   out.clamped_count = 0;
+  out.drive = out.lower = out.upper = -1;
   Vec6 dir = Vec6::Zero();
   dir.head<3>() = -(b.q * j.axis_b);
   addCoordinateRows(j.slide, j.limit, j.drive.mode != PrismaticDrive::Mode::None, false,

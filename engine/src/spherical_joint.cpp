@@ -102,6 +102,7 @@ void joint_rows::sphericalRowSet(SphericalJoint& j, const BodyState& a, const Bo
   out.bilateral = BilateralRows{};
   out.bilateral.addPoint((b.x + out.r_b) - (a.x + out.r_a));
   out.clamped_count = 0;
+  out.drive = out.lower = out.upper = -1;
   const Vec3 u_a = a.q * j.frame.axis_a, u_b = b.q * j.frame.axis_b;
   if (j.swing_limit.enabled) {
     // As in solveSphericalJoint; with the axes aligned the row has no

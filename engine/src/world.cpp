@@ -62,12 +62,23 @@ Mat3 skew(const Vec3& v) {
 // from w:  w' = w - J^-1 h (w x I w),  J = I + h ([w]x I - [I w]x).
 // The explicit update w += h I^-1 (-w x I w) gains energy on thin bodies
 // spinning off their axes and overflows once h |w| nears 1.
+// A single Newton step is not safe everywhere: J is singular where a body
+// with three different moments spins near its middle axis with h |w| of
+// order 1, and next to that the step adds energy. The free motion keeps
+// both the energy w.I w / 2 and |I w|, so the result is scaled down until
+// it gains neither, and a J too near singular leaves w as it is.
 Vec3 gyroscopicStep(const Mat3& inertia, const Vec3& w, double h) {
   const Vec3 Iw = inertia * w;
   const Vec3 torque = w.cross(Iw);  // 0 for a spin about a principal axis, or any spin of a cube
   if (torque.squaredNorm() == 0.0) return w;
   const Mat3 J = inertia + h * (skew(w) * inertia - skew(Iw));
-  return w - J.partialPivLu().solve(h * torque);
+  const double det = J.determinant();
+  if (!(std::abs(det) > 1e-9 * inertia.determinant())) return w;
+  const Vec3 next = w - J.inverse() * (h * torque);
+  const double energy = w.dot(Iw), momentum = Iw.squaredNorm();
+  const Vec3 next_Iw = inertia * next;
+  const double scale = std::min({1.0, std::sqrt(energy / next.dot(next_Iw)), std::sqrt(momentum / next_Iw.squaredNorm())});
+  return scale * next;
 }
 constexpr double kAny = std::numeric_limits<double>::infinity();
 
@@ -159,6 +170,12 @@ void World::setMass(BodyId id, double mass) {
   b.inv_inertia = b.inertia.inverse();
   b.rotor_axis.setZero();
   rotors_dirty_ = true;  // a rotor is made again at the next step
+}
+
+bool World::rotorHingeChanged() const {
+  for (const HingeJoint& j : hinges_)
+    if (j.compliance != 0.0 && (body(j.a).isRotor() || body(j.b).isRotor())) return true;
+  return false;
 }
 
 void World::refreshRotors() {
@@ -323,7 +340,7 @@ double World::tension(DistanceId id) const {
 
 void World::step(double dt) {
   assert(settings_.substeps > 0 && settings_.iterations > 0);
-  if (rotors_dirty_ || rotors_for_ != settings_.solver) refreshRotors();
+  if (rotors_dirty_ || rotors_for_ != settings_.solver || rotorHingeChanged()) refreshRotors();
   last_iterations_ = 0;
   const double h = dt / settings_.substeps;
   for (int s = 0; s < settings_.substeps; ++s) {
@@ -383,6 +400,7 @@ void World::solvePositions(double h) {
   for (FixedJoint& j : fixeds_) prepareFixedJoint(j);
   for (DistanceConstraint& c : distances_) c.lambda = 0.0;
   for (PathConstraint& p : paths_) p.lambda = 0.0;
+  for (BodyState& b : bodies_) b.impulse = b.angular_impulse = b.solve_turn = Vec3::Zero();
   if (settings_.solver == SolverKind::Direct) {
     direct_->prepare(*this, h);
     for (int it = 0; it < settings_.iterations; ++it) {
@@ -394,7 +412,7 @@ void World::solvePositions(double h) {
         solveContactPositions(m, contacts_.data(), body(c.a), body(c.b));
       }
     }
-    direct_->finish(*this, h);
+    rotorWrenches(h);
     return;
   }
   const BodyTable table{bodies_.data(), &world_frame_};
@@ -415,13 +433,42 @@ void World::solvePositions(double h) {
   }
 }
 
+void World::rotorWrenches(double h) {
+  // A rotor's centre stays put and it turns only about its axle, so the
+  // axle took the rest of what the constraints gave it, and its weight:
+  // the impulse F = -(impulse + m g h^2) at the anchor (arm rho from the
+  // centre) and the angular impulse off the axle -(angular_impulse +
+  // rho x F); along the axle the hinge's drive and limit rows act, whose
+  // part the direct solver has added already.
+  for (HingeJoint& j : hinges_) {
+    const bool on_a = body(j.a).isRotor();
+    if (!on_a && !body(j.b).isRotor()) continue;
+    const BodyId id = on_a ? j.a : j.b;
+    const BodyState& r = bodies_[id];
+    const Vec3 u = r.q * r.rotor_axis;
+    const Vec3 rho = r.q * (on_a ? j.frame.anchor_a : j.frame.anchor_b);
+    const Vec3 F = -(r.impulse + mass_[id] * h * h * settings_.gravity);
+    Vec3 L = -(r.angular_impulse + rho.cross(F));
+    L -= u * u.dot(L);
+    j.impulse_point = on_a ? F : Vec3(-F);
+    j.impulse_axis += on_a ? L : Vec3(-L);
+  }
+}
+
 void World::updateVelocities(double h) {
   for (BodyState& b : bodies_) {
     if (!b.moves()) continue;
     b.v = (b.x - b.x_prev) / h;
     // Not rotationVector(q q_prev^-1) / h, which is wrapped to half a turn
-    // per substep: the integrated omega plus the solve's correction.
-    b.omega += rotationVector(b.q * b.q_pred.conjugate()) / h;
+    // per substep: the integrated omega plus the solve's correction, that
+    // too taken round as far as the solver turned the body (solve_turn).
+    Vec3 correction = rotationVector(b.q * b.q_pred.conjugate());
+    if (const double turned = b.solve_turn.norm(); turned > 0.5 * kPi) {
+      const Vec3 n = b.solve_turn / turned;
+      const double along = correction.dot(n);
+      correction += n * (turned + std::remainder(along - turned, 2.0 * kPi) - along);
+    }
+    b.omega += correction / h;
     b.v *= std::exp(-b.linear_damping * h);
     b.omega *= std::exp(-b.angular_damping * h);
   }

@@ -63,6 +63,23 @@ TEST(WheelMass, AtwoodCarriesKilonewtonLoadsOnALightWheel) {
     }
 }
 
+TEST(WheelMass, ANanogramWheelUnderTonneLoadsIsNoTrouble) {
+  // Far past the range asked for: a 1e-9 kg wheel under 1000 and 2000 kg
+  // boxes, 1e12 times lighter. The spans over it are nearly dependent rows
+  // (its pivot is 1e-12 of its diagonal), which the factorization must
+  // keep apart from truly dependent ones (a belt over two rotors, 1e-16).
+  for (const Bound& bound : test::kBounds) {
+    AtwoodSpec spec;
+    spec.light_kg = 1000.0;
+    spec.heavy_kg = 2000.0;
+    spec.wheel_kg = 1e-9;
+    spec.budget = bound.budget;
+    const Worst w = runAtwood(spec);
+    test::print("Atwood, 1e-9 kg wheel, 1000 and 2000 kg", bound.budget, w);
+    expectBounds(w, bound.tolerance);
+  }
+}
+
 TEST(WheelMass, TheAxleCarriesBothStrandsAndTheWheelsWeight) {
   // A wheel on a fixed axle does not move, so the hinge holds it up with
   // T1 + T2 + M g: with the direct solver the wheel is a rotor with no

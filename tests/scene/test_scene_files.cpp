@@ -32,11 +32,11 @@ void expectFigure12(const Scene& s, double density) {
 
   ASSERT_EQ(w.bodyCount(), 5);
   const double wheel_mass = density * pi * 0.5 * 0.5 * 0.5;  // pi r^2 L, L = 2 x 0.25
-  EXPECT_NEAR(w.body(bodyNamed(s, "wheel_left")).mass(), wheel_mass, 1e-12 * density);
-  EXPECT_NEAR(w.body(bodyNamed(s, "wheel_right")).mass(), wheel_mass, 1e-12 * density);
-  EXPECT_NEAR(w.body(bodyNamed(s, "left_top")).mass(), 1.0 * density, 1e-12 * density);
-  EXPECT_NEAR(w.body(bodyNamed(s, "left_bottom")).mass(), 1.0 * density, 1e-12 * density);
-  EXPECT_NEAR(w.body(bodyNamed(s, "right")).mass(), 2.0 * density, 1e-12 * density);
+  EXPECT_NEAR(w.bodyMass(bodyNamed(s, "wheel_left")), wheel_mass, 1e-12 * density);
+  EXPECT_NEAR(w.bodyMass(bodyNamed(s, "wheel_right")), wheel_mass, 1e-12 * density);
+  EXPECT_NEAR(w.bodyMass(bodyNamed(s, "left_top")), 1.0 * density, 1e-12 * density);
+  EXPECT_NEAR(w.bodyMass(bodyNamed(s, "left_bottom")), 1.0 * density, 1e-12 * density);
+  EXPECT_NEAR(w.bodyMass(bodyNamed(s, "right")), 2.0 * density, 1e-12 * density);
   expectVec(w.body(bodyNamed(s, "wheel_left")).x, Vec3(-1.5, 0, 0));
   expectVec(w.body(bodyNamed(s, "wheel_right")).x, Vec3(1.5, 0, 0));
   expectVec(w.body(bodyNamed(s, "left_top")).x, Vec3(-2.0, -2.5, 0));
@@ -128,9 +128,9 @@ TEST(SceneFiles, AtwoodMatchesAnalyticAccelerationAndTensions) {
   EXPECT_EQ(s.frameCount(), 84);  // 1.4 s: until the light box nears the wheel
   const World& w = *s.world;
   const BodyId light = bodyNamed(s, "light"), heavy = bodyNamed(s, "heavy");
-  EXPECT_DOUBLE_EQ(w.body(bodyNamed(s, "wheel")).mass(), 2.0);
-  EXPECT_DOUBLE_EQ(w.body(light).mass(), 1.0);
-  EXPECT_DOUBLE_EQ(w.body(heavy).mass(), 2.0);
+  EXPECT_DOUBLE_EQ(w.bodyMass(bodyNamed(s, "wheel")), 2.0);
+  EXPECT_DOUBLE_EQ(w.bodyMass(light), 1.0);
+  EXPECT_DOUBLE_EQ(w.bodyMass(heavy), 2.0);
   ASSERT_EQ(s.cables->cables().size(), 1u);
   EXPECT_EQ(s.cables->cables()[0].links[1].orientation, -1);
   ASSERT_TRUE(s.camera.has_value());

@@ -132,7 +132,7 @@ TEST(SceneSchema, LinkDefaultsAreWhatTheLoaderApplies) {
 TEST(SceneSchema, BaseTestSceneBuilds) {
   const Scene s = parseScene(kBase, "base.json");
   EXPECT_EQ(s.world->bodyCount(), 3);
-  EXPECT_NEAR(s.world->body(0).mass(), 1000.0 * std::acos(-1.0) * 0.25 * 0.2, 1e-9);
+  EXPECT_NEAR(s.world->bodyMass(0), 1000.0 * std::acos(-1.0) * 0.25 * 0.2, 1e-9);
   EXPECT_EQ(s.cables->cables()[0].joints.size(), 2u);
   EXPECT_FALSE(s.camera.has_value());
 }

@@ -64,7 +64,7 @@ nlohmann::ordered_json segmentScene(const nlohmann::ordered_json& input, const S
   const Link& last = cable.links.back();
   double end_mass = std::numeric_limits<double>::infinity();
   for (const Link* l : {&first, &last})
-    if (world.body(l->body).mass() > 0.0) end_mass = std::min(end_mass, world.body(l->body).mass());
+    if (world.bodyMass(l->body) > 0.0) end_mass = std::min(end_mass, world.bodyMass(l->body));
   if (!options.rope_mass_kg && !std::isfinite(end_mass))
     throw SegmentError("both ends of cable '" + options.cable + "' are on static bodies; give --rope-mass");
   const double rope_mass = options.rope_mass_kg.value_or(0.01 * end_mass);

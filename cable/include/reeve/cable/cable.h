@@ -230,6 +230,7 @@ class CableSystem {
   std::vector<BodyId> rolling_bodies_;  // bodies with a rolling or hybrid link
   std::vector<Quat> last_q_;            // per body: orientation at the last update
   std::vector<double> turn_;            // per body, rad (measureTurns)
+  bool solve_turn_counted_ = false;     // the last update was by hand, after the solve
 };
 
 }  // namespace reeve

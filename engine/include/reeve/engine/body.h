@@ -66,6 +66,15 @@ struct BodyState {
   double angular_damping = 0.0;     // 1/s
   // Body-local unit axle of a rotor; zero for every other body.
   Vec3 rotor_axis = Vec3::Zero();
+  // What this substep's position solve did to the body, world: the impulse
+  // (kg m) and the angular impulse about its centre (kg m^2) the
+  // constraints gave it (a rotor's axle takes them: its hinge's wrench),
+  // and the rotation (rad) the direct solver turned it by, whole turns
+  // and all (Gauss-Seidel's small turns leave it 0), which the velocity
+  // read-out and the cable bookkeeping unwrap their angles with.
+  Vec3 impulse = Vec3::Zero();
+  Vec3 angular_impulse = Vec3::Zero();
+  Vec3 solve_turn = Vec3::Zero();
 
   /// World point of the body-local point `local`.
   Vec3 toWorld(const Vec3& local) const { return x + q * local; }
@@ -75,6 +84,8 @@ struct BodyState {
   Vec3 applyInvInertia(const Vec3& v) const {
     return q * (inv_inertia * (q.conjugate() * v));
   }
+  /// 1 / inv_mass: 0 for static bodies and rotors (World::bodyMass has a
+  /// rotor's real mass).
   double mass() const { return inv_mass > 0.0 ? 1.0 / inv_mass : 0.0; }
   bool isRotor() const { return rotor_axis.squaredNorm() > 0.0; }
   /// False for static bodies only.

@@ -24,7 +24,8 @@ double positionalDeltaLambda(const BodyState& a, const BodyState& b, const Vec3&
                              double alpha_tilde, double lambda);
 
 /// Moves b by the positional impulse P (kg m) applied at arm r_b, and a by
-/// -P at r_a: x += P/m, q += 1/2 [I^-1 (r x P), 0] q (SCA 2020, eq. 6-9).
+/// -P at r_a: x += P/m, q += 1/2 [I^-1 (r x P), 0] q (SCA 2020, eq. 6-9);
+/// adds P and r x P to the bodies' impulse and angular_impulse (body.h).
 void applyPositionalImpulse(BodyState& a, BodyState& b, const Vec3& r_a, const Vec3& r_b,
                             const Vec3& P);
 
@@ -33,7 +34,8 @@ void applyPositionalImpulse(BodyState& a, BodyState& b, const Vec3& r_a, const V
 double angularDeltaLambda(const BodyState& a, const BodyState& b, const Vec3& n, double C,
                           double alpha_tilde, double lambda);
 
-/// Rotates b by I_b^-1 P and a by -I_a^-1 P (SCA 2020, eq. 13-14).
+/// Rotates b by I_b^-1 P and a by -I_a^-1 P (SCA 2020, eq. 13-14); adds
+/// +-P to their angular_impulse.
 void applyAngularImpulse(BodyState& a, BodyState& b, const Vec3& P);
 
 /// The 3x3 generalized inverse mass of a point constraint, SCA 2020 eq. 2

@@ -223,6 +223,10 @@ class World {
   /// turns them back into free bodies for Gauss-Seidel (SolverKind), when
   /// the solver or the bodies and joints changed since the last step.
   void refreshRotors();
+  /// A rotor's hinge made compliant since refreshRotors(): no rotor then.
+  bool rotorHingeChanged() const;
+  /// The hinge wrenches of rotors, which have no hinge rows (direct solver).
+  void rotorWrenches(double h);
   void integrate(double h);
   void solvePositions(double h);
   void updateVelocities(double h);

@@ -1,0 +1,165 @@
+// Wheels on fixed axles under the direct solver are rotors (body.h): their
+// hinge has no rows, so what it would report is worked out from what the
+// axle took, and its drive and limit act on the turn alone. Each is checked
+// against Gauss-Seidel's hinge rows and against statics.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+
+#include "reeve/engine/world.h"
+#include "reeve/machines/machines.h"
+
+namespace reeve {
+namespace {
+
+const SolverKind kBoth[] = {SolverKind::GaussSeidel, SolverKind::Direct};
+
+TEST(Rotors, ADriveIntoALimitStopsThereAndPushesWithAllItHas) {
+  // A wheel driven at 2 rad/s (at most 5 N m) against an upper limit of
+  // 0.5 rad: it stays at the limit and the drive keeps pushing with 5 N m
+  // (the limit wins, joint_rows.h); the drive and the limit are one
+  // direction twice, which the direct solve must not mistake for one row.
+  for (const SolverKind method : kBoth) {
+    SolverSettings settings;
+    settings.solver = method;
+    World world(settings);
+    BodyDef def;
+    def.shape = Shape::cylinder(0.3, 0.05);
+    def.mass = 1.0;
+    const BodyId wheel = world.addBody(def);
+    HingeDef hinge(wheel, kWorldBody, Vec3::Zero(), Vec3::UnitZ());
+    hinge.limit = {true, -0.5, 0.5};
+    hinge.drive = {HingeDrive::Mode::Velocity, 2.0, 5.0};
+    const HingeId id = world.addHinge(hinge);
+    for (int f = 0; f < 60; ++f) world.step(1.0 / 60.0);
+    SCOPED_TRACE(solverMethodName(method));
+    EXPECT_EQ(world.body(wheel).isRotor(), method == SolverKind::Direct);
+    EXPECT_NEAR(world.hingeAngle(id), 0.5, 1e-6);
+    EXPECT_NEAR(world.hingeDriveTorque(id), 5.0, 1e-9);
+    // Turned the other way, the drive lifts it off the limit at once and
+    // spins it up at 5 N m / I for the whole frame.
+    world.hinge(id).drive.target = -2.0;
+    world.step(1.0 / 60.0);
+    const double inertia = 0.5 * 1.0 * 0.3 * 0.3;
+    EXPECT_NEAR(world.body(wheel).omega.z(), -5.0 / inertia / 60.0, 1e-6);
+  }
+}
+
+TEST(Rotors, TheAxleCarriesWhatRestsOnTheWheel) {
+  // A 10 kg box resting on a 1 kg square wheel held still by a rigid angle
+  // drive: the axle holds both up, 11 kg x g, whether the contact's push
+  // comes through hinge rows (Gauss-Seidel) or a rotor's axle (direct).
+  for (const SolverKind method : kBoth) {
+    SolverSettings settings;
+    settings.solver = method;
+    settings.substeps = 20;
+    settings.iterations = 4;
+    World world(settings);
+    BodyDef def;
+    def.shape = Shape::box(Vec3(0.5, 0.5, 0.1));
+    def.mass = 1.0;
+    def.collides = true;
+    const BodyId wheel = world.addBody(def);
+    def.shape = Shape::box(Vec3(0.3, 0.1, 0.1));
+    def.mass = 10.0;
+    def.position = Vec3(0.0, 0.6, 0.0);
+    world.addBody(def);
+    HingeDef hinge(wheel, kWorldBody, Vec3::Zero(), Vec3::UnitZ());
+    hinge.drive = {HingeDrive::Mode::Angle, 0.0, 0.0};
+    const HingeId id = world.addHinge(hinge);
+    for (int f = 0; f < 60; ++f) world.step(1.0 / 60.0);
+    const double weight = 11.0 * -world.settings().gravity.y();
+    const JointWrench wrench = world.hingeWrench(id);
+    std::printf("[ measured ] %s: axle force %.4f N, 11 kg x g = %.4f N\n", solverMethodName(method), wrench.force.y(),
+                weight);
+    SCOPED_TRACE(solverMethodName(method));
+    EXPECT_NEAR(wrench.force.y(), weight, 1e-3 * weight);
+    EXPECT_NEAR(wrench.force.x(), 0.0, 1e-3 * weight);
+  }
+}
+
+TEST(Rotors, TheAxleTakesABendingMoment) {
+  // A 2 kg weight hangs from a rigid link tied 0.2 m along the axle from
+  // the 1 kg wheel's centre: the hinge holds 3 kg x g and the moment
+  // 2 kg x g x 0.2 m about x, a torque the wheel cannot turn under.
+  for (const SolverKind method : kBoth) {
+    SolverSettings settings;
+    settings.solver = method;
+    settings.substeps = 20;
+    settings.iterations = 4;
+    World world(settings);
+    BodyDef def;
+    def.shape = Shape::cylinder(0.3, 0.25);
+    def.mass = 1.0;
+    const BodyId wheel = world.addBody(def);
+    def.shape = Shape::box(Vec3(0.1, 0.1, 0.1));
+    def.mass = 2.0;
+    def.position = Vec3(0.0, -1.0, 0.2);
+    const BodyId weight = world.addBody(def);
+    const HingeId id = world.addHinge(HingeDef(wheel, kWorldBody, Vec3::Zero(), Vec3::UnitZ()));
+    DistanceConstraint link;
+    link.a = wheel;
+    link.b = weight;
+    link.local_a = Vec3(0.0, 0.0, 0.2);
+    link.local_b = Vec3(0.0, 0.1, 0.0);
+    link.rest_length = 0.9;
+    link.unilateral = false;
+    world.addDistance(link);
+    for (int f = 0; f < 60; ++f) world.step(1.0 / 60.0);
+    const double g = -world.settings().gravity.y();
+    const JointWrench wrench = world.hingeWrench(id);
+    std::printf("[ measured ] %s: axle force %.4f N (3 g = %.4f), moment %.4f N m (-2 g 0.2 = %.4f)\n",
+                solverMethodName(method), wrench.force.y(), 3.0 * g, wrench.torque.x(), -0.4 * g);
+    SCOPED_TRACE(solverMethodName(method));
+    EXPECT_NEAR(wrench.force.y(), 3.0 * g, 1e-3 * 3.0 * g);
+    EXPECT_NEAR(wrench.torque.x(), -0.4 * g, 1e-3 * 0.4 * g);
+    EXPECT_NEAR(wrench.torque.z(), 0.0, 1e-9);
+  }
+}
+
+TEST(Rotors, AHingeMadeCompliantStopsBeingARotor) {
+  // A rotor cannot sag on its axle; one whose hinge is given compliance
+  // after the first step is a free body on that hinge again.
+  World world;
+  BodyDef def;
+  def.shape = Shape::cylinder(0.3, 0.05);
+  def.mass = 1.0;
+  const BodyId wheel = world.addBody(def);
+  const HingeId id = world.addHinge(HingeDef(wheel, kWorldBody, Vec3::Zero(), Vec3::UnitZ()));
+  world.step(1.0 / 60.0);
+  EXPECT_TRUE(world.body(wheel).isRotor());
+  world.hinge(id).compliance = 1e-3;  // m/N: 1 kg hangs g x 1e-3 = 9.8 mm low
+  double sag = 0.0;
+  for (int f = 0; f < 60; ++f) {
+    world.step(1.0 / 60.0);
+    sag = std::max(sag, -world.body(wheel).x.y());
+  }
+  EXPECT_FALSE(world.body(wheel).isRotor());
+  // Let go at the axle, it swings down past 9.8 mm, to twice that at most.
+  const double hanging = 9.81 * 1e-3;
+  EXPECT_GT(sag, hanging);
+  EXPECT_LT(sag, 2.0 * hanging);
+}
+
+TEST(Rotors, AMotorDrivingALongCableNeverPassesItsTorque) {
+  // The level-2 Hilbert machine from rest: the first solves of 64 spans
+  // and the motor may run out of active-set passes; the drive's torque
+  // stays within its bound all the same.
+  machines::HilbertSpec spec;
+  spec.level = 2;
+  spec.budget = {1, 10};
+  spec.motor_torque_Nm = 20.0;
+  machines::Hilbert m = machines::hilbert(spec);
+  double worst = 0.0;
+  for (int f = 0; f < 60; ++f) {
+    m.scene.world->step(1.0 / 60.0);
+    worst = std::max(worst, std::abs(m.scene.world->hingeDriveTorque(m.motor)));
+  }
+  std::printf("[ measured ] Hilbert-2 motor: largest drive torque %.6f N m of %.1f\n", worst, spec.motor_torque_Nm);
+  EXPECT_LE(worst, spec.motor_torque_Nm * (1.0 + 1e-12));
+  EXPECT_GT(worst, 0.5 * spec.motor_torque_Nm);  // it did push
+}
+
+}  // namespace
+}  // namespace reeve

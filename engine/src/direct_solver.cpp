@@ -396,6 +396,10 @@ int DirectSolver::evaluateJoint(World& world, int r, double inv_h2) {
     angular_a_[r] = angular_a;
     if (bilateral) {
       C_[r] = set.bilateral.values[k];
+      // The compliance term's lambda is the joint's impulse so far along
+      // this row's present direction, as joint_rows::solveRows takes it: a
+      // row's direction may turn within the substep (a hinge's axis rows).
+      lambda_[r] = s.head<3>().dot(-*linear_a) + s.tail<3>().dot(*angular_a);
       alpha_[r] = compliance * inv_h2;
       lo_[r] = -kInf;
       hi_[r] = kInf;

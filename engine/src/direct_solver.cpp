@@ -194,8 +194,9 @@ void DirectSolver::prepare(World& world, double h) {
   // What stays put over the substep: inverse masses, rotors' axles (they
   // turn about them), and the paths' compliance, bounds and lambdas.
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
-    const BodyState& b = world.body(bodies_[i]);
+    BodyState& b = world.body(bodies_[i]);
     BodyFrame& f = frames_[i];
+    f.state = &b;  // the World's bodies stay where they are while it steps
     f.inv_mass = b.inv_mass;
     f.inv_axial = b.isRotor() ? b.rotor_axis.dot(b.inv_inertia * b.rotor_axis) : 0.0;
     f.axle = b.q * b.rotor_axis;
@@ -226,10 +227,9 @@ void DirectSolver::prepare(World& world, double h) {
   std::fill(lambda_.begin(), lambda_.end(), 0.0);
 }
 
-void DirectSolver::evaluateBodies(World& world) {
-  for (std::size_t i = 0; i < bodies_.size(); ++i) {
-    const BodyState& b = world.body(bodies_[i]);
-    BodyFrame& f = frames_[i];
+void DirectSolver::evaluateBodies() {
+  for (BodyFrame& f : frames_) {
+    const BodyState& b = *f.state;
     f.R = b.q.toRotationMatrix();
     if (f.inv_axial == 0.0) f.inv_inertia = f.R * b.inv_inertia * f.R.transpose();
   }
@@ -252,7 +252,9 @@ void DirectSolver::evaluateSpan(const World& world, int r, const PathPoint& p0, 
   const int s0 = p0.body == kWorldBody ? -1 : body_index_[p0.body];
   const int s1 = p1.body == kWorldBody ? -1 : body_index_[p1.body];
   const Vec3 a0 = arm(world, p0, s0), a1 = arm(world, p1, s1);
-  const Vec3 d = (world.body(p1.body).x + a1) - (world.body(p0.body).x + a0);
+  const Vec3& x0 = s0 >= 0 ? frames_[s0].state->x : world.body(p0.body).x;
+  const Vec3& x1 = s1 >= 0 ? frames_[s1].state->x : world.body(p1.body).x;
+  const Vec3 d = (x1 + a1) - (x0 + a0);
   const double l = d.norm();
   const Vec3 u = l >= 1e-12 ? Vec3(d / l) : Vec3::Zero();
   int e = row.first_entry;
@@ -444,7 +446,7 @@ void DirectSolver::driveAgainstLimit(int first_clamped, const JointRowSet& set) 
 
 void DirectSolver::evaluate(World& world, double h) {
   const double inv_h2 = 1.0 / (h * h);
-  evaluateBodies(world);
+  evaluateBodies();
   const int n = static_cast<int>(rows_.size());
   for (int r = 0; r < n;) {
     if (rows_[r].source == Source::Path || rows_[r].source == Source::Distance) {
@@ -551,8 +553,8 @@ bool DirectSolver::iterate(World& world, double h) {
   evaluate(world, h);
   if (converged(world.settings().tolerance)) return false;
   solveActiveSet();
-  for (std::size_t i = 0; i < bodies_.size(); ++i) {
-    BodyState& b = world.body(bodies_[i]);
+  for (std::size_t i = 0; i < frames_.size(); ++i) {
+    BodyState& b = *frames_[i].state;
     // The exact rotation: a light wheel may turn radians in one solve, and
     // the first-order rotateBy() would turn it less than the solve asked.
     if (frames_[i].inv_mass > 0.0) b.x += dx_[i];
@@ -560,7 +562,7 @@ bool DirectSolver::iterate(World& world, double h) {
     b.solve_turn += dphi_[i];
   }
   for (const Entry& e : entries_) {
-    BodyState& b = world.body(bodies_[e.body]);
+    BodyState& b = *frames_[e.body].state;
     b.impulse += dlambda_[e.row] * e.lin;
     b.angular_impulse += dlambda_[e.row] * e.ang;
   }

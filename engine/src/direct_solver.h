@@ -78,7 +78,7 @@ class DirectSolver {
   void build(World& world);
   /// Fills C, bounds, activity and the entries' gradients of every row.
   void evaluate(World& world, double h);
-  void evaluateBodies(World& world);
+  void evaluateBodies();
   /// The entry's W J from its gradient.
   void weigh(Entry& e) const;
   /// Every free row meets its equation C + alpha~ lambda = 0 to within
@@ -124,6 +124,7 @@ class DirectSolver {
   // Per body: its rotation and W this iteration (a rotor's world axle and
   // 1 / I about it instead of the inverse inertia), and its motion.
   struct BodyFrame {
+    BodyState* state = nullptr;  // set by prepare()
     Mat3 R = Mat3::Identity(), inv_inertia = Mat3::Zero();
     Vec3 axle = Vec3::Zero();
     double inv_mass = 0.0, inv_axial = 0.0;

@@ -128,13 +128,10 @@ void DirectSolver::build(World& world) {
   for (int r = 0; r < n; ++r)
     for (int e = rows_[r].first_entry; e < rows_[r].first_entry + rows_[r].entry_count; ++e)
       on_body[entries_[e].body].push_back(e);
-  std::vector<int> row_of(entries_.size());
-  for (int r = 0; r < n; ++r)
-    for (int e = rows_[r].first_entry; e < rows_[r].first_entry + rows_[r].entry_count; ++e) row_of[e] = r;
   std::vector<Eigen::Triplet<double>> triplets;
   for (const auto& list : on_body)
     for (const int e1 : list)
-      for (const int e2 : list) triplets.emplace_back(row_of[e1], row_of[e2], 1.0);
+      for (const int e2 : list) triplets.emplace_back(entries_[e1].row, entries_[e2].row, 1.0);
   Eigen::SparseMatrix<double> pattern(n, n);
   pattern.setFromTriplets(triplets.begin(), triplets.end());
   Eigen::AMDOrdering<int> amd;
@@ -147,7 +144,7 @@ void DirectSolver::build(World& world) {
   for (const auto& list : on_body)
     for (std::size_t i = 0; i < list.size(); ++i)
       for (std::size_t j = i; j < list.size(); ++j) {
-        const int p = rows_[row_of[list[i]]].position, q = rows_[row_of[list[j]]].position;
+        const int p = rows_[entries_[list[i]].row].position, q = rows_[entries_[list[j]].row].position;
         pairs_.push_back({list[i], list[j], 0});
         upper.emplace_back(std::min(p, q), std::max(p, q));
       }
@@ -156,7 +153,7 @@ void DirectSolver::build(World& world) {
   std::vector<std::vector<Slot>> coupled(n);
   for (std::size_t i = 0; i < pairs_.size(); ++i) {
     pairs_[i].slot = slot[i];
-    const int r1 = row_of[pairs_[i].e1], r2 = row_of[pairs_[i].e2];
+    const int r1 = entries_[pairs_[i].e1].row, r2 = entries_[pairs_[i].e2].row;
     if (r1 == r2) continue;
     coupled[r1].push_back({slot[i], r2});
     coupled[r2].push_back({slot[i], r1});
@@ -171,7 +168,7 @@ void DirectSolver::build(World& world) {
     slots_.insert(slots_.end(), list.begin(), list.end());
     rows_[r].slots_end = static_cast<int>(slots_.size());
   }
-  for (std::vector<double>* v : {&C_, &alpha_, &lo_, &hi_, &lambda_, &dlambda_, &rhs_, &x_}) v->assign(n, 0.0);
+  for (std::vector<double>* v : {&C_, &alpha_, &lo_, &hi_, &lambda_, &dlambda_, &x_}) v->assign(n, 0.0);
   state_.assign(n, State::Free);
   pulled_.assign(n, false);
   mirror_.assign(n, nullptr);

@@ -16,9 +16,10 @@
 // bounds is fixed at the bound and the rest solved again; a slack row that
 // the solution would stretch joins in. Rows that depend on others (a belt
 // over two rotors: its two spans cannot be stretched apart) are dropped by
-// the factorization (sparse_ldlt.h), which keeps one of them.
-// Contacts stay Gauss-Seidel, after each iteration. Private to
-// reeve_engine.
+// the factorization (sparse_ldlt.h), which keeps one of them; a drive and a
+// limit on one coordinate, one direction twice, are settled before it: the
+// touched limit wins (driveAgainstLimit). Contacts stay Gauss-Seidel,
+// after each iteration. Private to reeve_engine.
 #pragma once
 
 #include <array>
@@ -114,7 +115,8 @@ class DirectSolver {
   // its state in the active set, where its lambda is mirrored, and for
   // joint rows the 6-D direction and the joint's impulse accumulators.
   enum class State : unsigned char { Free, Fixed, Off };
-  std::vector<double> C_, alpha_, lo_, hi_, lambda_, dlambda_, rhs_, x_;
+  std::vector<double> C_, alpha_, lo_, hi_, lambda_, dlambda_;
+  std::vector<double> x_;  // right-hand side, then solution, in elimination order
   std::vector<State> state_;
   std::vector<char> pulled_;  // per row: its lambda was < 0 when the last substep ended
   std::vector<double*> mirror_;

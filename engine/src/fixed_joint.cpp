@@ -44,11 +44,8 @@ void solveFixedJoint(FixedJoint& j, BodyState& a, BodyState& b, double h) {
 }
 
 void joint_rows::fixedRowSet(FixedJoint& j, const BodyState& a, const BodyState& b, JointRowSet& out) {
-  out.r_a = a.q * j.anchor_a;
-  out.r_b = b.q * j.anchor_b;
-  out.bilateral = bilateralRows(j, a, b, out.r_a, out.r_b);
-  out.clamped_count = 0;
-  out.drive = out.lower = out.upper = -1;
+  const Vec3 r_a = a.q * j.anchor_a, r_b = b.q * j.anchor_b;
+  out.start(r_a, r_b, bilateralRows(j, a, b, r_a, r_b));
 }
 
 JointWrench fixedWrench(const FixedJoint& j, double h) {

@@ -110,12 +110,9 @@ void solveHingeJoint(HingeJoint& j, BodyState& a, BodyState& b, double h) {
 }
 
 void joint_rows::hingeRowSet(HingeJoint& j, const BodyState& a, const BodyState& b, JointRowSet& out) {
-  out.r_a = a.q * j.frame.anchor_a;
-  out.r_b = b.q * j.frame.anchor_b;
+  const Vec3 r_a = a.q * j.frame.anchor_a, r_b = b.q * j.frame.anchor_b;
   const bool rotor = a.isRotor() || b.isRotor();
-  out.bilateral = rotor ? BilateralRows{} : bilateralRows(j, a, b, out.r_a, out.r_b);
-  out.clamped_count = 0;
-  out.drive = out.lower = out.upper = -1;
+  out.start(r_a, r_b, rotor ? BilateralRows{} : bilateralRows(j, a, b, r_a, r_b));
   Vec6 dir = Vec6::Zero();
   dir.tail<3>() = a.q * j.frame.axis_a;
   addCoordinateRows(j.angle, j.limit, j.drive.mode != HingeDrive::Mode::None, true, hingeAngle(j, a.q, b.q), dir,

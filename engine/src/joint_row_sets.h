@@ -27,6 +27,15 @@ struct JointRowSet {
   // Which clamped rows are a coordinate's drive and limits (-1: none).
   int drive = -1, lower = -1, upper = -1;
 
+  /// Starts the set over: arms, bilateral rows, no clamped rows yet.
+  void start(const Vec3& arm_a, const Vec3& arm_b, const BilateralRows& rows) {
+    r_a = arm_a;
+    r_b = arm_b;
+    bilateral = rows;
+    clamped_count = 0;
+    drive = lower = upper = -1;
+  }
+
   void addClamped(const Vec6& dir, double C, double lo, double hi, double* lambda, bool is_active) {
     ClampedRow& row = clamped[clamped_count];
     row.dir = dir;

@@ -110,11 +110,8 @@ void solvePrismaticJoint(PrismaticJoint& j, BodyState& a, BodyState& b, double h
 }
 
 void joint_rows::prismaticRowSet(PrismaticJoint& j, const BodyState& a, const BodyState& b, JointRowSet& out) {
-  out.r_a = a.q * j.anchor_a;
-  out.r_b = b.q * j.anchor_b;
-  out.bilateral = bilateralRows(j, a, b, out.r_a, out.r_b);
-  out.clamped_count = 0;
-  out.drive = out.lower = out.upper = -1;
+  const Vec3 r_a = a.q * j.anchor_a, r_b = b.q * j.anchor_b;
+  out.start(r_a, r_b, bilateralRows(j, a, b, r_a, r_b));
   Vec6 dir = Vec6::Zero();
   dir.head<3>() = -(b.q * j.axis_b);
   addCoordinateRows(j.slide, j.limit, j.drive.mode != PrismaticDrive::Mode::None, false,

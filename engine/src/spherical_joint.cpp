@@ -97,12 +97,10 @@ void solveSphericalJoint(SphericalJoint& j, BodyState& a, BodyState& b, double h
 }
 
 void joint_rows::sphericalRowSet(SphericalJoint& j, const BodyState& a, const BodyState& b, JointRowSet& out) {
-  out.r_a = a.q * j.frame.anchor_a;
-  out.r_b = b.q * j.frame.anchor_b;
-  out.bilateral = BilateralRows{};
-  out.bilateral.addPoint((b.x + out.r_b) - (a.x + out.r_a));
-  out.clamped_count = 0;
-  out.drive = out.lower = out.upper = -1;
+  const Vec3 r_a = a.q * j.frame.anchor_a, r_b = b.q * j.frame.anchor_b;
+  BilateralRows point;
+  point.addPoint((b.x + r_b) - (a.x + r_a));
+  out.start(r_a, r_b, point);
   const Vec3 u_a = a.q * j.frame.axis_a, u_b = b.q * j.frame.axis_b;
   if (j.swing_limit.enabled) {
     // As in solveSphericalJoint; with the axes aligned the row has no

@@ -15,6 +15,15 @@ namespace {
 
 const SolverKind kBoth[] = {SolverKind::GaussSeidel, SolverKind::Direct};
 
+// A world solved by `method` at 20 substeps of 4 iterations.
+World worldSolvedBy(SolverKind method) {
+  SolverSettings settings;
+  settings.solver = method;
+  settings.substeps = 20;
+  settings.iterations = 4;
+  return World(settings);
+}
+
 TEST(Rotors, ADriveIntoALimitStopsThereAndPushesWithAllItHas) {
   // A wheel driven at 2 rad/s (at most 5 N m) against an upper limit of
   // 0.5 rad: it stays at the limit and the drive keeps pushing with 5 N m
@@ -51,11 +60,7 @@ TEST(Rotors, TheAxleCarriesWhatRestsOnTheWheel) {
   // drive: the axle holds both up, 11 kg x g, whether the contact's push
   // comes through hinge rows (Gauss-Seidel) or a rotor's axle (direct).
   for (const SolverKind method : kBoth) {
-    SolverSettings settings;
-    settings.solver = method;
-    settings.substeps = 20;
-    settings.iterations = 4;
-    World world(settings);
+    World world = worldSolvedBy(method);
     BodyDef def;
     def.shape = Shape::box(Vec3(0.5, 0.5, 0.1));
     def.mass = 1.0;
@@ -84,11 +89,7 @@ TEST(Rotors, TheAxleTakesABendingMoment) {
   // the 1 kg wheel's centre: the hinge holds 3 kg x g and the moment
   // 2 kg x g x 0.2 m about x, a torque the wheel cannot turn under.
   for (const SolverKind method : kBoth) {
-    SolverSettings settings;
-    settings.solver = method;
-    settings.substeps = 20;
-    settings.iterations = 4;
-    World world(settings);
+    World world = worldSolvedBy(method);
     BodyDef def;
     def.shape = Shape::cylinder(0.3, 0.25);
     def.mass = 1.0;

@@ -49,6 +49,7 @@ void solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, 
   const Quat qa = a.q, qb = b.q;
   const Vec3 impulse_a = a.impulse, impulse_b = b.impulse;
   const Vec3 angular_a = a.angular_impulse, angular_b = b.angular_impulse;
+  const Vec3 turn_a = a.solve_turn, turn_b = b.solve_turn;
   const double twist_before = m.twist_impulse;
   for (int sweep = 0; sweep < kManifoldSweeps; ++sweep) {
     // Tangential: C = |dp_t| of the centre, gradient dp_t / |dp_t| wrt b.
@@ -83,6 +84,8 @@ void solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, 
     b.impulse = impulse_b;
     a.angular_impulse = angular_a;
     b.angular_impulse = angular_b;
+    a.solve_turn = turn_a;
+    b.solve_turn = turn_b;
     m.friction_impulse = friction_before;
     m.twist_impulse = twist_before;
   }
@@ -149,13 +152,19 @@ void describePatch(ContactManifold& m, const Contact* contacts, const BodyState&
 
 namespace {
 
-/// Velocity change of a point impulse p (kg m/s) on b at r_b and -p on a at r_a.
+/// Velocity change of a point impulse p (kg m/s) on b at r_b and -p on a at
+/// r_a, over a substep of h s: recorded in the bodies' impulses as p h,
+/// which divided by h^2 is the force, as for the position rows (body.h).
 void applyVelocityImpulse(BodyState& a, BodyState& b, const Vec3& r_a, const Vec3& r_b,
-                          const Vec3& p) {
+                          const Vec3& p, double h) {
   b.v += p * b.inv_mass;
   b.omega += b.applyInvInertia(r_b.cross(p));
   a.v -= p * a.inv_mass;
   a.omega -= a.applyInvInertia(r_a.cross(p));
+  b.impulse += h * p;
+  b.angular_impulse += h * r_b.cross(p);
+  a.impulse -= h * p;
+  a.angular_impulse -= h * r_a.cross(p);
 }
 
 double inverseMassAlong(const BodyState& a, const BodyState& b, const Vec3& r_a, const Vec3& r_b,
@@ -181,7 +190,7 @@ void solveContactVelocities(const ContactManifold& m, const Contact* contacts, B
     const double e = std::abs(c.normal_speed_before) <= rest_speed ? 0.0 : c.restitution;
     const double dvn = -n.dot(v) + std::max(-e * c.normal_speed_before, 0.0);
     if (const double w = inverseMassAlong(a, b, r_a, r_b, n); w > 0.0 && dvn != 0.0)
-      applyVelocityImpulse(a, b, r_a, r_b, n * (dvn / w));
+      applyVelocityImpulse(a, b, r_a, r_b, n * (dvn / w), h);
   }
   // Dynamic friction (eq. 30) at the patch centre, bounded in impulse:
   // mu_d |f_n| h = mu_d lambda_n / h.
@@ -193,8 +202,7 @@ void solveContactVelocities(const ContactManifold& m, const Contact* contacts, B
   if (vt_len >= 1e-15) {
     const Vec3 t = vt / vt_len;
     if (const double w = inverseMassAlong(a, b, r_a, r_b, t); w > 0.0)
-      applyVelocityImpulse(a, b, r_a, r_b,
-                           -t * std::min(c.dynamic_friction * lambda_n / h, vt_len / w));
+      applyVelocityImpulse(a, b, r_a, r_b, -t * std::min(c.dynamic_friction * lambda_n / h, vt_len / w), h);
   }
   // Dynamic twist friction: the spin about n, braked by a torque of at
   // most mu_d |f_n| x the patch radius.
@@ -206,6 +214,8 @@ void solveContactVelocities(const ContactManifold& m, const Contact* contacts, B
   const Vec3 L = -std::copysign(impulse, spin) * n;  // angular impulse on b, kg m^2/s
   b.omega += b.applyInvInertia(L);
   a.omega -= a.applyInvInertia(L);
+  b.angular_impulse += h * L;
+  a.angular_impulse -= h * L;
 }
 
 }  // namespace reeve

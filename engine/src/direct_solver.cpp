@@ -17,12 +17,14 @@ using joint_rows::JointRowSet;
 using joint_rows::kInf;
 using joint_rows::Vec6;
 
-// A pivot this small against its diagonal marks a row that depends on
-// earlier ones (sparse_ldlt.h): rounding leaves such a pivot near 1e-16 of
-// its diagonal (two spans of a belt over two rotors). A light wheel between
-// heavy loads leaves the ratio of their masses: 1e-6 for a 1e-6 kg wheel
-// under 1 kg loads, 1e-12 for a 1e-9 kg wheel under 1000 kg, both kept.
+// A pivot this small against the terms it is the difference of marks a row
+// that depends on earlier ones (sparse_ldlt.h): rounding leaves such a
+// pivot near 1e-16 of them (the last span of a belt over rotors, however
+// uneven their masses). A light wheel between heavy loads leaves the ratio
+// of their masses: 1e-6 for a 1e-6 kg wheel under 1 kg loads, 5e-13 for a
+// 1e-9 kg wheel under 1000 kg, both kept.
 constexpr double kDropTolerance = 1e-13;
+constexpr double kRoundingPivot = 1e-15;
 // Active-set passes per iteration; almost always one or two are enough.
 constexpr int kMaxPasses = 8;
 // Points of a path (a cable's run through pinholes); as path_constraint.cpp.
@@ -168,9 +170,11 @@ void DirectSolver::build(World& world) {
     slots_.insert(slots_.end(), list.begin(), list.end());
     rows_[r].slots_end = static_cast<int>(slots_.size());
   }
-  for (std::vector<double>* v : {&C_, &alpha_, &lo_, &hi_, &lambda_, &dlambda_, &x_}) v->assign(n, 0.0);
+  for (std::vector<double>* v : {&C_, &alpha_, &lo_, &hi_, &lambda_, &dlambda_, &x_, &rhs_}) v->assign(n, 0.0);
+  keep_.assign(n, 0);
   state_.assign(n, State::Free);
   pulled_.assign(n, false);
+  drive_of_.assign(n, -1);
   mirror_.assign(n, nullptr);
   dir_.assign(n, Vec6::Zero());
   linear_a_.assign(n, nullptr);
@@ -334,7 +338,8 @@ void DirectSolver::evaluateRun(const World& world, int r, const PathPoint* point
   C_[r] = length;  // minus the rest length, by the caller
 }
 
-int DirectSolver::evaluateJoint(World& world, int r, double inv_h2) {
+int DirectSolver::evaluateJoint(World& world, int r, double h) {
+  const double inv_h2 = 1.0 / (h * h);
   // All the joint's rows at once.
   const Row& first = rows_[r];
   JointRowSet set;
@@ -344,7 +349,7 @@ int DirectSolver::evaluateJoint(World& world, int r, double inv_h2) {
   switch (first.source) {
     case Source::Hinge: {
       HingeJoint& j = world.hinge(first.index);
-      joint_rows::hingeRowSet(j, world.body(j.a), world.body(j.b), set);
+      joint_rows::hingeRowSet(j, world.body(j.a), world.body(j.b), h, set);
       a = j.a, b = j.b, linear_a = &j.impulse_point, angular_a = &j.impulse_axis, compliance = j.compliance;
       break;
     }
@@ -422,17 +427,23 @@ int DirectSolver::evaluateJoint(World& world, int r, double inv_h2) {
 void DirectSolver::driveAgainstLimit(int first_clamped, const JointRowSet& set) {
   // A drive and a limit on one coordinate are one direction twice: a limit
   // in touch makes them dependent, and the factorization would keep either.
-  // The limit wins, as in Gauss-Seidel (joint_rows.h): a drive pushing into
-  // it pushes with all it has (an unlimited one with what it has so far),
-  // and a drive pulling away lifts it off.
+  // The limit wins, as in Gauss-Seidel (joint_rows.h). Linearized, the
+  // drive asks the coordinate to change by -C_d and a lower limit allows
+  // no less than -C_l (an upper one no more than -C_u): a drive asking past
+  // the limit pushes with all it has (an unlimited one with what it has so
+  // far) and the limit takes the rest; a drive asking to stay within it
+  // does the moving alone, and the limit joins in again (solveActiveSet)
+  // only if the drive cannot.
   const int d = first_clamped + set.drive;
   for (const int limit : {set.lower, set.upper}) {
-    if (limit < 0 || state_[first_clamped + limit] != State::Free) continue;
+    if (limit < 0) continue;
+    const int l = first_clamped + limit;
+    drive_of_[l] = d;
+    if (state_[l] != State::Free) continue;
     const bool lower = limit == set.lower;
-    // lambda > 0 pushes the coordinate up; the drive pushes against C.
-    const bool into = lower ? C_[d] > 0.0 : C_[d] < 0.0;
-    if (!into) {
-      state_[first_clamped + limit] = State::Off;
+    const bool past = lower ? C_[d] > C_[l] : C_[d] < C_[l];
+    if (!past) {
+      state_[l] = State::Off;
       continue;
     }
     const double bound = lower ? lo_[d] : hi_[d];
@@ -450,7 +461,7 @@ void DirectSolver::evaluate(World& world, double h) {
       evaluatePath(world, r);
       ++r;
     } else {
-      r += evaluateJoint(world, r, inv_h2);
+      r += evaluateJoint(world, r, h);
     }
   }
 }
@@ -465,7 +476,7 @@ void DirectSolver::bodyMotion() {
   }
 }
 
-void DirectSolver::solveActiveSet() {
+void DirectSolver::solveActiveSet(double tolerance) {
   const int n = static_cast<int>(rows_.size());
   std::fill(full_.begin(), full_.end(), 0.0);
   for (const Pair& p : pairs_) {
@@ -499,16 +510,13 @@ void DirectSolver::solveActiveSet() {
           if (state_[other] == State::Free) x_[rows_[other].position] -= full_[slots_[s].value] * dlambda_[r];
         }
       }
-    ldlt_.factor(kDropTolerance);
-    ldlt_.solve(x_.data());
-    for (int r = 0; r < n; ++r) dlambda_[r] = x_[rows_[r].position];
+    factorAndSolve(tolerance);
     if (pass + 1 == kMaxPasses) {  // out of passes: every lambda within its bounds all the same
       for (int r = 0; r < n; ++r)
         dlambda_[r] = std::clamp(lambda_[r] + dlambda_[r], lo_[r], hi_[r]) - lambda_[r];
       bodyMotion();
       break;
     }
-    bodyMotion();
     bool changed = false;
     for (int r = 0; r < n; ++r) {
       if (state_[r] == State::Free) {
@@ -526,6 +534,12 @@ void DirectSolver::solveActiveSet() {
         if ((hi_[r] == 0.0 && predicted > 0.0) || (lo_[r] == 0.0 && predicted < 0.0)) {
           state_[r] = State::Free;
           changed = true;
+          // A limit its drive could not keep to: the drive keeps what it
+          // did this pass, the limit the rest (driveAgainstLimit).
+          if (const int d = drive_of_[r]; d >= 0 && state_[d] == State::Free) {
+            state_[d] = State::Fixed;
+            dlambda_[d] = std::clamp(lambda_[d] + dlambda_[d], lo_[d], hi_[d]) - lambda_[d];
+          }
         }
       }
     }
@@ -533,10 +547,49 @@ void DirectSolver::solveActiveSet() {
   }
 }
 
+void DirectSolver::factorAndSolve(double tolerance) {
+  // A row dropped as dependent that the solution leaves unmet may not be
+  // dependent, only very light (a pivot of 1e-13 of its terms can be
+  // either): solve again with it kept, unless its pivot is at the level of
+  // rounding (1e-15 of its terms), which no very light body comes near
+  // (1e-12 times lighter gives 5e-13); kept, it is still dropped there,
+  // as another row may now be the dependent one. A truly dependent row is
+  // met by the others' motion (a belt's last span) or cannot be (then no
+  // solve can).
+  const int n = static_cast<int>(rows_.size());
+  std::copy(x_.begin(), x_.end(), rhs_.begin());
+  std::fill(keep_.begin(), keep_.end(), 0);
+  for (int round = 0;; ++round) {
+    const int dropped = ldlt_.factor(kDropTolerance, keep_, kRoundingPivot);
+    ldlt_.solve(x_.data());
+    for (int r = 0; r < n; ++r) dlambda_[r] = x_[rows_[r].position];
+    bodyMotion();
+    if (dropped == 0 || round == 2) return;
+    bool rescued = false;
+    for (int r = 0; r < n; ++r) {
+      const int k = rows_[r].position;
+      if (state_[r] != State::Free || !ldlt_.dropped(k) || !(ldlt_.pivotRatio(k) > kRoundingPivot)) continue;
+      double residual = C_[r] + alpha_[r] * lambda_[r];
+      for (int e = rows_[r].first_entry; e < rows_[r].first_entry + rows_[r].entry_count; ++e)
+        residual += entries_[e].lin.dot(dx_[entries_[e].body]) + entries_[e].ang.dot(dphi_[entries_[e].body]);
+      if (std::abs(residual) > std::max(tolerance, 1e-6 * std::abs(C_[r]))) {
+        keep_[k] = 1;
+        rescued = true;
+      }
+    }
+    if (!rescued) return;
+    std::copy(rhs_.begin(), rhs_.end(), x_.begin());
+  }
+}
+
 bool DirectSolver::converged(double tolerance) const {
   if (!(tolerance > 0.0)) return false;
   for (std::size_t r = 0; r < rows_.size(); ++r) {
-    if (state_[r] != State::Free) continue;  // an off row is met (evaluatePath, addCoordinateRows)
+    if (state_[r] == State::Off) {  // met unless violated (a limit its drive is to lift off)
+      if ((hi_[r] == 0.0 && C_[r] > tolerance) || (lo_[r] == 0.0 && C_[r] < -tolerance)) return false;
+      continue;
+    }
+    if (state_[r] != State::Free) continue;
     const double residual = C_[r] + alpha_[r] * lambda_[r];
     // A row held at a bound is met when it asks to go further.
     if ((lambda_[r] >= hi_[r] && residual <= 0.0) || (lambda_[r] <= lo_[r] && residual >= 0.0)) continue;
@@ -549,7 +602,7 @@ bool DirectSolver::iterate(World& world, double h) {
   if (rows_.empty()) return false;
   evaluate(world, h);
   if (converged(world.settings().tolerance)) return false;
-  solveActiveSet();
+  solveActiveSet(world.settings().tolerance > 0.0 ? world.settings().tolerance : 1e-10);
   for (std::size_t i = 0; i < frames_.size(); ++i) {
     BodyState& b = *frames_[i].state;
     // The exact rotation: a light wheel may turn radians in one solve, and

@@ -94,13 +94,17 @@ class DirectSolver {
   /// bodies_ (-1: a body that does not move).
   Vec3 arm(const World& world, const PathPoint& point, int slot) const;
   /// Returns the number of rows the joint has.
-  int evaluateJoint(World& world, int first_row, double inv_h2);
+  int evaluateJoint(World& world, int first_row, double h);
   /// The states of a coordinate's drive and limit rows, which share their
   /// direction, when a limit is touched; `first_clamped` is the row of the
   /// joint's first clamped row.
   void driveAgainstLimit(int first_clamped, const joint_rows::JointRowSet& set);
   /// Solves the active set; leaves dlambda_ and the bodies' dx, dphi.
-  void solveActiveSet();
+  /// `tolerance` (m or rad): what counts as a met row.
+  void solveActiveSet(double tolerance);
+  /// Factors the assembled matrix, solves for x_ and sets dlambda_ and the
+  /// bodies' motion, keeping rows wrongly dropped as dependent.
+  void factorAndSolve(double tolerance);
   void bodyMotion();
 
   std::vector<int> signature_, scratch_;
@@ -116,9 +120,11 @@ class DirectSolver {
   // joint rows the 6-D direction and the joint's impulse accumulators.
   enum class State : unsigned char { Free, Fixed, Off };
   std::vector<double> C_, alpha_, lo_, hi_, lambda_, dlambda_;
-  std::vector<double> x_;  // right-hand side, then solution, in elimination order
+  std::vector<double> x_, rhs_;  // right-hand side, then solution, in elimination order
+  std::vector<char> keep_;        // per position: a row not to drop (factorAndSolve)
   std::vector<State> state_;
   std::vector<char> pulled_;  // per row: its lambda was < 0 when the last substep ended
+  std::vector<int> drive_of_;  // per limit row: the row of its coordinate's drive, or -1
   std::vector<double*> mirror_;
   std::vector<Eigen::Matrix<double, 6, 1>> dir_;  // joint_rows::Vec6
   std::vector<Vec3*> linear_a_, angular_a_;

@@ -27,6 +27,13 @@ joint_rows::BilateralRows bilateralRows(const HingeJoint& j, const BodyState& a,
   return rows;
 }
 
+// How far (rad) a has turned relative to b about the world axis `u` since
+// the substep began, as their motion tells: the integration's h omega and
+// the solve's turns (a hinge angle itself is known up to whole turns).
+double turned(const BodyState& a, const BodyState& b, const Vec3& u, double h) {
+  return u.dot(h * (a.omega - b.omega) + a.solve_turn - b.solve_turn);
+}
+
 }  // namespace
 
 HingeJoint makeHingeJoint(const HingeDef& def, const BodyState& a, const BodyState& b) {
@@ -95,6 +102,7 @@ void solveHingeJoint(HingeJoint& j, BodyState& a, BodyState& b, double h) {
   bool solved = false;
   if (driven || j.limit.enabled) {
     const auto value = [&] { return hingeAngle(j, a.q, b.q); };
+    const auto turn = [&] { return turned(a, b, a.q * j.frame.axis_a, h); };
     const auto row = [&](double C, double lo, double hi, double& lambda) {
       joint_rows::ClampedRow clamped;
       clamped.dir.tail<3>() = a.q * j.frame.axis_a;
@@ -104,19 +112,19 @@ void solveHingeJoint(HingeJoint& j, BodyState& a, BodyState& b, double h) {
       clamped.lambda = &lambda;
       block(&clamped);
     };
-    solved = joint_rows::solveCoordinateRows(j.angle, j.limit, driven, true, value, row);
+    solved = joint_rows::solveCoordinateRows(j.angle, j.limit, driven, true, value, turn, row);
   }
   if (!solved) block(nullptr);
 }
 
-void joint_rows::hingeRowSet(HingeJoint& j, const BodyState& a, const BodyState& b, JointRowSet& out) {
+void joint_rows::hingeRowSet(HingeJoint& j, const BodyState& a, const BodyState& b, double h, JointRowSet& out) {
   const Vec3 r_a = a.q * j.frame.anchor_a, r_b = b.q * j.frame.anchor_b;
   const bool rotor = a.isRotor() || b.isRotor();
   out.start(r_a, r_b, rotor ? BilateralRows{} : bilateralRows(j, a, b, r_a, r_b));
   Vec6 dir = Vec6::Zero();
   dir.tail<3>() = a.q * j.frame.axis_a;
-  addCoordinateRows(j.angle, j.limit, j.drive.mode != HingeDrive::Mode::None, true, hingeAngle(j, a.q, b.q), dir,
-                    out);
+  addCoordinateRows(j.angle, j.limit, j.drive.mode != HingeDrive::Mode::None, true, hingeAngle(j, a.q, b.q),
+                    turned(a, b, dir.tail<3>(), h), dir, out);
 }
 
 JointWrench hingeWrench(const HingeJoint& j, double h) {

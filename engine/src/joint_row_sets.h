@@ -48,14 +48,14 @@ struct JointRowSet {
 };
 
 /// The drive and limit rows of a coordinate along the 6-D `dir` (the same
-/// rows, values and conditions as solveCoordinateRows, all at `value`).
+/// rows, values and conditions as solveCoordinateRows, all at `value` and
+/// `turned`).
 inline void addCoordinateRows(JointCoordinate& c, const JointLimit& limit, bool driven, bool angle,
-                              double value, const Vec6& dir, JointRowSet& out) {
+                              double value, double turned, const Vec6& dir, JointRowSet& out) {
   if (driven) {
-    double moved = value - c.start;
-    if (angle) moved = wrapAngle(moved);
     out.drive = out.clamped_count;
-    out.addClamped(dir, moved - c.drive_step, -c.max_drive_lambda, c.max_drive_lambda, &c.lambda_drive, true);
+    out.addClamped(dir, driveError(c, value, angle, turned), -c.max_drive_lambda, c.max_drive_lambda, &c.lambda_drive,
+                   true);
   }
   if (limit.enabled) {
     const double below = value - limit.lower, above = value - limit.upper;
@@ -66,10 +66,10 @@ inline void addCoordinateRows(JointCoordinate& c, const JointLimit& limit, bool 
   }
 }
 
-/// The rows of each joint type. A hinge whose moving body is a rotor
-/// (BodyState::rotor_axis) has no bilateral rows: its axle holds by
-/// construction.
-void hingeRowSet(HingeJoint& joint, const BodyState& a, const BodyState& b, JointRowSet& out);
+/// The rows of each joint type, in a substep of `h` s. A hinge whose
+/// moving body is a rotor (BodyState::rotor_axis) has no bilateral rows:
+/// its axle holds by construction.
+void hingeRowSet(HingeJoint& joint, const BodyState& a, const BodyState& b, double h, JointRowSet& out);
 void prismaticRowSet(PrismaticJoint& joint, const BodyState& a, const BodyState& b, JointRowSet& out);
 void sphericalRowSet(SphericalJoint& joint, const BodyState& a, const BodyState& b, JointRowSet& out);
 void fixedRowSet(FixedJoint& joint, const BodyState& a, const BodyState& b, JointRowSet& out);

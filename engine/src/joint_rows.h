@@ -104,25 +104,36 @@ enum class DriveKind { None, Velocity, Position };
 void prepareCoordinate(JointCoordinate& c, DriveKind kind, double target, double max_effort,
                        double start, double inverse_inertia, bool angle, double h);
 
+/// C of a coordinate's drive row at coordinate `value` (solveCoordinateRows).
+/// An angle is known only up to whole turns, so its change since the
+/// substep began is taken round as far as `turned` says it went (the
+/// bodies' relative turn about the axis, from their angular velocities
+/// and the solve's turns, BodyState::solve_turn): a motor may turn more
+/// than half a turn per substep.
+inline double driveError(const JointCoordinate& c, double value, bool angle, double turned) {
+  double moved = value - c.start;
+  if (angle) moved = turned + wrapAngle(moved - turned);
+  return moved - c.drive_step;
+}
+
 /// The drive row and then the limit rows of a coordinate, so that a limit
 /// wins over a drive pushing into it. `value()` is the current coordinate
-/// (rad or m); `row(C, lo, hi, lambda)` solves the joint with one clamped
+/// (rad or m), `turned()` how far it has turned since the substep began as
+/// the bodies' motion tells (angles; driveError); `row(C, lo, hi, lambda)` solves the joint with one clamped
 /// row of value C along the coordinate (lambda > 0 pushes it up), its
 /// lambda clamped to [lo, hi]:
 ///   drive:  C = (x - start) - drive_step  (the change since the substep
-///           began, wrapped for angles, minus the asked change),
-///           |lambda_drive| <= max_drive_lambda;
+///           began, for angles as far round as `turned()` says, minus the
+///           asked change; driveError), |lambda_drive| <= max_drive_lambda;
 ///   lower:  C = x - lower, only while C < 0 or lambda_lower > 0, lambda >= 0;
 ///   upper:  C = x - upper, only while C > 0 or lambda_upper < 0, lambda <= 0.
 /// Returns whether any row was solved.
-template <class Value, class Row>
+template <class Value, class Turned, class Row>
 bool solveCoordinateRows(JointCoordinate& c, const JointLimit& limit, bool driven, bool angle,
-                         Value value, Row row) {
+                         Value value, Turned turned, Row row) {
   bool solved = false;
   if (driven) {
-    double moved = value() - c.start;
-    if (angle) moved = wrapAngle(moved);
-    row(moved - c.drive_step, -c.max_drive_lambda, c.max_drive_lambda, c.lambda_drive);
+    row(driveError(c, value(), angle, turned()), -c.max_drive_lambda, c.max_drive_lambda, c.lambda_drive);
     solved = true;
   }
   if (limit.enabled) {

@@ -55,10 +55,12 @@ void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double a
   path.lambda += dl;
   for (size_t i = 0; i < n; ++i) {
     BodyState& b = bodies(path.points[i].body);
+    const Vec3 turn = dl * b.applyInvInertia(arm[i].cross(grad[i]));
     b.x += dl * b.inv_mass * grad[i];
-    rotateBy(b.q, dl * b.applyInvInertia(arm[i].cross(grad[i])));
+    rotateBy(b.q, turn);
     b.impulse += dl * grad[i];
     b.angular_impulse += dl * arm[i].cross(grad[i]);
+    b.solve_turn += turn;
   }
 }
 

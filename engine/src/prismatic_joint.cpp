@@ -104,7 +104,7 @@ void solvePrismaticJoint(PrismaticJoint& j, BodyState& a, BodyState& b, double h
       clamped.lambda = &lambda;
       block(&clamped);
     };
-    solved = joint_rows::solveCoordinateRows(j.slide, j.limit, driven, false, value, row);
+    solved = joint_rows::solveCoordinateRows(j.slide, j.limit, driven, false, value, [] { return 0.0; }, row);
   }
   if (!solved) block(nullptr);
 }
@@ -115,7 +115,7 @@ void joint_rows::prismaticRowSet(PrismaticJoint& j, const BodyState& a, const Bo
   Vec6 dir = Vec6::Zero();
   dir.head<3>() = -(b.q * j.axis_b);
   addCoordinateRows(j.slide, j.limit, j.drive.mode != PrismaticDrive::Mode::None, false,
-                    prismaticSlide(j, a.x, a.q, b.x, b.q), dir, out);
+                    prismaticSlide(j, a.x, a.q, b.x, b.q), 0.0, dir, out);
 }
 
 JointWrench prismaticWrench(const PrismaticJoint& j, double h) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cmath>
 
 namespace reeve {
 
@@ -52,6 +53,7 @@ std::vector<int> SparseLdlt::analyze(int n, const std::vector<std::pair<int, int
   Li_.assign(Lp_[n], 0);
   Lx_.assign(Lp_[n], 0.0);
   inv_d_.assign(n, 0.0);
+  pivot_ratio_.assign(n, 0.0);
   y_.assign(n, 0.0);
   // The pattern of each row of L, in the order the numeric factorization
   // visits it (the reach of the row's column in the tree, topologically),
@@ -85,13 +87,14 @@ std::vector<int> SparseLdlt::analyze(int n, const std::vector<std::pair<int, int
   return slots;
 }
 
-int SparseLdlt::factor(double drop_tolerance) {
+int SparseLdlt::factor(double drop_tolerance, const std::vector<char>& keep, double keep_tolerance) {
   // Davis, ldl_numeric, on the pattern analyze() found: row k of L from a
   // sparse triangular solve with the rows above it.
   int dropped = 0;
   for (int k = 0; k < n_; ++k) {
     for (int p = Ap_[k]; p < Ap_[k + 1]; ++p) y_[Ai_[p]] += Ax_[p];
     double d = y_[k];
+    double size = std::abs(d);  // of what d is the difference of
     y_[k] = 0.0;
     for (int t = row_start_[k]; t < row_start_[k + 1]; ++t) {
       const int i = row_column_[t], slot = row_slot_[t];
@@ -100,9 +103,11 @@ int SparseLdlt::factor(double drop_tolerance) {
       for (int p = Lp_[i]; p < slot; ++p) y_[Li_[p]] -= Lx_[p] * yi;
       const double l_ki = yi * inv_d_[i];
       d -= l_ki * yi;
+      size += std::abs(l_ki * yi);
       Lx_[slot] = l_ki;
     }
-    if (d > drop_tolerance * Ax_[diagonal_[k]]) {
+    pivot_ratio_[k] = size > 0.0 ? d / size : 0.0;
+    if (d > (!keep.empty() && keep[k] ? keep_tolerance : drop_tolerance) * size) {
       inv_d_[k] = 1.0 / d;
     } else {
       inv_d_[k] = 0.0;

@@ -28,11 +28,21 @@ class SparseLdlt {
   /// Index in values() of diagonal entry k.
   int diagonalSlot(int k) const { return diagonal_[k]; }
 
-  /// Factors the matrix in values() as L D L^T. A pivot that falls to
-  /// `drop_tolerance` times its diagonal entry or below marks a row that
-  /// depends on earlier ones (a redundant constraint): it is dropped, its
-  /// unknown set to 0 by solve(). Returns the number of rows dropped.
-  int factor(double drop_tolerance);
+  /// Factors the matrix in values() as L D L^T. A pivot d_k = A_kk -
+  /// sum_i L_ki^2 d_i that falls to `drop_tolerance` times the size of
+  /// what it is the difference of (A_kk + sum_i |L_ki^2 d_i|) or below is
+  /// what rounding leaves of zero: its row depends on earlier ones (a
+  /// redundant constraint) and is dropped, its unknown set to 0 by
+  /// solve(). A small pivot that is a true difference (a very light body
+  /// between heavy ones) stays. Returns the number of rows dropped.
+  /// Rows with `keep`[k] set are dropped only at `keep_tolerance` instead
+  /// (`keep` empty: none).
+  int factor(double drop_tolerance, const std::vector<char>& keep = {}, double keep_tolerance = 0.0);
+  /// Whether row k was dropped by the last factor().
+  bool dropped(int k) const { return inv_d_[k] == 0.0; }
+  /// Row k's pivot over the size of the terms it is the difference of, in
+  /// the last factor(): near 1e-16 (or below 0) when rounding made it.
+  double pivotRatio(int k) const { return pivot_ratio_[k]; }
   /// Solves L D L^T x = b in place (b in, x out; size n), dropped rows 0.
   void solve(double* x) const;
 
@@ -42,7 +52,7 @@ class SparseLdlt {
   std::vector<double> Ax_;
   std::vector<int> parent_, Lp_, Lnz_, Li_, flag_;  // L, column by column
   std::vector<int> row_start_, row_column_, row_slot_;  // each row's pattern in L
-  std::vector<double> Lx_, inv_d_, y_;
+  std::vector<double> Lx_, inv_d_, y_, pivot_ratio_;
 };
 
 }  // namespace reeve

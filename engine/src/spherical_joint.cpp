@@ -91,7 +91,7 @@ void solveSphericalJoint(SphericalJoint& j, BodyState& a, BodyState& b, double h
     const auto row = [&](double C, double lo, double hi, double& lambda) {
       angular(twistAxis(a.q * j.frame.axis_a, b.q * j.frame.axis_b), C, lo, hi, lambda);
     };
-    solved |= joint_rows::solveCoordinateRows(j.twist, j.twist_limit, false, true, value, row);
+    solved |= joint_rows::solveCoordinateRows(j.twist, j.twist_limit, false, true, value, [] { return 0.0; }, row);
   }
   if (!solved) block(nullptr);
 }
@@ -113,7 +113,7 @@ void joint_rows::sphericalRowSet(SphericalJoint& j, const BodyState& a, const Bo
   }
   Vec6 dir = Vec6::Zero();
   dir.tail<3>() = twistAxis(u_a, u_b);
-  addCoordinateRows(j.twist, j.twist_limit, false, true, twistAngle(j, a.q, b.q), dir, out);
+  addCoordinateRows(j.twist, j.twist_limit, false, true, twistAngle(j, a.q, b.q), 0.0, dir, out);
 }
 
 JointWrench sphericalWrench(const SphericalJoint& j, double h) {

@@ -213,6 +213,12 @@ void World::refreshRotors() {
     b.rotor_axis = axis;
     b.inv_mass = 0.0;
     b.inv_inertia = axis * axis.transpose() / axis.dot(b.inertia * axis);
+    // Onto its axle, in case another solver let it sag off (a rotor stays
+    // where it is made).
+    const BodyState& other = body(a_moves ? j.b : j.a);
+    const Vec3 other_axis = other.q * (a_moves ? j.frame.axis_b : j.frame.axis_a).normalized();
+    b.q = (Quat::FromTwoVectors(b.q * axis, other_axis) * b.q).normalized();
+    b.x = other.toWorld(a_moves ? j.frame.anchor_b : j.frame.anchor_a) - b.q * anchor;
     const Vec3 u = b.q * axis;
     b.v.setZero();
     b.omega = u * u.dot(b.omega);
@@ -363,6 +369,7 @@ void World::step(double dt) {
         solveContactVelocities(m, contacts_.data(), body(c.a), body(c.b), h, rest_speed);
       }
     }
+    if (settings_.solver == SolverKind::Direct) rotorWrenches(h);
     limitSpeeds();  // last, so no later pass can push past the guard
     time_ += h;
   }
@@ -412,7 +419,6 @@ void World::solvePositions(double h) {
         solveContactPositions(m, contacts_.data(), body(c.a), body(c.b));
       }
     }
-    rotorWrenches(h);
     return;
   }
   const BodyTable table{bodies_.data(), &world_frame_};

@@ -66,12 +66,14 @@ struct BodyState {
   double angular_damping = 0.0;     // 1/s
   // Body-local unit axle of a rotor; zero for every other body.
   Vec3 rotor_axis = Vec3::Zero();
-  // What this substep's position solve did to the body, world: the impulse
-  // (kg m) and the angular impulse about its centre (kg m^2) the
-  // constraints gave it (a rotor's axle takes them: its hinge's wrench),
-  // and the rotation (rad) the direct solver turned it by, whole turns
-  // and all (Gauss-Seidel's small turns leave it 0), which the velocity
-  // read-out and the cable bookkeeping unwrap their angles with.
+  // What this substep's solve did to the body, world: the impulse (kg m)
+  // and the angular impulse about its centre (kg m^2) the constraints and
+  // contacts gave it, in the position solve and the contacts' velocity
+  // pass (a velocity impulse p counts as p h; either way / h^2 is a force;
+  // a rotor's axle takes them: its hinge's wrench),
+  // and the rotation (rad) the solve turned it by, its corrections summed,
+  // whole turns and all, with which the velocity read-out, hinge drives and
+  // the cable bookkeeping take their angles round.
   Vec3 impulse = Vec3::Zero();
   Vec3 angular_impulse = Vec3::Zero();
   Vec3 solve_turn = Vec3::Zero();

@@ -25,7 +25,8 @@ double positionalDeltaLambda(const BodyState& a, const BodyState& b, const Vec3&
 
 /// Moves b by the positional impulse P (kg m) applied at arm r_b, and a by
 /// -P at r_a: x += P/m, q += 1/2 [I^-1 (r x P), 0] q (SCA 2020, eq. 6-9);
-/// adds P and r x P to the bodies' impulse and angular_impulse (body.h).
+/// adds P, r x P and the turn to the bodies' impulse, angular_impulse and
+/// solve_turn (body.h).
 void applyPositionalImpulse(BodyState& a, BodyState& b, const Vec3& r_a, const Vec3& r_b,
                             const Vec3& P);
 
@@ -35,7 +36,7 @@ double angularDeltaLambda(const BodyState& a, const BodyState& b, const Vec3& n,
                           double alpha_tilde, double lambda);
 
 /// Rotates b by I_b^-1 P and a by -I_a^-1 P (SCA 2020, eq. 13-14); adds
-/// +-P to their angular_impulse.
+/// +-P and the turns to their angular_impulse and solve_turn.
 void applyAngularImpulse(BodyState& a, BodyState& b, const Vec3& P);
 
 /// The 3x3 generalized inverse mass of a point constraint, SCA 2020 eq. 2

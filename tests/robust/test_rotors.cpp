@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <string>
 
 #include "reeve/engine/world.h"
 #include "reeve/machines/machines.h"
@@ -52,6 +53,67 @@ TEST(Rotors, ADriveIntoALimitStopsThereAndPushesWithAllItHas) {
     world.step(1.0 / 60.0);
     const double inertia = 0.5 * 1.0 * 0.3 * 0.3;
     EXPECT_NEAR(world.body(wheel).omega.z(), -5.0 / inertia / 60.0, 1e-6);
+  }
+}
+
+TEST(Rotors, ALimitItsDrivePullsAwayFromStillHolds) {
+  // The wheel starts 0.5 rad past its upper limit (range [-1, -0.5]),
+  // driven away from it at 1 rad/s by an unlimited drive: the drive alone
+  // would take it 1/60 rad a frame, so the limit must push it the rest of
+  // the way in the first frame.
+  for (const SolverKind method : kBoth) {
+    World world = worldSolvedBy(method);
+    world.settings().gravity.setZero();
+    world.settings().substeps = 1;
+    BodyDef def;
+    def.shape = Shape::cylinder(0.3, 0.05);
+    def.mass = 1.0;
+    const BodyId wheel = world.addBody(def);
+    HingeDef hinge(wheel, kWorldBody, Vec3::Zero(), Vec3::UnitZ());
+    hinge.limit = {true, -1.0, -0.5};
+    hinge.drive = {HingeDrive::Mode::Velocity, -1.0, 0.0};
+    const HingeId id = world.addHinge(hinge);
+    world.step(1.0 / 60.0);
+    SCOPED_TRACE(solverMethodName(method));
+    // Gauss-Seidel turns by the first-order rotateBy: 0.5 rad in one go
+    // comes out 2 atan(0.25) = 0.49 rad, the rest left to later sweeps.
+    EXPECT_LE(world.hingeAngle(id), -0.5 + (method == SolverKind::Direct ? 1e-9 : 0.01));
+    for (int f = 0; f < 29; ++f) world.step(1.0 / 60.0);
+    EXPECT_NEAR(world.body(wheel).omega.z(), -1.0, 1e-9);  // then it turns at the drive's speed
+  }
+}
+
+TEST(Rotors, AMotorTurningOverHalfATurnPerSubstepKeepsItsSpeed) {
+  // 200 rad/s at one substep of 1/60 s is 3.3 rad a substep: a hinge angle
+  // is only known to half a turn, so the drive must take its turn round as
+  // far as the wheel went (driveError). An unlimited drive holds 200 rad/s
+  // from its first frame (Gauss-Seidel's first-order turns need two); one
+  // of 1 N m on a 0.045 kg m^2 wheel spins it up at 22.2 rad/s^2 and stops
+  // at 200 rad/s. Gauss-Seidel's first-order turns each fall short by
+  // dphi^3 / 12, dphi = tau h^2 / I = 6.2e-3 rad: 1.2e-6 rad/s a substep,
+  // at most 8.6e-4 rad/s over the 720 substeps.
+  for (const SolverKind method : kBoth) {
+    const double tolerance = method == SolverKind::Direct ? 1e-6 * 200.0 : 1e-3;
+    for (const double torque : {0.0, 1.0}) {
+      World world = worldSolvedBy(method);
+      world.settings().gravity.setZero();
+      world.settings().substeps = 1;
+      BodyDef def;
+      def.shape = Shape::cylinder(0.3, 0.05);
+      def.mass = 1.0;
+      const BodyId wheel = world.addBody(def);
+      HingeDef hinge(wheel, kWorldBody, Vec3::Zero(), Vec3::UnitZ());
+      hinge.drive = {HingeDrive::Mode::Velocity, 200.0, torque};
+      world.addHinge(hinge);
+      const double inertia = 0.5 * 0.3 * 0.3, spin_up = torque > 0.0 ? 200.0 * inertia / torque : 0.0;
+      SCOPED_TRACE(std::string(solverMethodName(method)) + ", torque " + std::to_string(torque));
+      for (int f = 1; f <= 60 * 12; ++f) {
+        world.step(1.0 / 60.0);
+        const double t = f / 60.0, omega = world.body(wheel).omega.z();
+        if (torque > 0.0 && t < spin_up - 0.02) ASSERT_NEAR(omega, torque / inertia * t, tolerance) << t;
+        if (t > spin_up + 0.04) ASSERT_NEAR(omega, 200.0, tolerance) << t;
+      }
+    }
   }
 }
 
@@ -117,6 +179,59 @@ TEST(Rotors, TheAxleTakesABendingMoment) {
     EXPECT_NEAR(wrench.torque.x(), -0.4 * g, 1e-3 * 0.4 * g);
     EXPECT_NEAR(wrench.torque.z(), 0.0, 1e-9);
   }
+}
+
+TEST(Rotors, TheAxleFeelsTheFrictionOfABoxSlidingOverTheWheel) {
+  // A 10 kg box pushed at 2 m/s across a square wheel held still: dynamic
+  // friction (mu_d 0.3, the default material) drags the wheel along with
+  // mu_d m g, which its axle holds; the contacts' velocity pass applies it.
+  for (const SolverKind method : kBoth) {
+    World world = worldSolvedBy(method);
+    BodyDef def;
+    def.shape = Shape::box(Vec3(0.5, 0.5, 0.1));
+    def.mass = 1.0;
+    def.collides = true;
+    const BodyId wheel = world.addBody(def);
+    def.shape = Shape::box(Vec3(0.3, 0.1, 0.1));
+    def.mass = 10.0;
+    def.position = Vec3(0.0, 0.6, 0.0);
+    const BodyId box = world.addBody(def);
+    HingeDef hinge(wheel, kWorldBody, Vec3::Zero(), Vec3::UnitZ());
+    hinge.drive = {HingeDrive::Mode::Velocity, 0.0, 0.0};
+    const HingeId id = world.addHinge(hinge);
+    for (int f = 0; f < 30; ++f) world.step(1.0 / 60.0);  // settle
+    world.body(box).v = Vec3(2.0, 0.0, 0.0);
+    world.step(1.0 / 60.0);
+    const double friction = def.material.dynamic_friction * 10.0 * -world.settings().gravity.y();
+    const JointWrench wrench = world.hingeWrench(id);
+    std::printf("[ measured ] %s: axle force along the slide %.4f N, mu_d m g = %.4f N\n", solverMethodName(method),
+                -wrench.force.x(), friction);
+    SCOPED_TRACE(solverMethodName(method));
+    EXPECT_NEAR(-wrench.force.x(), friction, 0.01 * friction);
+  }
+}
+
+TEST(Rotors, AWheelThatSaggedUnderGaussSeidelIsMadeARotorOnItsAxle) {
+  // A 1 g wheel under 1 and 2 kg boxes sags off its axle under
+  // Gauss-Seidel; switched to the direct solver it becomes a rotor back on
+  // the axle, and stays there.
+  machines::AtwoodSpec spec;
+  spec.wheel_kg = 1e-3;
+  spec.budget.solver = SolverKind::GaussSeidel;
+  machines::Atwood m = machines::atwood(spec);
+  World& world = *m.scene.world;
+  for (int f = 0; f < 20; ++f) world.step(1.0 / 60.0);
+  const auto offset = [&] {
+    const HingeJoint& j = world.hinge(m.axle);
+    return (world.body(j.a).toWorld(j.frame.anchor_a) - world.body(j.b).toWorld(j.frame.anchor_b)).norm();
+  };
+  EXPECT_GT(offset(), 1e-3);
+  world.settings().solver = SolverKind::Direct;
+  for (int f = 0; f < 20; ++f) {
+    world.step(1.0 / 60.0);
+    EXPECT_LT(offset(), 1e-12);
+  }
+  EXPECT_TRUE(world.body(m.wheel).isRotor());
 }
 
 TEST(Rotors, AHingeMadeCompliantStopsBeingARotor) {

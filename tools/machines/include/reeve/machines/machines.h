@@ -96,6 +96,27 @@ struct BlockAndTackle {
 };
 BlockAndTackle blockAndTackle(const BlockAndTackleSpec& spec);
 
+/// A belt (a closed cable) round K wheels of radius `radius_m` set on a
+/// circle in the z = 0 plane, each hinged to the world at its centre; wheel
+/// k weighs 10^(spread x ((7 k mod 5) - 2) / 2) kg, from 10^-spread to
+/// 10^spread kg, neighbours far apart. A motor on wheel 0 drives it at
+/// `motor_speed_rad_per_s` with at most `motor_torque_Nm`. No gravity.
+struct BeltRingSpec {
+  int wheels = 16;
+  double radius_m = 0.1, spread = 0.0;
+  double motor_speed_rad_per_s = 5.0, motor_torque_Nm = 100.0;
+  Budget budget;
+};
+
+struct BeltRing {
+  BeltRingSpec spec;
+  Scene scene;
+  std::vector<BodyId> wheels;
+  HingeId motor = 0;
+  int cable = 0;
+};
+BeltRing beltRing(const BeltRingSpec& spec);
+
 /// The paper's Hilbert machine (Fig. 1 right, Fig. 18): a wheel at every
 /// point of a 3D Hilbert curve of `level` (8^level wheels, `pitch_m`
 /// apart), each hinged to the world at its centre with its axis normal to

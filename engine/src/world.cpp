@@ -49,6 +49,7 @@ void checkDrive(const char* kind, double target, double max_effort, double targe
 }
 
 constexpr double kPi = std::numbers::pi;
+constexpr double kAny = std::numeric_limits<double>::infinity();
 
 // [v]x: the matrix of v x (.).
 Mat3 skew(const Vec3& v) {
@@ -80,7 +81,6 @@ Vec3 gyroscopicStep(const Mat3& inertia, const Vec3& w, double h) {
   const double scale = std::min({1.0, std::sqrt(energy / next.dot(next_Iw)), std::sqrt(momentum / next_Iw.squaredNorm())});
   return scale * next;
 }
-constexpr double kAny = std::numeric_limits<double>::infinity();
 
 }  // namespace
 

@@ -175,9 +175,11 @@ class CableSystem {
   /// sliding (Alg. 1 l. 8-16), hybrid switches (Alg. 2 l. 11-22), merges and
   /// splits (Alg. 2 l. 23-28). `time_s` stamps the events. `h` (s) is the
   /// substep the World just integrated: each body turned by h omega then,
-  /// however many turns that is, and the cable it pays out counts them all.
-  /// With h = 0 (bodies moved by hand) each must have turned less than
-  /// half a turn about its cable plane's normal since the last update.
+  /// and by its last solve's turn (BodyState::solve_turn), however many
+  /// turns that is, and the cable it pays out counts them all. With h = 0
+  /// (an update between steps) only the last solve's turn is counted; a
+  /// body turned by hand must have turned less than half a turn about its
+  /// cable plane's normal since the last update.
   void update(double time_s = 0.0, double h = 0.0);
 
   const std::vector<Cable>& cables() const { return cables_; }

@@ -25,6 +25,32 @@ World worldSolvedBy(SolverKind method) {
   return World(settings);
 }
 
+// A 10 kg box (0.6 x 0.2 x 0.2 m) resting on a 1 kg square wheel (1 m
+// side) hinged to the world at its centre about z, the hinge's drive set to
+// `drive` with no torque bound, so the wheel is held still.
+struct BoxOnWheel {
+  BodyId wheel, box;
+  HingeId hinge;
+  ContactMaterial material;
+};
+BoxOnWheel boxOnSquareWheel(World& world, HingeDrive::Mode drive) {
+  BodyDef def;
+  def.shape = Shape::box(Vec3(0.5, 0.5, 0.1));
+  def.mass = 1.0;
+  def.collides = true;
+  BoxOnWheel r;
+  r.material = def.material;
+  r.wheel = world.addBody(def);
+  def.shape = Shape::box(Vec3(0.3, 0.1, 0.1));
+  def.mass = 10.0;
+  def.position = Vec3(0.0, 0.6, 0.0);
+  r.box = world.addBody(def);
+  HingeDef hinge(r.wheel, kWorldBody, Vec3::Zero(), Vec3::UnitZ());
+  hinge.drive = {drive, 0.0, 0.0};
+  r.hinge = world.addHinge(hinge);
+  return r;
+}
+
 TEST(Rotors, ADriveIntoALimitStopsThereAndPushesWithAllItHas) {
   // A wheel driven at 2 rad/s (at most 5 N m) against an upper limit of
   // 0.5 rad: it stays at the limit and the drive keeps pushing with 5 N m
@@ -110,8 +136,12 @@ TEST(Rotors, AMotorTurningOverHalfATurnPerSubstepKeepsItsSpeed) {
       for (int f = 1; f <= 60 * 12; ++f) {
         world.step(1.0 / 60.0);
         const double t = f / 60.0, omega = world.body(wheel).omega.z();
-        if (torque > 0.0 && t < spin_up - 0.02) ASSERT_NEAR(omega, torque / inertia * t, tolerance) << t;
-        if (t > spin_up + 0.04) ASSERT_NEAR(omega, 200.0, tolerance) << t;
+        if (torque > 0.0 && t < spin_up - 0.02) {
+          ASSERT_NEAR(omega, torque / inertia * t, tolerance) << t;
+        }
+        if (t > spin_up + 0.04) {
+          ASSERT_NEAR(omega, 200.0, tolerance) << t;
+        }
       }
     }
   }
@@ -123,18 +153,7 @@ TEST(Rotors, TheAxleCarriesWhatRestsOnTheWheel) {
   // comes through hinge rows (Gauss-Seidel) or a rotor's axle (direct).
   for (const SolverKind method : kBoth) {
     World world = worldSolvedBy(method);
-    BodyDef def;
-    def.shape = Shape::box(Vec3(0.5, 0.5, 0.1));
-    def.mass = 1.0;
-    def.collides = true;
-    const BodyId wheel = world.addBody(def);
-    def.shape = Shape::box(Vec3(0.3, 0.1, 0.1));
-    def.mass = 10.0;
-    def.position = Vec3(0.0, 0.6, 0.0);
-    world.addBody(def);
-    HingeDef hinge(wheel, kWorldBody, Vec3::Zero(), Vec3::UnitZ());
-    hinge.drive = {HingeDrive::Mode::Angle, 0.0, 0.0};
-    const HingeId id = world.addHinge(hinge);
+    const HingeId id = boxOnSquareWheel(world, HingeDrive::Mode::Angle).hinge;
     for (int f = 0; f < 60; ++f) world.step(1.0 / 60.0);
     const double weight = 11.0 * -world.settings().gravity.y();
     const JointWrench wrench = world.hingeWrench(id);
@@ -187,23 +206,12 @@ TEST(Rotors, TheAxleFeelsTheFrictionOfABoxSlidingOverTheWheel) {
   // mu_d m g, which its axle holds; the contacts' velocity pass applies it.
   for (const SolverKind method : kBoth) {
     World world = worldSolvedBy(method);
-    BodyDef def;
-    def.shape = Shape::box(Vec3(0.5, 0.5, 0.1));
-    def.mass = 1.0;
-    def.collides = true;
-    const BodyId wheel = world.addBody(def);
-    def.shape = Shape::box(Vec3(0.3, 0.1, 0.1));
-    def.mass = 10.0;
-    def.position = Vec3(0.0, 0.6, 0.0);
-    const BodyId box = world.addBody(def);
-    HingeDef hinge(wheel, kWorldBody, Vec3::Zero(), Vec3::UnitZ());
-    hinge.drive = {HingeDrive::Mode::Velocity, 0.0, 0.0};
-    const HingeId id = world.addHinge(hinge);
+    const BoxOnWheel rig = boxOnSquareWheel(world, HingeDrive::Mode::Velocity);
     for (int f = 0; f < 30; ++f) world.step(1.0 / 60.0);  // settle
-    world.body(box).v = Vec3(2.0, 0.0, 0.0);
+    world.body(rig.box).v = Vec3(2.0, 0.0, 0.0);
     world.step(1.0 / 60.0);
-    const double friction = def.material.dynamic_friction * 10.0 * -world.settings().gravity.y();
-    const JointWrench wrench = world.hingeWrench(id);
+    const double friction = rig.material.dynamic_friction * 10.0 * -world.settings().gravity.y();
+    const JointWrench wrench = world.hingeWrench(rig.hinge);
     std::printf("[ measured ] %s: axle force along the slide %.4f N, mu_d m g = %.4f N\n", solverMethodName(method),
                 -wrench.force.x(), friction);
     SCOPED_TRACE(solverMethodName(method));

@@ -453,7 +453,6 @@ void DirectSolver::driveAgainstLimit(int first_clamped, const JointRowSet& set) 
 }
 
 void DirectSolver::evaluate(World& world, double h) {
-  const double inv_h2 = 1.0 / (h * h);
   evaluateBodies();
   const int n = static_cast<int>(rows_.size());
   for (int r = 0; r < n;) {

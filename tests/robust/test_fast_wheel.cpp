@@ -15,7 +15,7 @@ namespace {
 TEST(FastWheel, OneMillimetreWheelOnA1To100AtwoodAtOneStepOfOneIteration) {
   // Also 0.2 mm: there the solve alone turns the wheel a h^2 / r = 13.6 rad
   // per substep, over two turns, besides the integration's h omega.
-  for (const auto [radius, wheel_kg] : {std::pair{1e-3, 1e-3}, std::pair{1e-3, 1.0}, std::pair{2e-4, 1e-3}}) {
+  for (const auto& [radius, wheel_kg] : {std::pair{1e-3, 1e-3}, std::pair{1e-3, 1.0}, std::pair{2e-4, 1e-3}}) {
     machines::AtwoodSpec spec;
     spec.radius_m = radius;
     spec.heavy_kg = 100.0 * spec.light_kg;

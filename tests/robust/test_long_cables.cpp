@@ -44,7 +44,7 @@ TEST(LongCables, ABeltOverWheelsOfEveryMassSpinsUpAtTheMotorsTorque) {
   // Wheels of 1 kg: within 1e-6. With the heavy ones the belt creeps
   // (alpha r = 4e-5 m/s^2 for 64 wheels), so the solver's stop at rows met
   // to 1e-10 m a substep, 6e-9 m/s, is 1e-4 of its speed: within 1e-3.
-  for (const auto [K, spread] : {std::pair{8, 0.0}, std::pair{64, 0.0}, std::pair{256, 0.0}, std::pair{8, 6.0},
+  for (const auto& [K, spread] : {std::pair{8, 0.0}, std::pair{64, 0.0}, std::pair{256, 0.0}, std::pair{8, 6.0},
                                  std::pair{64, 6.0}}) {
     machines::BeltRingSpec spec;
     spec.wheels = K;

@@ -30,7 +30,7 @@ TEST(SnapTaut, InextensibleCableJerksEverythingToTheMomentumConservingSpeed) {
   // Along the cable the momentum m2 v0 of the heavy box is shared, once
   // taut, by both boxes and the wheel's rim: (m1 + m2 + I / r^2) v = m2 v0.
   for (const double wheel_kg : {1e-3, 1.0})
-    for (const auto [substeps, iterations] : {std::pair{10, 2}, std::pair{1, 10}}) {
+    for (const auto& [substeps, iterations] : {std::pair{10, 2}, std::pair{1, 10}}) {
       const machines::AtwoodSpec spec = jerk(wheel_kg, iterations);
       machines::Atwood m = machines::atwood(spec);
       World& w = *m.scene.world;

@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "commands.h"
+#include "generate_command.h"
 #include "segment_command.h"
 #include "reeve/scene/scene.h"
 
@@ -54,6 +55,19 @@ int main(int argc, char** argv) {
                           "Output scene (default SCENE_segments.json beside SCENE)");
   segment_cmd->add_flag("--force", segment.force, "Overwrite an existing output file");
 
+  reeve::GenerateHilbertOptions hilbert;
+  CLI::App* generate_cmd = app.add_subcommand("generate", "Write a generated scene file.");
+  generate_cmd->require_subcommand(1);
+  CLI::App* hilbert_cmd = generate_cmd->add_subcommand(
+      "hilbert", "The paper's Hilbert-curve machine (Fig. 18): wheels along a 3D Hilbert curve, one cable, a motor.");
+  hilbert_cmd->add_option("--level", hilbert.level, "Curve level: 8^level wheels (1..4; default 2)")
+      ->check(CLI::Range(1, 4));
+  hilbert_cmd->add_option("--slack", hilbert.slack_m, "Slack of every span, m (default 0: taut)")
+      ->check(CLI::NonNegativeNumber);
+  hilbert_cmd->add_option("-o,--output", hilbert.output,
+                          "Output scene (default hilbert<level>.json, or hilbert<level>_loose.json with slack)");
+  hilbert_cmd->add_flag("--force", hilbert.force, "Overwrite an existing output file");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -61,6 +75,7 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : reeve::kExitUsage;
   }
   if (*run_cmd) return reeve::runCommand(run);
+  if (*hilbert_cmd) return reeve::generateHilbertCommand(hilbert);
   if (*segment_cmd) {
     if (*rope_mass_opt) segment.segment.rope_mass_kg = rope_mass;
     std::string line = "reeve segment";

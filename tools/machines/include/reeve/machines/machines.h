@@ -8,6 +8,8 @@
 // reeve/machines/closed_forms.h. Wheels are solid cylinders: I = M r^2 / 2.
 #pragma once
 
+#include <nlohmann/json.hpp>
+#include <string>
 #include <vector>
 
 #include "reeve/scene/scene.h"
@@ -117,18 +119,25 @@ struct BeltRing {
 };
 BeltRing beltRing(const BeltRingSpec& spec);
 
-/// The paper's Hilbert machine (Fig. 1 right, Fig. 18): a wheel at every
-/// point of a 3D Hilbert curve of `level` (8^level wheels, `pitch_m`
-/// apart), each hinged to the world at its centre with its axis normal to
-/// the curve's turn there (or to the neighbour's turn where the curve runs
-/// straight), and one cable along the curve. The cable starts wound on the
-/// first wheel, a motor (`motor_speed_rad_per_s`, at most `motor_torque_Nm`)
-/// that winds it in, and ends at a `load_kg` box hanging below the last.
+/// The paper's Hilbert machine (Fig. 1 right, Fig. 18): a wheel (a disc
+/// of `radius_m`, `wheel_kg`) at every point of a 3D Hilbert curve of
+/// `level` (8^level wheels, `pitch_m` apart), each hinged to the world at
+/// its centre with its axis normal to the curve's turn there (so its cable
+/// plane holds the directions of both spans that meet it) or, where the
+/// curve runs straight, the neighbour's axis (the cable crosses over). One
+/// cable runs along the curve: it starts wound on the first wheel, a drum
+/// whose motor (`motor_speed_rad_per_s`, at most `motor_torque_Nm`) winds
+/// it in, and ends at a `load_kg` box hanging `load_drop_m` below the last
+/// wheel or, with
+/// `brake_torque_Nm` > 0, wound on the last wheel, a drum braked with that
+/// torque (a velocity drive to 0). Every span starts `slack_m` longer than
+/// taut. Gravity `gravity` m/s^2 along -y, frames at 60 Hz.
 struct HilbertSpec {
   int level = 3;
   double pitch_m = 1.0, radius_m = 0.25, wheel_kg = 1.0;
-  double load_kg = 1.0, gravity = 10.0;
+  double load_kg = 1.0, load_drop_m = 2.0, gravity = 10.0, brake_torque_Nm = 0.0, slack_m = 0.0;
   double motor_speed_rad_per_s = 2.0, motor_torque_Nm = 1000.0;
+  double duration_s = 10.0;
   Budget budget;
 };
 
@@ -136,10 +145,27 @@ struct Hilbert {
   HilbertSpec spec;
   Scene scene;
   std::vector<BodyId> wheels;
-  HingeId motor = 0;
-  BodyId load = 0;
+  HingeId motor = 0;      // wheel 0's
+  HingeId brake = 0;      // the last wheel's
+  BodyId load = kWorldBody;  // none when the end is a braked drum
   int cable = 0;
 };
+/// The machine as a scene file (scenes/README.md), as `reeve generate
+/// hilbert` writes it. Throws std::invalid_argument for a level outside
+/// [1, 4] or a negative slack, mass, radius or pitch.
+nlohmann::ordered_json hilbertSceneJson(const HilbertSpec& spec);
+/// The text of a generated scene file: indented by 2, but any array or
+/// object that fits in 200 characters on one line, so a body, a hinge or a
+/// link reads as one line. Ends with a newline.
+std::string sceneFileText(const nlohmann::ordered_json& doc);
+/// What `reeve generate hilbert --level L --slack S` writes
+/// (scenes/hilbert2.json, hilbert2_loose.json, hilbert3.json): level 2
+/// ends at a drum braked with 10 N m, its motor at 8 rad/s (2 m/s of
+/// cable); level 3 at a 10 kg load 3 m down, its motor at 1 rad/s; motors
+/// of at most 1000 N m, g = 9.81, 1 substep x 10 iterations (the paper's
+/// Table 1), 5 s taut, 10 s loose or level 3.
+HilbertSpec hilbertSceneSpec(int level, double slack_m);
+/// The machine loaded from hilbertSceneJson(spec).
 Hilbert hilbert(const HilbertSpec& spec);
 
 /// The points (grid units) of the 3D Hilbert curve with 2^level points per

@@ -1,0 +1,147 @@
+// scenes/hilbert2.json, hilbert2_loose.json and hilbert3.json, the paper's
+// Hilbert-curve machines (Fig. 18, Fig. 1 right), written by `reeve
+// generate hilbert`: taut, every wheel turns at once at the motor's surface
+// speed and the motor gives the power the end takes; loose, the wheels
+// start one by one as the motor takes in each span's slack.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "reeve/cable/cable.h"
+#include "reeve/machines/machines.h"
+#include "scene_fixture.h"
+
+namespace reeve {
+namespace {
+
+std::string readFile(const std::string& name) {
+  std::ifstream file(std::string(REEVE_SCENES_DIR) + "/" + name);
+  std::stringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+TEST(Hilbert, CommittedScenesAreWhatTheGeneratorWritesToday) {
+  struct File {
+    const char* name;
+    int level;
+    double slack_m;
+  };
+  for (const File f : {File{"hilbert2.json", 2, 0.0}, File{"hilbert2_loose.json", 2, 0.2}, File{"hilbert3.json", 3, 0.0}}) {
+    const std::string file = readFile(f.name);
+    const std::string now = machines::sceneFileText(machines::hilbertSceneJson(machines::hilbertSceneSpec(f.level, f.slack_m)));
+    std::size_t at = 0;
+    while (at < file.size() && at < now.size() && file[at] == now[at]) ++at;
+    EXPECT_EQ(file.size(), now.size()) << f.name;
+    EXPECT_EQ(at, now.size()) << f.name << " differs from the generator at \"" << now.substr(at, 80)
+                              << "\": run `reeve generate hilbert --level " << f.level << " --slack " << f.slack_m
+                              << " -o scenes/" << f.name << " --force`";
+  }
+}
+
+// The machine's wheels (bodies named wheelK, in curve order), their radius
+// (the generator's, which the committed files are checked to match) and
+// the cable's surface speed the motor drives (m/s).
+struct Machine {
+  std::vector<BodyId> wheels;
+  double radius, speed;
+};
+Machine machine(const Scene& s) {
+  Machine m;
+  for (int k = 0;; ++k) {
+    const auto id = s.world->findBody("wheel" + std::to_string(k));
+    if (!id) break;
+    m.wheels.push_back(*id);
+  }
+  m.radius = machines::hilbertSceneSpec(2, 0.0).radius_m;  // every level's
+  m.speed = std::abs(s.world->hinge(0).drive.target) * m.radius;
+  return m;
+}
+
+// The wheel's turning rate about its axle (rad/s).
+double spin(const Scene& s, BodyId wheel) { return s.world->body(wheel).omega.norm(); }
+
+// Runs `frames` frames and returns, for each wheel, the first time it
+// turns at half the motor's rate (s; infinity if never).
+std::vector<double> startTimes(Scene& s, const Machine& m, int frames) {
+  std::vector<double> start(m.wheels.size(), INFINITY);
+  for (int f = 0; f < frames; ++f) {
+    test::frame(s);
+    for (std::size_t k = 0; k < m.wheels.size(); ++k)
+      if (std::isinf(start[k]) && spin(s, m.wheels[k]) * m.radius > 0.5 * m.speed) start[k] = s.world->time();
+  }
+  return start;
+}
+
+// Taut, the cable moves as one: every wheel turns at speed / r. At that
+// steady speed the frictionless wheels take no power, so the motor gives
+// what the end takes: the brake's torque (a drum of the same radius), or
+// the load's weight times r.
+void expectTautMachine(const char* name, int frames) {
+  Scene s = test::scene(name);
+  const Machine m = machine(s);
+  const double total = s.cables->totalLength(0);
+  const std::vector<double> start = startTimes(s, m, frames);
+  double first = INFINITY, last = 0.0, worst_speed = 0.0;
+  for (std::size_t k = 0; k < m.wheels.size(); ++k) {
+    first = std::min(first, start[k]);
+    last = std::max(last, start[k]);
+    worst_speed = std::max(worst_speed, std::abs(spin(s, m.wheels[k]) * m.radius / m.speed - 1.0));
+  }
+  const auto load = s.world->findBody("load");
+  const int end = static_cast<int>(m.wheels.size()) - 1;
+  const double torque = load ? s.world->bodyMass(*load) * -s.world->settings().gravity.y() * m.radius
+                             : s.world->hinge(end).drive.max_torque;
+  const double motor = std::abs(s.world->hingeDriveTorque(0));
+  std::printf("[ measured ] %s: wheels start %.4f .. %.4f s; surface speeds within %.2e; motor %.6f N m vs %.6f\n", name,
+              first, last, worst_speed, motor, torque);
+  EXPECT_LE(last - first, 1.0 / s.frame_rate_hz + 1e-9);
+  EXPECT_LT(worst_speed, 5e-3);
+  EXPECT_NEAR(motor, torque, 5e-3 * torque);
+  EXPECT_NEAR(s.cables->totalLength(0), total, 1e-9 * total);
+}
+
+TEST(Hilbert, TautEveryWheelTurnsAtOnceAtTheMotorsSurfaceSpeed) { expectTautMachine("hilbert2", 60); }
+
+TEST(Hilbert, Level3RunsTenSecondsAtThePapersBudget) {
+  // 512 wheels, 1 substep x 10 iterations (the scene's, Table 1's), 10 s;
+  // the gtest floating-point traps catch any non-finite state.
+  expectTautMachine("hilbert3", 600);
+}
+
+TEST(Hilbert, LooseTheWheelsStartOneByOneAsTheSlackIsTakenUp) {
+  // Wheel k waits for the motor to take in the slack of the k spans before
+  // it: t_k = t_0 + (sum of slack before k) / speed, each span's slack its
+  // rest length less the distance its ends are apart at the start.
+  Scene s = test::scene("hilbert2_loose");
+  const Machine m = machine(s);
+  const double total = s.cables->totalLength(0);
+  std::vector<double> slack_before(m.wheels.size(), 0.0);
+  for (std::size_t k = 1; k < m.wheels.size(); ++k) {
+    const int j = static_cast<int>(k) - 1;
+    slack_before[k] = slack_before[k - 1] + s.cables->restLength(0, j) - s.cables->length(0, j);
+  }
+  ASSERT_GT(slack_before[1], 0.1);
+  const std::vector<double> start = startTimes(s, m, static_cast<int>(s.duration_s * s.frame_rate_hz));
+  const double frame = 1.0 / s.frame_rate_hz;
+  double worst = 0.0;
+  for (std::size_t k = 0; k < m.wheels.size(); ++k) {
+    const double want = start[0] + slack_before[k] / m.speed;
+    worst = std::max(worst, std::abs(start[k] - want));
+    EXPECT_NEAR(start[k], want, frame + 1e-9) << "wheel " << k;
+    if (k > 0) {
+      EXPECT_GT(start[k], start[k - 1]) << "wheel " << k;
+    }
+  }
+  std::printf("[ measured ] wheel 0 starts at %.4f s, wheel %zu at %.4f s; worst start %.4f s (%.2f frames) off\n",
+              start[0], m.wheels.size() - 1, start.back(), worst, worst / frame);
+  EXPECT_NEAR(s.cables->totalLength(0), total, 1e-9 * total);
+}
+
+}  // namespace
+}  // namespace reeve

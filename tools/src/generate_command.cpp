@@ -1,0 +1,32 @@
+#include "generate_command.h"
+
+#include <fstream>
+#include <iostream>
+
+#include "commands.h"
+#include "reeve/machines/machines.h"
+
+namespace reeve {
+
+int generateHilbertCommand(const GenerateHilbertOptions& options) {
+  namespace fs = std::filesystem;
+  const machines::HilbertSpec spec = machines::hilbertSceneSpec(options.level, options.slack_m);
+  const nlohmann::ordered_json doc = machines::hilbertSceneJson(spec);
+  const fs::path out = options.output.empty() ? fs::path(doc["name"].get<std::string>() + ".json") : options.output;
+  if (fs::exists(out) && !options.force) {
+    std::cerr << "reeve: " << out.string() << " exists; pass --force to replace it\n";
+    return kExitWouldOverwrite;
+  }
+  std::ofstream file(out);
+  file << machines::sceneFileText(doc);
+  file.close();
+  if (!file) {
+    std::cerr << "reeve: cannot write " << out.string() << '\n';
+    return kExitFailure;
+  }
+  const std::size_t wheels = doc["hinges"].size(), links = doc["cables"][0]["links"].size();
+  std::cout << "wrote " << out.string() << " (" << wheels << " wheels, " << links - 1 << " cable joints)\n";
+  return 0;
+}
+
+}  // namespace reeve

@@ -25,6 +25,15 @@ World worldSolvedBy(SolverKind method) {
   return World(settings);
 }
 
+// A 1 kg wheel (solid cylinder, r 0.3 m, 0.1 m thick) at the origin, its
+// axis z: I = 0.045 kg m^2.
+BodyId addWheel(World& world) {
+  BodyDef def;
+  def.shape = Shape::cylinder(0.3, 0.05);
+  def.mass = 1.0;
+  return world.addBody(def);
+}
+
 // A 10 kg box (0.6 x 0.2 x 0.2 m) resting on a 1 kg square wheel (1 m
 // side) hinged to the world at its centre about z, the hinge's drive set to
 // `drive` with no torque bound, so the wheel is held still.
@@ -60,10 +69,7 @@ TEST(Rotors, ADriveIntoALimitStopsThereAndPushesWithAllItHas) {
     SolverSettings settings;
     settings.solver = method;
     World world(settings);
-    BodyDef def;
-    def.shape = Shape::cylinder(0.3, 0.05);
-    def.mass = 1.0;
-    const BodyId wheel = world.addBody(def);
+    const BodyId wheel = addWheel(world);
     HingeDef hinge(wheel, kWorldBody, Vec3::Zero(), Vec3::UnitZ());
     hinge.limit = {true, -0.5, 0.5};
     hinge.drive = {HingeDrive::Mode::Velocity, 2.0, 5.0};
@@ -91,10 +97,7 @@ TEST(Rotors, ALimitItsDrivePullsAwayFromStillHolds) {
     World world = worldSolvedBy(method);
     world.settings().gravity.setZero();
     world.settings().substeps = 1;
-    BodyDef def;
-    def.shape = Shape::cylinder(0.3, 0.05);
-    def.mass = 1.0;
-    const BodyId wheel = world.addBody(def);
+    const BodyId wheel = addWheel(world);
     HingeDef hinge(wheel, kWorldBody, Vec3::Zero(), Vec3::UnitZ());
     hinge.limit = {true, -1.0, -0.5};
     hinge.drive = {HingeDrive::Mode::Velocity, -1.0, 0.0};
@@ -124,10 +127,7 @@ TEST(Rotors, AMotorTurningOverHalfATurnPerSubstepKeepsItsSpeed) {
       World world = worldSolvedBy(method);
       world.settings().gravity.setZero();
       world.settings().substeps = 1;
-      BodyDef def;
-      def.shape = Shape::cylinder(0.3, 0.05);
-      def.mass = 1.0;
-      const BodyId wheel = world.addBody(def);
+      const BodyId wheel = addWheel(world);
       HingeDef hinge(wheel, kWorldBody, Vec3::Zero(), Vec3::UnitZ());
       hinge.drive = {HingeDrive::Mode::Velocity, 200.0, torque};
       world.addHinge(hinge);
@@ -246,10 +246,7 @@ TEST(Rotors, AHingeMadeCompliantStopsBeingARotor) {
   // A rotor cannot sag on its axle; one whose hinge is given compliance
   // after the first step is a free body on that hinge again.
   World world;
-  BodyDef def;
-  def.shape = Shape::cylinder(0.3, 0.05);
-  def.mass = 1.0;
-  const BodyId wheel = world.addBody(def);
+  const BodyId wheel = addWheel(world);
   const HingeId id = world.addHinge(HingeDef(wheel, kWorldBody, Vec3::Zero(), Vec3::UnitZ()));
   world.step(1.0 / 60.0);
   EXPECT_TRUE(world.body(wheel).isRotor());

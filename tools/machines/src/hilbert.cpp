@@ -219,7 +219,6 @@ Hilbert hilbert(const HilbertSpec& spec) {
   }
   if (auto load = world.findBody("load")) m.load = *load;
   m.motor = 0;  // hinges are in wheel order
-  m.brake = static_cast<HingeId>(m.wheels.size()) - 1;
   return m;
 }
 

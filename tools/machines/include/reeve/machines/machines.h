@@ -146,7 +146,6 @@ struct Hilbert {
   Scene scene;
   std::vector<BodyId> wheels;
   HingeId motor = 0;      // wheel 0's
-  HingeId brake = 0;      // the last wheel's
   BodyId load = kWorldBody;  // none when the end is a braked drum
   int cable = 0;
 };

@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -23,29 +25,54 @@ std::vector<std::filesystem::path> shippedScenes() {
   return files;
 }
 
-TEST(Invariants, HoldAfterEverySubstepOfEveryShippedScene) {
-  const auto files = shippedScenes();
-  ASSERT_GE(files.size(), 17u);
-  for (const SolverKind method : {SolverKind::Direct, SolverKind::GaussSeidel}) {
-    for (const auto& file : files) {
-      Scene s = loadScene(file);
-      s.world->settings().solver = method;
-      std::string broken;
-      // Runs after the cable system's own hook: after its update.
-      s.world->addSubstepHook([&](World&, double) {
-        if (broken.empty())
-          if (const auto v = s.cables->invariantViolation()) broken = *v;
-      });
-      for (int f = 0; f < s.frameCount() && broken.empty(); ++f) {
-        s.world->step(1.0 / s.frame_rate_hz);
-        ASSERT_FALSE(s.world->firstNonFiniteBody()) << file.filename() << ", " << solverMethodName(method);
-      }
-      if (!s.cables->cables().empty() && broken.empty())
-        if (const auto v = s.cables->invariantViolation()) broken = *v;
-      EXPECT_EQ(broken, "") << file.filename() << ", " << solverMethodName(method);
-    }
-  }
+// One test per scene and solver, so that ctest runs them in parallel.
+struct Case {
+  std::filesystem::path file;
+  SolverKind method;
+};
+
+void PrintTo(const Case& c, std::ostream* os) {
+  *os << c.file.filename().string() << ", " << solverMethodName(c.method);
 }
+
+std::vector<Case> cases() {
+  std::vector<Case> all;
+  for (const SolverKind method : {SolverKind::Direct, SolverKind::GaussSeidel})
+    for (const auto& file : shippedScenes()) all.push_back({file, method});
+  return all;
+}
+
+class EveryShippedScene : public testing::TestWithParam<Case> {};
+
+TEST(Invariants, EveryShippedSceneIsCovered) { EXPECT_GE(shippedScenes().size(), 17u); }
+
+TEST_P(EveryShippedScene, InvariantsHoldAfterEverySubstep) {
+  const auto& [file, method] = GetParam();
+  Scene s = loadScene(file);
+  s.world->settings().solver = method;
+  std::string broken;
+  // Runs after the cable system's own hook: after its update.
+  s.world->addSubstepHook([&](World&, double) {
+    if (broken.empty())
+      if (const auto v = s.cables->invariantViolation()) broken = *v;
+  });
+  for (int f = 0; f < s.frameCount() && broken.empty(); ++f) {
+    s.world->step(1.0 / s.frame_rate_hz);
+    ASSERT_FALSE(s.world->firstNonFiniteBody()) << "frame " << f;
+  }
+  if (!s.cables->cables().empty() && broken.empty())
+    if (const auto v = s.cables->invariantViolation()) broken = *v;
+  EXPECT_EQ(broken, "");
+}
+
+INSTANTIATE_TEST_SUITE_P(Invariants, EveryShippedScene, testing::ValuesIn(cases()),
+                         [](const testing::TestParamInfo<Case>& info) {
+                           std::string name = info.param.file.stem().string() + "_" +
+                                              solverMethodName(info.param.method);
+                           for (char& ch : name)
+                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+                           return name;
+                         });
 
 TEST(Invariants, ANegativeRestLengthOrStoredCableIsReported) {
   // A post, a wheel and a post: a cable that could not exist.

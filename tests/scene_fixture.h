@@ -3,6 +3,9 @@
 
 #include <string>
 
+#include <gtest/gtest.h>
+
+#include "reeve/cable/cable.h"
 #include "reeve/scene/scene.h"
 
 namespace reeve::test {
@@ -12,6 +15,15 @@ inline Scene scene(const std::string& name) { return loadScene(std::string(REEVE
 
 /// The id of the body named `name` (the scene must have it).
 inline BodyId body(const Scene& s, const std::string& name) { return *s.world->findBody(name); }
+
+/// The index of the cable named `name` (a test failure, and 0, if none).
+inline int cable(const Scene& s, const std::string& name) {
+  const auto& all = s.cables->cables();
+  for (int c = 0; c < static_cast<int>(all.size()); ++c)
+    if (all[c].name == name) return c;
+  ADD_FAILURE() << "no cable " << name;
+  return 0;
+}
 
 /// One frame of the scene.
 inline void frame(Scene& s) { s.world->step(1.0 / s.frame_rate_hz); }

@@ -29,14 +29,6 @@ Scene load(const Budget b) {
   return s;
 }
 
-int cable(const Scene& s, const std::string& name) {
-  const auto& all = s.cables->cables();
-  for (int c = 0; c < static_cast<int>(all.size()); ++c)
-    if (all[c].name == name) return c;
-  ADD_FAILURE() << "no cable " << name;
-  return 0;
-}
-
 double gravity(const Scene& s) { return -s.world->settings().gravity.y(); }
 double weight(const Scene& s, const char* body) { return s.world->bodyMass(test::body(s, body)) * gravity(s); }
 
@@ -93,8 +85,8 @@ TEST(Servin, StartsInEquilibriumWithTheWinchesPayingOutSteadily) {
   for (const Budget b : kBudgets) {
     Scene s = load(b);
     SCOPED_TRACE(testing::Message() << b.substeps << " x " << b.iterations);
-    const int hoist = cable(s, "hoist"), hanger_l = cable(s, "hanger_l"), hanger_r = cable(s, "hanger_r");
-    const int v_l = cable(s, "v_l"), v_r = cable(s, "v_r"), cube_line = cable(s, "cube_line");
+    const int hoist = test::cable(s, "hoist"), hanger_l = test::cable(s, "hanger_l"), hanger_r = test::cable(s, "hanger_r");
+    const int v_l = test::cable(s, "v_l"), v_r = test::cable(s, "v_r"), cube_line = test::cable(s, "cube_line");
     for (int f = 0; f < 3; ++f) test::frame(s);
 
     const double plate = weight(s, "plate"), cube = weight(s, "cube");
@@ -141,8 +133,8 @@ TEST(Servin, AfterLandingSlackSpansCarryNothingAndTheGroundTakesTheRest) {
   for (const Budget b : kBudgets) {
     Scene s = load(b);
     SCOPED_TRACE(testing::Message() << b.substeps << " x " << b.iterations);
-    const int hoist = cable(s, "hoist"), hanger_l = cable(s, "hanger_l"), hanger_r = cable(s, "hanger_r");
-    const int v_l = cable(s, "v_l"), v_r = cable(s, "v_r"), cube_line = cable(s, "cube_line");
+    const int hoist = test::cable(s, "hoist"), hanger_l = test::cable(s, "hanger_l"), hanger_r = test::cable(s, "hanger_r");
+    const int v_l = test::cable(s, "v_l"), v_r = test::cable(s, "v_r"), cube_line = test::cable(s, "cube_line");
     for (int f = 0; f < static_cast<int>(7.5 * s.frame_rate_hz); ++f) test::frame(s);
     const Drum a = drum(s, "drum_a"), c = drum(s, "drum_b");
     EXPECT_NEAR(s.world->hingeAngle(a.hinge), a.upper, 1e-6);
@@ -220,7 +212,7 @@ TEST(Servin, CableLengthIsConservedAndTheDrumsPayOutRTimesTheirTurn) {
   EXPECT_EQ(joints, 16);  // Table 1
   std::vector<double> total;
   for (int c = 0; c < static_cast<int>(cables.size()); ++c) total.push_back(s.cables->totalLength(c));
-  const int hoist = cable(s, "hoist"), cube_line = cable(s, "cube_line");
+  const int hoist = test::cable(s, "hoist"), cube_line = test::cable(s, "cube_line");
   const double stored_a = cables[hoist].links[2].stored, stored_b = cables[cube_line].links[0].stored;
   double drift = 0.0;
   for (int f = 0; f < s.frameCount(); ++f) {

@@ -1,0 +1,459 @@
+// scenes/hand.json, the paper's tendon-driven hand (Fig. 1 left), against
+// geometry and statics: each tendon's excursion is what its moment arms
+// integrate to over the joint angles it crosses; at rest every joint's
+// flexor torque balances its extensor's Hooke's-law torque and the weight
+// of the phalanges beyond it; more load closes a finger monotonically onto
+// its limits; a kilonewton flexor load and phalanges 1e-3 of the weight
+// stay finite and within the limits. At the scene's budget and the paper's
+// (Table 1: one step per frame, 20 iterations).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "reeve/cable/cable.h"
+#include "scene_fixture.h"
+
+namespace reeve {
+namespace {
+
+struct Budget {
+  int substeps, iterations;
+};
+const Budget kBudgets[] = {{10, 2}, {1, 20}};  // the scene's; the paper's Table 1
+
+const char* const kDigits[] = {"index", "middle", "ring", "little", "thumb"};
+
+Scene load(const Budget b) {
+  Scene s = test::scene("hand");
+  s.world->settings().substeps = b.substeps;
+  s.world->settings().iterations = b.iterations;
+  return s;
+}
+
+double gravity(const Scene& s) { return -s.world->settings().gravity.y(); }
+
+Vec3 anchor(const World& w, HingeId h) {
+  const HingeJoint& j = w.hinge(h);
+  return w.body(j.a).toWorld(j.frame.anchor_a);
+}
+Vec3 axis(const World& w, HingeId h) {
+  const HingeJoint& j = w.hinge(h);
+  return (w.body(j.a).q * j.frame.axis_a).normalized();
+}
+
+// One digit: phalanges segs[0..k) from the palm out, each with a knuckle
+// wheel welded to it, concentric with hinges[j], which joins segs[j] to the
+// phalanx before it (or the palm). The flexor runs tip -> pinholes on the
+// phalanges -> wrist pinhole -> weight (links k-1-j and k-j are the points
+// either side of joint j); the extensor runs from the palm's back over the
+// knuckles, span j arriving at knuckle j, so that joint j winds it on.
+struct Digit {
+  std::string name;
+  std::vector<BodyId> segs, knuckles;
+  std::vector<HingeId> hinges;
+  int flexor = 0, extensor = 0;
+  BodyId weight = 0;
+  PrismaticId rail = -1;
+  double radius = 0.0;  // m, of the knuckle wheels: the extensor's moment arm
+
+  // At load: each joint's anchor and axis, the flexor points either side
+  // (world), the extensor's rest lengths, and the extensor's straight span
+  // lengths from the geometry (a point to a wheel, or two equal wheels on
+  // one side: the distance between their centres).
+  std::vector<Vec3> c0, n0, p0, q0;
+  std::vector<double> rest0, span;
+  double axial_stiffness = 0.0;  // N: tension = this x strain
+
+  int joints() const { return static_cast<int>(segs.size()); }
+};
+
+// Reads digit `name` of a scene at load, before its first step.
+Digit digit(const Scene& s, const std::string& name) {
+  const World& w = *s.world;
+  Digit d;
+  d.name = name;
+  for (int j = 1;; ++j) {
+    const auto seg = w.findBody(name + "_" + std::to_string(j));
+    if (!seg) break;
+    d.segs.push_back(*seg);
+    d.knuckles.push_back(test::body(s, name + "_knuckle_" + std::to_string(j)));
+    for (int h = 0; h < static_cast<int>(w.hinges().size()); ++h)
+      if (w.hinge(h).a == *seg) d.hinges.push_back(h);
+  }
+  d.flexor = test::cable(s, name + "_flexor");
+  d.extensor = test::cable(s, name + "_extensor");
+  d.weight = test::body(s, name + "_weight");
+  for (int i = 0; i < static_cast<int>(w.prismatics().size()); ++i)
+    if (w.prismatic(i).a == d.weight) d.rail = i;
+  d.radius = w.bodyDef(d.knuckles[0]).shape.radius;
+  const Cable& flexor = s.cables->cables()[d.flexor];
+  const Cable& extensor = s.cables->cables()[d.extensor];
+  const int k = d.joints();
+  EXPECT_EQ(static_cast<int>(d.hinges.size()), k);
+  EXPECT_EQ(static_cast<int>(flexor.links.size()), k + 2);
+  EXPECT_EQ(static_cast<int>(extensor.links.size()), k + 1);
+  auto world = [&](const Link& l) { return w.worldPoint(l.body, l.point); };
+  const Vec3 back = world(extensor.links[0]);
+  for (int j = 0; j < k; ++j) {
+    d.c0.push_back(anchor(w, d.hinges[j]));
+    d.n0.push_back(axis(w, d.hinges[j]));
+    d.q0.push_back(world(flexor.links[k - 1 - j]));
+    d.p0.push_back(world(flexor.links[k - j]));
+    d.rest0.push_back(s.cables->restLength(d.extensor, j));
+    // The knuckles are concentric with the hinges (checked here).
+    EXPECT_LT((w.body(d.knuckles[j]).x - d.c0[j]).norm(), 1e-9) << name << " " << j;
+    EXPECT_EQ(w.bodyDef(d.knuckles[j]).shape.radius, d.radius);
+    d.span.push_back(j == 0 ? std::sqrt((back - d.c0[0]).squaredNorm() - d.radius * d.radius)
+                            : (d.c0[j] - d.c0[j - 1]).norm());
+  }
+  d.axial_stiffness = 1.0 / extensor.compliance_per_m;
+  return d;
+}
+
+// The straight flexor span across joint j, as a function of the joint's
+// angle change dtheta (rad): seen from the phalanx before the joint, the
+// far point turns about the axis and the near one stays. Closed form,
+// from the load geometry alone.
+double flexorSpan(const Digit& d, int j, double dtheta) {
+  const Vec3 q = d.c0[j] + Eigen::AngleAxisd(dtheta, d.n0[j]) * (d.q0[j] - d.c0[j]);
+  return (q - d.p0[j]).norm();
+}
+
+// Flexor excursion (m, tendon drawn out of the hand at the wrist) for
+// angle changes dtheta: sum over the joints of integral m_j dtheta, where
+// m_j (the distance from the axis to the straight span between the points
+// either side) changes with the angle; the integral is the span's
+// shortening, exactly.
+double flexorExcursion(const Digit& d, const std::vector<double>& dtheta) {
+  double e = 0.0;
+  for (int j = 0; j < d.joints(); ++j) e += flexorSpan(d, j, 0.0) - flexorSpan(d, j, dtheta[j]);
+  return e;
+}
+
+std::vector<double> angles(const Scene& s, const Digit& d) {
+  std::vector<double> a;
+  for (HingeId h : d.hinges) a.push_back(s.world->hingeAngle(h));
+  return a;
+}
+
+// Extensor tension (N) of span j by Hooke's law, with the strain measured
+// against the rest length: the knuckle beyond joint j has wound r dtheta
+// of the span's rest length onto itself, while the span's straight length
+// stays what the geometry makes it.
+double extensorTension(const Digit& d, int j, double dtheta) {
+  const double rest = d.rest0[j] - d.radius * dtheta;
+  return d.axial_stiffness * (d.span[j] - rest) / rest;
+}
+
+// Largest amount (rad) by which any hinge of the hand is outside its limit.
+double limitViolation(const World& w) {
+  double worst = 0.0;
+  for (int h = 0; h < static_cast<int>(w.hinges().size()); ++h) {
+    const JointLimit& l = w.hinge(h).limit;
+    const double a = w.hingeAngle(h);
+    worst = std::max({worst, l.lower - a, a - l.upper});
+  }
+  return worst;
+}
+
+// Largest distance (m) between the two bodies' copies of a hinge's anchor.
+double hingeGap(const World& w) {
+  double worst = 0.0;
+  for (const HingeJoint& j : w.hinges())
+    worst = std::max(worst, (w.body(j.a).toWorld(j.frame.anchor_a) - w.body(j.b).toWorld(j.frame.anchor_b)).norm());
+  return worst;
+}
+
+// Runs `seconds`, checking every frame that nothing is non-finite and no
+// hinge is outside its limits; returns the worst limit violation (rad).
+double run(Scene& s, double seconds) {
+  double worst = 0.0;
+  const int frames = static_cast<int>(seconds * s.frame_rate_hz + 0.5);
+  for (int f = 0; f < frames; ++f) {
+    test::frame(s);
+    const auto bad = s.world->firstNonFiniteBody();
+    if (bad) {
+      ADD_FAILURE() << "body " << s.world->bodyDef(*bad).name << " not finite at t = " << s.world->time();
+      return 1e9;
+    }
+    worst = std::max(worst, limitViolation(*s.world));
+  }
+  return worst;
+}
+
+// Relative errors of both tendons' excursions against their closed forms:
+// the flexor's is the weight's drop on its rail (compared from 1 mm on),
+// the extensor's the rest length each knuckle has wound on, r dtheta per
+// joint (the worst joint that has turned at least kLeastTurn), so that
+// the ratios mean something.
+constexpr double kLeastExcursion = 1e-3;  // m
+constexpr double kLeastTurn = 0.02;       // rad
+struct Excursion {
+  double flexor, flexor_want, flexor_error, extensor_error;
+};
+Excursion excursion(const Scene& s, const Digit& d) {
+  const std::vector<double> a = angles(s, d);
+  Excursion e{};
+  e.flexor = -s.world->prismaticSlide(d.rail);
+  e.flexor_want = flexorExcursion(d, a);
+  if (e.flexor_want >= kLeastExcursion) e.flexor_error = std::abs(e.flexor / e.flexor_want - 1.0);
+  for (int j = 0; j < d.joints(); ++j) {
+    if (std::abs(a[j]) < kLeastTurn) continue;
+    const double wound = d.rest0[j] - s.cables->restLength(d.extensor, j);
+    e.extensor_error = std::max(e.extensor_error, std::abs(wound / (d.radius * a[j]) - 1.0));
+  }
+  return e;
+}
+
+// The torques (N m, flexing positive) about each joint of a digit at rest,
+// on everything beyond it: the flexor pulls the far point of its span
+// with the weight's m g (the weight hangs still on a frictionless rail)
+// along the span; the extensor's span arriving at the knuckle pulls with
+// Hooke's tension at the wheel's radius; gravity acts on the phalanges and
+// knuckles beyond the joint.
+struct JointTorques {
+  double flexor, extensor, gravity;
+  double residual() const { return flexor + extensor + gravity; }
+};
+std::vector<JointTorques> statics(const Scene& s, const Digit& d) {
+  const World& w = *s.world;
+  const Cable& flexor = s.cables->cables()[d.flexor];
+  const int k = d.joints();
+  const double tension = w.bodyMass(d.weight) * gravity(s);
+  const std::vector<double> a = angles(s, d);
+  std::vector<JointTorques> out;
+  for (int j = 0; j < k; ++j) {
+    const Vec3 c = anchor(w, d.hinges[j]), n = axis(w, d.hinges[j]);
+    const Link& far = flexor.links[k - 1 - j];
+    const Link& near = flexor.links[k - j];
+    const Vec3 q = w.worldPoint(far.body, far.point), p = w.worldPoint(near.body, near.point);
+    JointTorques t{};
+    t.flexor = n.dot((q - c).cross(tension * (p - q).normalized()));
+    t.extensor = -extensorTension(d, j, a[j]) * d.radius;
+    for (int i = j; i < k; ++i)
+      for (BodyId b : {d.segs[i], d.knuckles[i]})
+        t.gravity += n.dot((w.body(b).x - c).cross(w.bodyMass(b) * w.settings().gravity));
+    out.push_back(t);
+  }
+  return out;
+}
+
+TEST(Hand, HasTheJointsOfTable1) {
+  // Table 1: 28 cable joints. Ours: per finger a flexor of 4 spans (tip,
+  // two pinholes, the wrist pinhole, the weight) and an extensor of 3 (one
+  // per joint); the thumb has two phalanges: 3 + 2.
+  const Scene s = test::scene("hand");
+  int joints = 0;
+  for (const Cable& c : s.cables->cables()) joints += static_cast<int>(c.joints.size());
+  EXPECT_EQ(joints, 33);
+  for (const char* name : kDigits) {
+    const Digit d = digit(s, name);
+    EXPECT_EQ(d.joints(), std::string(name) == "thumb" ? 2 : 3);
+    // The extensor's straight spans are as long as the geometry says.
+    for (int j = 0; j < d.joints(); ++j)
+      EXPECT_NEAR(s.cables->length(d.extensor, j), d.span[j], 1e-9) << name << " " << j;
+  }
+}
+
+TEST(Hand, TendonExcursionIsTheIntegralOfMomentArmOverJointAngle) {
+  // From the load pose the weights draw the flexors out and the fingers
+  // curl (0.15-0.65 rad a joint) within about 2 s. The flexor runs through pinholes, which
+  // need no bookkeeping: its excursion is compared every 5 frames while
+  // the fingers move and settle. The extensor's wound cable is what the
+  // cable update measured at the substep's predicted pose, so while a
+  // knuckle accelerates it differs from r dtheta at the solved pose by
+  // r h^2 (angular acceleration); it is compared at rest (here, and at
+  // every load of MoreFlexorLoadClosesTheFingerMonotonicallyOntoItsLimits).
+  for (const Budget b : kBudgets) {
+    Scene s = load(b);
+    SCOPED_TRACE(testing::Message() << b.substeps << " x " << b.iterations);
+    std::vector<Digit> digits;
+    for (const char* name : kDigits) digits.push_back(digit(s, name));
+    double flexor = 0.0, extensor = 0.0, limits = 0.0;
+    for (int step = 0; step < 30; ++step) {
+      limits = std::max(limits, run(s, 5.0 / 60.0));
+      for (const Digit& d : digits) {
+        const Excursion e = excursion(s, d);
+        flexor = std::max(flexor, e.flexor_error);
+      }
+    }
+    for (const Digit& d : digits) {
+      const Excursion e = excursion(s, d);
+      extensor = std::max(extensor, e.extensor_error);
+      std::printf("[ measured ] %d x %d %-6s at rest: flexor excursion %.4f mm (closed form %.4f mm), extensor "
+                  "error %.1e\n",
+                  b.substeps, b.iterations, d.name.c_str(), 1e3 * e.flexor, 1e3 * e.flexor_want, e.extensor_error);
+    }
+    std::printf("[ measured ] %d x %d: worst relative error flexor %.2e (moving), extensor %.2e (at rest); limits "
+                "exceeded by %.1e rad\n",
+                b.substeps, b.iterations, flexor, extensor, limits);
+    EXPECT_LT(flexor, 1e-3);
+    EXPECT_LT(extensor, 1e-3);
+    EXPECT_LE(limits, 1e-6);
+  }
+}
+
+TEST(Hand, AtRestEachJointsFlexorTorqueBalancesExtensorAndGravity) {
+  // After 2.5 s every body is still. XPBD's state at rest is statics only
+  // up to the substep: each solve starts from the pose gravity predicts,
+  // h^2 g lower, and the directions it pulls along there differ from the
+  // final ones by about h^2 g / (span length). Measured, the worst joint
+  // (an MCP, whose flexor span runs to a static wrist pinhole) is off by
+  // 2e-5 at 10 substeps and 2e-3 at one.
+  for (const Budget b : kBudgets) {
+    Scene s = load(b);
+    SCOPED_TRACE(testing::Message() << b.substeps << " x " << b.iterations);
+    std::vector<Digit> digits;
+    for (const char* name : kDigits) digits.push_back(digit(s, name));
+    EXPECT_LE(run(s, 2.5), 1e-6);
+    double worst = 0.0, hooke = 0.0, flexor_tension = 0.0, gravity_share = 0.0;
+    for (const Digit& d : digits) {
+      const char* name = d.name.c_str();
+      EXPECT_LT(s.world->body(d.weight).v.norm(), 1e-5) << name;
+      const std::vector<JointTorques> t = statics(s, d);
+      const std::vector<double> a = angles(s, d);
+      for (int j = 0; j < d.joints(); ++j) {
+        // Not on a limit: the limit would take a share of the torque.
+        const JointLimit& l = s.world->hinge(d.hinges[j]).limit;
+        EXPECT_GT(a[j] - l.lower, 0.1) << name << " " << j;
+        EXPECT_GT(l.upper - a[j], 0.1) << name << " " << j;
+        const double error = std::abs(t[j].residual() / t[j].flexor);
+        std::printf("[ measured ] %d x %d %-6s joint %d: angle %.4f rad, flexor %.5f, extensor %.5f, gravity %.5f "
+                    "N m, residual %.1e of the flexor's\n",
+                    b.substeps, b.iterations, name, j, a[j], t[j].flexor, t[j].extensor, t[j].gravity, error);
+        EXPECT_LT(error, 5e-3) << name << " " << j;
+        worst = std::max(worst, error);
+        gravity_share = std::max(gravity_share, std::abs(t[j].gravity / t[j].flexor));
+        // The engine's own tensions agree with the closed forms used.
+        hooke = std::max(hooke, std::abs(s.cables->tension(d.extensor, j) / extensorTension(d, j, a[j]) - 1.0));
+      }
+      const double m_g = s.world->bodyMass(d.weight) * gravity(s);
+      flexor_tension = std::max(flexor_tension, std::abs(s.cables->tension(d.flexor, 0) / m_g - 1.0));
+    }
+    std::printf("[ measured ] %d x %d: worst torque residual %.2e; engine vs Hooke %.2e, flexor vs m g %.2e; "
+                "gravity up to %.0f %% of a flexor torque\n",
+                b.substeps, b.iterations, worst, hooke, flexor_tension, 100 * gravity_share);
+    EXPECT_LT(hooke, 5e-3);
+    EXPECT_LT(flexor_tension, 5e-3);
+    EXPECT_GT(gravity_share, 0.1);  // gravity is a real part of the balance
+  }
+}
+
+TEST(Hand, MoreFlexorLoadClosesTheFingerMonotonicallyOntoItsLimits) {
+  // Once the hand has settled, the middle finger's weight goes up from
+  // 0.25 kg in steps, each given time to settle: every joint closes
+  // further each step until it reaches its upper limit, where it stays;
+  // the other digits do not move; at every step both tendons' excursions
+  // are their closed forms'.
+  const double loads[] = {0.45, 0.7, 0.95, 1.5};
+  for (const Budget b : kBudgets) {
+    Scene s = load(b);
+    SCOPED_TRACE(testing::Message() << b.substeps << " x " << b.iterations);
+    std::vector<Digit> digits;
+    for (const char* name : kDigits) digits.push_back(digit(s, name));
+    const Digit& middle = digits[1];
+    double limits = run(s, 2.5), excursions = 0.0, others = 0.0;
+    std::vector<std::vector<double>> settled;
+    for (const Digit& d : digits) settled.push_back(angles(s, d));
+    std::vector<double> before = settled[1];
+    for (const double load : loads) {
+      s.world->setMass(middle.weight, load);
+      limits = std::max(limits, run(s, 1.2));
+      const std::vector<double> a = angles(s, middle);
+      const Excursion e = excursion(s, middle);
+      excursions = std::max({excursions, e.flexor_error, e.extensor_error});
+      std::printf("[ measured ] %d x %d: %.2f kg: middle finger at", b.substeps, b.iterations, load);
+      for (double x : a) std::printf(" %.4f", x);
+      std::printf(" rad; excursion errors flexor %.1e, extensor %.1e\n", e.flexor_error, e.extensor_error);
+      for (int j = 0; j < middle.joints(); ++j) {
+        const double upper = s.world->hinge(middle.hinges[j]).limit.upper;
+        if (before[j] > upper - 1e-6) {
+          EXPECT_NEAR(a[j], upper, 1e-6) << load << " kg, joint " << j;  // stays on its limit
+        } else {
+          EXPECT_GT(a[j], before[j] + 1e-3) << load << " kg, joint " << j;  // closes further
+        }
+      }
+      before = a;
+      for (std::size_t i = 0; i < digits.size(); ++i) {
+        if (i == 1) continue;
+        const std::vector<double> o = angles(s, digits[i]);
+        for (int j = 0; j < digits[i].joints(); ++j) {
+          others = std::max(others, std::abs(o[j] - settled[i][j]));
+          EXPECT_NEAR(o[j], settled[i][j], 1e-5) << digits[i].name << " " << j;
+        }
+      }
+    }
+    for (int j = 0; j < middle.joints(); ++j)
+      EXPECT_NEAR(before[j], s.world->hinge(middle.hinges[j]).limit.upper, 1e-6) << "joint " << j;
+    std::printf("[ measured ] %d x %d: limits exceeded by at most %.1e rad, worst excursion error %.1e, the other "
+                "digits moved by at most %.1e rad\n",
+                b.substeps, b.iterations, limits, excursions, others);
+    EXPECT_LE(limits, 1e-6);
+    EXPECT_LT(excursions, 1e-3);
+  }
+}
+
+TEST(Hand, KilonewtonFlexorLoadHoldsAgainstTheLimits) {
+  // 100 kg (981 N, 1300 times the 77 g of the index finger's phalanges
+  // and knuckles) on the index flexor from the start: the finger slams
+  // shut onto its limits and holds; the tendon carries m g, the hinges
+  // stay together and the excursions are still the closed forms'.
+  for (const Budget b : kBudgets) {
+    Scene s = load(b);
+    SCOPED_TRACE(testing::Message() << b.substeps << " x " << b.iterations);
+    const Digit index = digit(s, "index");
+    s.world->setMass(index.weight, 100.0);
+    const double limits = run(s, 1.5);
+    const std::vector<double> a = angles(s, index);
+    const Excursion e = excursion(s, index);
+    const double m_g = 100.0 * gravity(s);
+    const double tension = s.cables->tension(index.flexor, 0);
+    std::printf("[ measured ] %d x %d: index at %.6f %.6f %.6f rad, tension %.2f N (m g %.2f), excursion error %.2e, "
+                "limits exceeded by %.1e rad, hinge gap %.1e m\n",
+                b.substeps, b.iterations, a[0], a[1], a[2], tension, m_g, e.flexor_error, limits, hingeGap(*s.world));
+    for (int j = 0; j < index.joints(); ++j)
+      EXPECT_NEAR(a[j], s.world->hinge(index.hinges[j]).limit.upper, 1e-6) << j;
+    EXPECT_LE(limits, 1e-6);
+    EXPECT_NEAR(tension, m_g, 5e-3 * m_g);
+    EXPECT_LT(e.flexor_error, 1e-3);
+    EXPECT_LT(e.extensor_error, 1e-3);
+    EXPECT_LT(hingeGap(*s.world), 1e-6);
+    EXPECT_LT(s.world->body(index.weight).v.norm(), 1e-4);
+  }
+}
+
+TEST(Hand, FeatherweightPhalangesStillBalance) {
+  // Every phalanx and knuckle at 1e-3 of its digit's weight: gravity on
+  // the fingers all but vanishes and each joint balances flexor against
+  // extensor alone, still within 0.5 %.
+  for (const Budget b : kBudgets) {
+    Scene s = load(b);
+    SCOPED_TRACE(testing::Message() << b.substeps << " x " << b.iterations);
+    std::vector<Digit> digits;
+    for (const char* name : kDigits) digits.push_back(digit(s, name));
+    for (const Digit& d : digits)
+      for (int j = 0; j < d.joints(); ++j)
+        for (BodyId body : {d.segs[j], d.knuckles[j]}) s.world->setMass(body, 1e-3 * s.world->bodyMass(d.weight));
+    const double limits = run(s, 2.5);
+    double worst = 0.0;
+    for (const Digit& d : digits) {
+      const std::vector<JointTorques> t = statics(s, d);
+      for (int j = 0; j < d.joints(); ++j) {
+        worst = std::max(worst, std::abs(t[j].residual() / t[j].flexor));
+        EXPECT_LT(std::abs(t[j].residual() / t[j].flexor), 5e-3) << d.name << " " << j;
+      }
+      EXPECT_LT(excursion(s, d).flexor_error, 1e-3) << d.name;
+    }
+    std::printf("[ measured ] %d x %d: worst torque residual %.2e, limits exceeded by %.1e rad, hinge gap %.1e m\n",
+                b.substeps, b.iterations, worst, limits, hingeGap(*s.world));
+    EXPECT_LE(limits, 1e-6);
+    EXPECT_LT(hingeGap(*s.world), 1e-6);
+  }
+}
+
+}  // namespace
+}  // namespace reeve

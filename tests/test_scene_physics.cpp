@@ -1,8 +1,10 @@
 // Physics of the shipped scenes: the paper's mass-scaling experiment
 // (Fig. 12, density 1 vs 1000), the Simple scene's equilibrium tensions,
-// and the Atwood scene against its closed form.
+// the Atwood scene against its closed form, and the springs scene's
+// statics.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <string>
 
 #include "reeve/scene/scene.h"
@@ -102,6 +104,35 @@ TEST(SubstepsAndIterations, EverySplitOfTheBudgetMeetsTheAnalyticValues) {
       EXPECT_LT((s.world->body(w).x - x0).norm(), 1e-3) << at;
     }
   }
+}
+
+// springs.json at rest: each spring hinge of the limb holds the moment of
+// the weights beyond it about its axle (exactly, at the bent geometry):
+// the drive's torque on the outer segment is -stiffness x angle = -M, and
+// the block rests m g / k below its spring's target.
+TEST(SpringsScene, EachSpringHoldsTheMomentBeyondItAndTheBlockRestsAtWeightOverStiffness) {
+  Scene s = loadScene(kScenes + "/springs.json");
+  World& w = *s.world;
+  for (int f = 0; f < 600; ++f) w.step(1.0 / s.frame_rate_hz);  // 10 s: at rest
+  const double g = -w.settings().gravity.y();
+  ASSERT_EQ(w.hinges().size(), 5u);
+  for (HingeId i = 0; i < 5; ++i) {
+    const HingeJoint& hinge = w.hinge(i);
+    const Vec3 axle = w.worldPoint(hinge.a, hinge.frame.anchor_a);
+    double moment = 0.0;  // of the weights beyond it (listed after it, but the block), about +z
+    for (BodyId b = hinge.a; b < w.bodyCount(); ++b)
+      if (w.bodyDef(b).name != "block") moment -= w.bodyMass(b) * g * (w.body(b).x.x() - axle.x());
+    const double k = hinge.drive.stiffness, angle = w.hingeAngle(i);
+    std::printf("[ measured ] springs.json hinge %d: angle %.9f vs moment / k %.9f rad, drive torque %.9f "
+                "vs -moment %.9f N m\n",
+                i, angle, moment / k, w.hingeDriveTorque(i), -moment);
+    EXPECT_NEAR(angle, moment / k, 1e-6 * std::abs(moment / k)) << "hinge " << i;
+    EXPECT_NEAR(w.hingeDriveTorque(i), -moment, 1e-6 * std::abs(moment)) << "hinge " << i;
+  }
+  const PrismaticJoint& rail = w.prismatic(0);
+  const double m = w.bodyMass(rail.a), k = rail.drive.stiffness;
+  EXPECT_NEAR(w.prismaticSlide(0), -m * g / k, 1e-6);
+  EXPECT_NEAR(w.prismaticDriveForce(0), m * g, 1e-6 * m * g);
 }
 
 }  // namespace

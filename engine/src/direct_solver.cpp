@@ -412,7 +412,7 @@ int DirectSolver::evaluateJoint(World& world, int r, double h) {
     } else {
       const joint_rows::ClampedRow& clamped = set.clamped[c];
       C_[r] = clamped.C;
-      alpha_[r] = 0.0;
+      alpha_[r] = clamped.alpha;  // a spring drive's; 0 for the rest
       lo_[r] = clamped.lo;
       hi_[r] = clamped.hi;
       mirror_[r] = clamped.lambda;
@@ -425,21 +425,24 @@ int DirectSolver::evaluateJoint(World& world, int r, double h) {
 }
 
 void DirectSolver::driveAgainstLimit(int first_clamped, const JointRowSet& set) {
-  // A drive and a limit on one coordinate are one direction twice: a limit
-  // in touch makes them dependent, and the factorization would keep either.
-  // The limit wins, as in Gauss-Seidel (joint_rows.h). Linearized, the
-  // drive asks the coordinate to change by -C_d and a lower limit allows
-  // no less than -C_l (an upper one no more than -C_u): a drive asking past
-  // the limit pushes with all it has (an unlimited one with what it has so
-  // far) and the limit takes the rest; a drive asking to stay within it
-  // does the moving alone, and the limit joins in again (solveActiveSet)
-  // only if the drive cannot.
+  // A rigid drive and a limit on one coordinate are one direction twice: a
+  // limit in touch makes them dependent, and the factorization would keep
+  // either. The limit wins, as in Gauss-Seidel (joint_rows.h). Linearized,
+  // the drive asks the coordinate to change by -C_d and a lower limit
+  // allows no less than -C_l (an upper one no more than -C_u): a drive
+  // asking past the limit pushes with all it has (an unlimited one with
+  // what it has so far) and the limit takes the rest; a drive asking to
+  // stay within it does the moving alone, and the limit joins in again
+  // (solveActiveSet) only if the drive cannot. A spring's drive row is
+  // compliant, so not dependent on the limit: the two are solved together
+  // and the spring pulls with its stiffness times its stretch at the limit.
   const int d = first_clamped + set.drive;
+  const bool rigid = alpha_[d] == 0.0;
   for (const int limit : {set.lower, set.upper}) {
     if (limit < 0) continue;
     const int l = first_clamped + limit;
-    drive_of_[l] = d;
-    if (state_[l] != State::Free) continue;
+    drive_of_[l] = rigid ? d : -1;
+    if (!rigid || state_[l] != State::Free) continue;
     const bool lower = limit == set.lower;
     const bool past = lower ? C_[d] > C_[l] : C_[d] < C_[l];
     if (!past) {

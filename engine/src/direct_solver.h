@@ -16,10 +16,12 @@
 // bounds is fixed at the bound and the rest solved again; a slack row that
 // the solution would stretch joins in. Rows that depend on others (a belt
 // over two rotors: its two spans cannot be stretched apart) are dropped by
-// the factorization (sparse_ldlt.h), which keeps one of them; a drive and a
-// limit on one coordinate, one direction twice, are settled before it: the
-// touched limit wins (driveAgainstLimit). Contacts stay Gauss-Seidel,
-// after each iteration. Private to reeve_engine.
+// the factorization (sparse_ldlt.h), which keeps one of them; a rigid drive
+// and a limit on one coordinate, one direction twice, are settled before
+// it: the touched limit wins (driveAgainstLimit). A spring drive is a
+// compliant row (alpha~ on its diagonal, joint_rows::prepareCoordinate),
+// not dependent on a limit. Contacts stay Gauss-Seidel, after each
+// iteration. Private to reeve_engine.
 #pragma once
 
 #include <array>
@@ -96,8 +98,8 @@ class DirectSolver {
   /// Returns the number of rows the joint has.
   int evaluateJoint(World& world, int first_row, double h);
   /// The states of a coordinate's drive and limit rows, which share their
-  /// direction, when a limit is touched; `first_clamped` is the row of the
-  /// joint's first clamped row.
+  /// direction, when a limit is touched and the drive is rigid;
+  /// `first_clamped` is the row of the joint's first clamped row.
   void driveAgainstLimit(int first_clamped, const joint_rows::JointRowSet& set);
   /// Solves the active set; leaves dlambda_ and the bodies' dx, dphi.
   /// `tolerance` (m or rad): what counts as a met row.

@@ -1,5 +1,7 @@
 #include "reeve/engine/hinge_joint.h"
 
+#include <cmath>
+
 #include "joint_row_sets.h"
 
 namespace reeve {
@@ -55,9 +57,10 @@ double hingeAngle(const HingeJoint& j, const Quat& q_a, const Quat& q_b) {
 void prepareHingeJoint(HingeJoint& j, const BodyState& a, const BodyState& b, double h) {
   j.impulse_point.setZero();
   j.impulse_axis.setZero();
-  const joint_rows::DriveKind kind = kindOf(j.drive.mode);
-  if (kind == joint_rows::DriveKind::None) {
-    joint_rows::prepareCoordinate(j.angle, kind, 0.0, 0.0, 0.0, 0.0, true, h);
+  joint_rows::DriveSpec drive{kindOf(j.drive.mode), j.drive.target, j.drive.max_torque, j.drive.stiffness,
+                              j.drive.damping};
+  if (drive.kind == joint_rows::DriveKind::None) {
+    joint_rows::prepareCoordinate(j.angle, drive, 0.0, 0.0, true, h);
     return;
   }
   // An angle drive brakes in time for the inertia of both bodies about the
@@ -65,8 +68,20 @@ void prepareHingeJoint(HingeJoint& j, const BodyState& a, const BodyState& b, do
   const Vec3 u = a.q * j.frame.axis_a;
   const double inverse_inertia = joint_rows::inverseInertiaAbout(a, j.frame.anchor_a, u) +
                                  joint_rows::inverseInertiaAbout(b, j.frame.anchor_b, u);
-  joint_rows::prepareCoordinate(j.angle, kind, j.drive.target, j.drive.max_torque,
-                                hingeAngle(j, a.q_prev, b.q_prev), inverse_inertia, true, h);
+  const double start = hingeAngle(j, a.q_prev, b.q_prev);
+  if (j.drive.isTrapezoidalSpring()) {
+    // The trapezoidal rule: torque -k (e_+ + 2 e_0 + e_-) / 4 over the
+    // substep, a row of stiffness k / 4 whose error is moved by the known
+    // 2 e_0 + e_- (joint_rows::DriveSpec::error_offset). Before the first
+    // substep, e_- from the bodies' relative spin.
+    const double e0 = wrapAngle(start - j.drive.target);
+    const double e_minus = std::isnan(j.spring_previous) ? e0 - h * u.dot(a.omega - b.omega)
+                                                         : wrapAngle(j.spring_previous - j.drive.target);
+    j.spring_previous = start;
+    drive.stiffness *= 0.25;
+    drive.error_offset = 2.0 * e0 + e_minus;
+  }
+  joint_rows::prepareCoordinate(j.angle, drive, start, inverse_inertia, true, h);
 }
 
 void solveHingeJoint(HingeJoint& j, BodyState& a, BodyState& b, double h) {
@@ -84,9 +99,14 @@ void solveHingeJoint(HingeJoint& j, BodyState& a, BodyState& b, double h) {
   //       velocity read out, [theta - theta_0] / h, is w*;
   //     drive, angle: w* h replaced by the step toward the target that
   //       max_torque can still stop (joint_rows::prepareCoordinate);
-  //       |lambda_drive| <= max_torque h^2 either way, so the drive adds at
-  //       most max_torque h of angular momentum per substep: a wheel spins
-  //       up at max_torque / I;
+  //     drive, spring (angle drive with stiffness k, damping c): w* h
+  //       replaced by [target - theta_0] k / (k + c / h), compliant with
+  //       alpha~ = 1 / ((k + c / h) h^2): XPBD's damped row (MIG 2016, eq.
+  //       26) divided by 1 + gamma; met, the torque lambda / h^2 is
+  //       -k (theta - target) - c (theta - theta_0) / h;
+  //       |lambda_drive| <= max_torque h^2 for every drive, so the drive
+  //       adds at most max_torque h of angular momentum per substep: a
+  //       wheel spins up at max_torque / I;
   //     lower limit: C = theta - lower, lambda >= 0; upper: C = theta -
   //       upper, lambda <= 0; each only while violated or already pushing.
   // Each angle row is solved with the point and axis rows as one block
@@ -103,10 +123,11 @@ void solveHingeJoint(HingeJoint& j, BodyState& a, BodyState& b, double h) {
   if (driven || j.limit.enabled) {
     const auto value = [&] { return hingeAngle(j, a.q, b.q); };
     const auto turn = [&] { return turned(a, b, a.q * j.frame.axis_a, h); };
-    const auto row = [&](double C, double lo, double hi, double& lambda) {
+    const auto row = [&](double C, double alpha, double lo, double hi, double& lambda) {
       joint_rows::ClampedRow clamped;
       clamped.dir.tail<3>() = a.q * j.frame.axis_a;
       clamped.C = C;
+      clamped.alpha = alpha;
       clamped.lo = lo;
       clamped.hi = hi;
       clamped.lambda = &lambda;

@@ -15,9 +15,10 @@
 namespace reeve::joint_rows {
 
 /// A joint's rows: world anchor arms, bilateral rows (compliant) and up to
-/// three clamped rows. The number of rows depends only on the joint's
-/// set-up (which drive and limits it has), not on the poses: a limit that
-/// is not touched is a row with `active` false.
+/// three clamped rows (rigid, but for a spring drive's). The number of
+/// rows depends only on the joint's set-up (which drive and limits it
+/// has), not on the poses: a limit that is not touched is a row with
+/// `active` false.
 struct JointRowSet {
   Vec3 r_a = Vec3::Zero(), r_b = Vec3::Zero();
   BilateralRows bilateral;
@@ -36,10 +37,12 @@ struct JointRowSet {
     drive = lower = upper = -1;
   }
 
-  void addClamped(const Vec6& dir, double C, double lo, double hi, double* lambda, bool is_active) {
+  void addClamped(const Vec6& dir, double C, double alpha, double lo, double hi, double* lambda,
+                  bool is_active) {
     ClampedRow& row = clamped[clamped_count];
     row.dir = dir;
     row.C = C;
+    row.alpha = alpha;
     row.lo = lo;
     row.hi = hi;
     row.lambda = lambda;
@@ -54,15 +57,15 @@ inline void addCoordinateRows(JointCoordinate& c, const JointLimit& limit, bool 
                               double value, double turned, const Vec6& dir, JointRowSet& out) {
   if (driven) {
     out.drive = out.clamped_count;
-    out.addClamped(dir, driveError(c, value, angle, turned), -c.max_drive_lambda, c.max_drive_lambda, &c.lambda_drive,
-                   true);
+    out.addClamped(dir, driveError(c, value, angle, turned), c.drive_compliance, -c.max_drive_lambda,
+                   c.max_drive_lambda, &c.lambda_drive, true);
   }
   if (limit.enabled) {
     const double below = value - limit.lower, above = value - limit.upper;
     out.lower = out.clamped_count;
-    out.addClamped(dir, below, 0.0, kInf, &c.lambda_lower, below < 0.0 || c.lambda_lower > 0.0);
+    out.addClamped(dir, below, 0.0, 0.0, kInf, &c.lambda_lower, below < 0.0 || c.lambda_lower > 0.0);
     out.upper = out.clamped_count;
-    out.addClamped(dir, above, -kInf, 0.0, &c.lambda_upper, above > 0.0 || c.lambda_upper < 0.0);
+    out.addClamped(dir, above, 0.0, -kInf, 0.0, &c.lambda_upper, above > 0.0 || c.lambda_upper < 0.0);
   }
 }
 

@@ -67,11 +67,11 @@ void solveRows(BodyState& a, BodyState& b, const Vec3& r_a, const Vec3& r_b,
   rhs.head<6>() = -rows.values;
   if (clamped) {
     D.col(m) = clamped->dir;
-    rhs[m] = -clamped->C;
+    rhs[m] = -clamped->C - clamped->alpha * *clamped->lambda;
   }
   const int n = m + (clamped ? 1 : 0);
-  // A = D^T M D, plus alpha~ on the bilateral rows; unused rows: A_ii = 1,
-  // rhs_i = 0, so their x_i = 0.
+  // A = D^T M D, plus alpha~ on the bilateral rows and the clamped row's
+  // own; unused rows: A_ii = 1, rhs_i = 0, so their x_i = 0.
   Matrix7 A = D.transpose() * jointInverseMass(a, b, r_a, r_b) * D;
   Vec6 accumulated;
   accumulated << -linear_a, angular_a;
@@ -79,6 +79,7 @@ void solveRows(BodyState& a, BodyState& b, const Vec3& r_a, const Vec3& r_b,
     A(i, i) += alpha_tilde;
     rhs[i] -= alpha_tilde * D.col(i).dot(accumulated);
   }
+  if (clamped) A(m, m) += clamped->alpha;
   for (int i = n; i < 7; ++i) A(i, i) = 1.0;
   Vec7 x = A.ldlt().solve(rhs);
   if (clamped) {
@@ -121,21 +122,28 @@ Vec3 alignment(const Vec3& from, const Vec3& to) {
   return std::atan2(s, from.dot(to)) / s * cross;
 }
 
-void prepareCoordinate(JointCoordinate& c, DriveKind kind, double target, double max_effort,
-                       double start, double inverse_inertia, bool angle, double h) {
+void prepareCoordinate(JointCoordinate& c, const DriveSpec& drive, double start,
+                       double inverse_inertia, bool angle, double h) {
   c.lambda_lower = c.lambda_upper = c.lambda_drive = 0.0;
   c.start = start;
   c.drive_step = 0.0;
-  const bool unlimited = isUnlimited(max_effort);
-  c.max_drive_lambda = unlimited ? kInf : max_effort * h * h;
-  switch (kind) {
+  c.drive_compliance = 0.0;
+  const bool unlimited = isUnlimited(drive.max_effort);
+  c.max_drive_lambda = unlimited ? kInf : drive.max_effort * h * h;
+  switch (drive.kind) {
     case DriveKind::None: break;
-    case DriveKind::Velocity: c.drive_step = target * h; break;
+    case DriveKind::Velocity: c.drive_step = drive.target * h; break;
     case DriveKind::Position: {
-      const double e = angle ? wrapAngle(target - start) : target - start;
+      const double e = angle ? wrapAngle(drive.target - start) : drive.target - start;
+      if (drive.stiffness > 0.0) {  // a spring: XPBD, damped (joint_rows.h)
+        const double k_eff = drive.stiffness + drive.damping / h;
+        c.drive_step = (e - drive.error_offset) * drive.stiffness / k_eff;
+        c.drive_compliance = 1.0 / (k_eff * h * h);
+        break;
+      }
       double speed = std::abs(e) / h;
       if (!unlimited)
-        speed = std::min(speed, std::sqrt(2.0 * max_effort * inverse_inertia * std::abs(e)));
+        speed = std::min(speed, std::sqrt(2.0 * drive.max_effort * inverse_inertia * std::abs(e)));
       c.drive_step = std::copysign(speed * h, e);
       break;
     }

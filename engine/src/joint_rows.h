@@ -15,6 +15,7 @@
 //
 // Every visit solves a joint's bilateral rows together, as one block, with
 // at most one clamped row (a drive or a limit), exactly to first order.
+// A clamped row is rigid, but for a spring drive's, which is compliant.
 // Solving the rows one by one, as the paper does, converges slowly when
 // they are coupled through an arm: a motor or limit row turns a bob hung
 // far from its hinge about the bob's own centre, and the point row then
@@ -48,21 +49,24 @@ struct BilateralRows {
   void addAngular(const Vec3& n, double C);
 };
 
-/// One clamped row (drive or limit), rigid: direction `dir` (unit, 6-D),
-/// value `C`, accumulated lambda kept in [lo, hi].
+/// One clamped row (drive or limit): direction `dir` (unit, 6-D), value
+/// `C`, compliance `alpha` (alpha~, already over h^2; 0: rigid, as every
+/// row but a spring drive's), accumulated lambda kept in [lo, hi].
 struct ClampedRow {
   Vec6 dir = Vec6::Zero();
   double C = 0.0;
+  double alpha = 0.0;
   double lo = -kInf, hi = kInf;
   double* lambda = nullptr;
 };
 
 /// Solves `rows` (compliant, alpha~ = `alpha_tilde`) together with
 /// `clamped` (if any) for the bodies a, b with world anchor arms r_a, r_b:
-///   [M_s + alpha~ 1   S^T M c] [x]     [C_s + alpha~ S^T Lambda]
-///   [c^T M S          c^T M c] [y] = - [C_c                    ],
+///   [M_s + alpha~ 1   S^T M c          ] [x]     [C_s + alpha~ S^T Lambda]
+///   [c^T M S          c^T M c + alpha_c] [y] = - [C_c + alpha_c lambda_c ],
 /// S the bilateral directions, c the clamped one, Lambda the joint's
-/// accumulated bilateral impulse (for the compliance term); then clamps
+/// accumulated bilateral impulse (for the compliance term), alpha_c and
+/// lambda_c the clamped row's compliance and accumulated lambda; then clamps
 /// lambda_c + y to [lo, hi] and, if it was clamped, solves the bilateral
 /// rows again with y fixed. Applies J = S x + c y and adds it to the
 /// joint's accumulated impulses on a: `linear_a` -= P, `angular_a` += L.
@@ -88,6 +92,21 @@ Vec3 alignment(const Vec3& from, const Vec3& to);
 /// hinges, a slide for prismatic joints).
 enum class DriveKind { None, Velocity, Position };
 
+/// A coordinate's drive (HingeDrive, PrismaticDrive) in the coordinate's
+/// units: rad and N m for angles, m and N for slides.
+struct DriveSpec {
+  DriveKind kind = DriveKind::None;
+  double target = 0.0;      // rad/s or m/s (Velocity), rad or m (Position)
+  double max_effort = 0.0;  // N m or N; <= 0 or infinite: unlimited
+  double stiffness = 0.0;   // N m/rad or N/m; > 0: a spring (Position only)
+  double damping = 0.0;     // N m s/rad or N s/m, with a spring
+  // Added to a spring's error x - x* (rad or m): a trapezoidal spring
+  // (HingeDrive::Integration) is a row of a quarter of its stiffness whose
+  // error is moved by the part known at the substep's start, 2 e_0 + e_-
+  // (e = x - x*).
+  double error_offset = 0.0;
+};
+
 /// Sets up a coordinate's drive for one substep of `h` s: clears the
 /// lambdas, records the coordinate `start` at the beginning of the substep
 /// (from the bodies' x_prev, q_prev) and the change `drive_step` the drive
@@ -99,10 +118,25 @@ enum class DriveKind { None, Velocity, Position };
 ///   it can still stop at x*,  v = sign(e) min(|e| / h, sqrt(2 a_max |e|)),
 ///   and drive_step = v h. Unlimited effort gives v = e / h: x* at once.
 ///   Loads are not anticipated: one pulling toward x* (a servo lowering
-///   an arm) carries the joint past it, and the drive then brings it back.
+///   an arm) carries the joint past it, and the drive then brings it back;
+///   spring (position drive with stiffness k > 0 and damping c), XPBD
+///   (Macklin et al., MIG 2016, eq. 26) on C = x - x*, alpha~ = 1 / (k h^2),
+///   beta~ = c h^2, gamma = alpha~ beta~ / h = c / (k h):
+///     dlambda = (-C - alpha~ lambda - gamma (x - start))
+///               / ((1 + gamma) w + alpha~),
+///   w the row's inverse mass. Divided through by 1 + gamma this is an
+///   undamped compliant row with a target and a compliance fixed over the
+///   substep, which both solvers solve as any other:
+///     drive_step = e / (1 + gamma) = e k / (k + c / h),
+///     drive_compliance = alpha~ / (1 + gamma) = 1 / ((k + c / h) h^2),
+///   and met, lambda / h^2 = -k (x - x*) - c (x - start) / h: the spring's
+///   force, implicit Euler in both terms. With an error_offset o, x - x*
+///   is replaced by x - x* + o throughout (e by e - o): a trapezoidal
+///   spring passes k / 4 and o = 2 e_0 + e_- (e = x - x*), so that met, lambda / h^2
+///   = -k (e_+ + 2 e_0 + e_-) / 4 - c (x - start) / h.
 /// max_drive_lambda = max_effort h^2 (infinite when unlimited).
-void prepareCoordinate(JointCoordinate& c, DriveKind kind, double target, double max_effort,
-                       double start, double inverse_inertia, bool angle, double h);
+void prepareCoordinate(JointCoordinate& c, const DriveSpec& drive, double start,
+                       double inverse_inertia, bool angle, double h);
 
 /// C of a coordinate's drive row at coordinate `value` (solveCoordinateRows).
 /// An angle is known only up to whole turns, so its change since the
@@ -119,32 +153,36 @@ inline double driveError(const JointCoordinate& c, double value, bool angle, dou
 /// The drive row and then the limit rows of a coordinate, so that a limit
 /// wins over a drive pushing into it. `value()` is the current coordinate
 /// (rad or m), `turned()` how far it has turned since the substep began as
-/// the bodies' motion tells (angles; driveError); `row(C, lo, hi, lambda)` solves the joint with one clamped
-/// row of value C along the coordinate (lambda > 0 pushes it up), its
-/// lambda clamped to [lo, hi]:
+/// the bodies' motion tells (angles; driveError); `row(C, alpha, lo, hi,
+/// lambda)` solves the joint with one clamped row of value C and
+/// compliance alpha (alpha~) along the coordinate (lambda > 0 pushes it
+/// up), its lambda clamped to [lo, hi]:
 ///   drive:  C = (x - start) - drive_step  (the change since the substep
 ///           began, for angles as far round as `turned()` says, minus the
-///           asked change; driveError), |lambda_drive| <= max_drive_lambda;
+///           asked change; driveError), alpha = drive_compliance (0 but
+///           for a spring), |lambda_drive| <= max_drive_lambda;
 ///   lower:  C = x - lower, only while C < 0 or lambda_lower > 0, lambda >= 0;
-///   upper:  C = x - upper, only while C > 0 or lambda_upper < 0, lambda <= 0.
+///   upper:  C = x - upper, only while C > 0 or lambda_upper < 0, lambda <= 0;
+///   limits are rigid (alpha = 0).
 /// Returns whether any row was solved.
 template <class Value, class Turned, class Row>
 bool solveCoordinateRows(JointCoordinate& c, const JointLimit& limit, bool driven, bool angle,
                          Value value, Turned turned, Row row) {
   bool solved = false;
   if (driven) {
-    row(driveError(c, value(), angle, turned()), -c.max_drive_lambda, c.max_drive_lambda, c.lambda_drive);
+    row(driveError(c, value(), angle, turned()), c.drive_compliance, -c.max_drive_lambda, c.max_drive_lambda,
+        c.lambda_drive);
     solved = true;
   }
   if (limit.enabled) {
     const double below = value() - limit.lower;
     if (below < 0.0 || c.lambda_lower > 0.0) {
-      row(below, 0.0, kInf, c.lambda_lower);
+      row(below, 0.0, 0.0, kInf, c.lambda_lower);
       solved = true;
     }
     const double above = value() - limit.upper;
     if (above > 0.0 || c.lambda_upper < 0.0) {
-      row(above, -kInf, 0.0, c.lambda_upper);
+      row(above, 0.0, -kInf, 0.0, c.lambda_upper);
       solved = true;
     }
   }

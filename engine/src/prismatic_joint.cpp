@@ -1,5 +1,7 @@
 #include "reeve/engine/prismatic_joint.h"
 
+#include <cmath>
+
 #include "joint_row_sets.h"
 
 namespace reeve {
@@ -54,16 +56,33 @@ double prismaticSlide(const PrismaticJoint& j, const Vec3& x_a, const Quat& q_a,
 void preparePrismaticJoint(PrismaticJoint& j, const BodyState& a, const BodyState& b, double h) {
   j.impulse_linear.setZero();
   j.impulse_angular.setZero();
-  const joint_rows::DriveKind kind = kindOf(j.drive.mode);
-  if (kind == joint_rows::DriveKind::None) {
-    joint_rows::prepareCoordinate(j.slide, kind, 0.0, 0.0, 0.0, 0.0, false, h);
+  joint_rows::DriveSpec drive{kindOf(j.drive.mode), j.drive.target, j.drive.max_force, j.drive.stiffness,
+                              j.drive.damping};
+  if (drive.kind == joint_rows::DriveKind::None) {
+    joint_rows::prepareCoordinate(j.slide, drive, 0.0, 0.0, false, h);
     return;
   }
   // The orientation is locked, so a position drive brakes in time for the
   // two masses alone: 1/m_eff = 1/m_a + 1/m_b.
-  joint_rows::prepareCoordinate(j.slide, kind, j.drive.target, j.drive.max_force,
-                                prismaticSlide(j, a.x_prev, a.q_prev, b.x_prev, b.q_prev),
-                                a.inv_mass + b.inv_mass, false, h);
+  const double start = prismaticSlide(j, a.x_prev, a.q_prev, b.x_prev, b.q_prev);
+  if (j.drive.isTrapezoidalSpring()) {
+    // The trapezoidal rule, as a hinge's (prepareHingeJoint). Before the
+    // first substep e_- = e_0 - h ds/dt, ds/dt of the anchors' separation
+    // d along the axis u (which turns with b): (v_pa - v_pb) . u + d . (w_b x u).
+    const double e0 = start - j.drive.target;
+    double e_minus = j.spring_previous - j.drive.target;
+    if (std::isnan(j.spring_previous)) {
+      const Vec3 u = b.q_prev * j.axis_b;
+      const Vec3 r_a = a.q_prev * j.anchor_a, r_b = b.q_prev * j.anchor_b;
+      const Vec3 d = (a.x_prev + r_a) - (b.x_prev + r_b);
+      const double rate = ((a.v + a.omega.cross(r_a)) - (b.v + b.omega.cross(r_b))).dot(u) + d.dot(b.omega.cross(u));
+      e_minus = e0 - h * rate;
+    }
+    j.spring_previous = start;
+    drive.stiffness *= 0.25;
+    drive.error_offset = 2.0 * e0 + e_minus;
+  }
+  joint_rows::prepareCoordinate(j.slide, drive, start, a.inv_mass + b.inv_mass, false, h);
 }
 
 void solvePrismaticJoint(PrismaticJoint& j, BodyState& a, BodyState& b, double h) {
@@ -80,7 +99,11 @@ void solvePrismaticJoint(PrismaticJoint& j, BodyState& a, BodyState& b, double h
   //       relative to b over the substep, a velocity of v*;
   //     drive, position: v* h replaced by the step toward the target that
   //       max_force can still stop (joint_rows::prepareCoordinate);
-  //       |lambda_drive| <= max_force h^2 either way;
+  //     drive, spring (position drive with stiffness k, damping c): v* h
+  //       replaced by (target - s_0) k / (k + c / h), compliant with
+  //       alpha~ = 1 / ((k + c / h) h^2) (as a hinge's spring): met, the
+  //       force lambda / h^2 is -k (s - target) - c (s - s_0) / h;
+  //       |lambda_drive| <= max_force h^2 for every drive;
   //     lower limit: C = s - lower, lambda >= 0; upper: C = s - upper,
   //       lambda <= 0; each only while violated or already pushing.
   // Each slide row is solved with the five locked rows as one block
@@ -95,10 +118,11 @@ void solvePrismaticJoint(PrismaticJoint& j, BodyState& a, BodyState& b, double h
   bool solved = false;
   if (driven || j.limit.enabled) {
     const auto value = [&] { return prismaticSlide(j, a.x, a.q, b.x, b.q); };
-    const auto row = [&](double C, double lo, double hi, double& lambda) {
+    const auto row = [&](double C, double alpha, double lo, double hi, double& lambda) {
       joint_rows::ClampedRow clamped;
       clamped.dir.head<3>() = -(b.q * j.axis_b);
       clamped.C = C;
+      clamped.alpha = alpha;
       clamped.lo = lo;
       clamped.hi = hi;
       clamped.lambda = &lambda;

@@ -88,7 +88,7 @@ void solveSphericalJoint(SphericalJoint& j, BodyState& a, BodyState& b, double h
   }
   if (j.twist_limit.enabled) {
     const auto value = [&] { return twistAngle(j, a.q, b.q); };
-    const auto row = [&](double C, double lo, double hi, double& lambda) {
+    const auto row = [&](double C, double /*alpha: 0, no drive*/, double lo, double hi, double& lambda) {
       angular(twistAxis(a.q * j.frame.axis_a, b.q * j.frame.axis_b), C, lo, hi, lambda);
     };
     solved |= joint_rows::solveCoordinateRows(j.twist, j.twist_limit, false, true, value, [] { return 0.0; }, row);
@@ -109,7 +109,7 @@ void joint_rows::sphericalRowSet(SphericalJoint& j, const BodyState& a, const Bo
     const double C = swingAngle(j, a.q, b.q) - j.swing_limit.max;
     Vec6 dir = Vec6::Zero();
     if (m.norm() > 1e-12) dir.tail<3>() = m.normalized();
-    out.addClamped(dir, C, -kInf, 0.0, &j.lambda_swing, (C > 0.0 || j.lambda_swing < 0.0) && m.norm() > 1e-12);
+    out.addClamped(dir, C, 0.0, -kInf, 0.0, &j.lambda_swing, (C > 0.0 || j.lambda_swing < 0.0) && m.norm() > 1e-12);
   }
   Vec6 dir = Vec6::Zero();
   dir.tail<3>() = twistAxis(u_a, u_b);

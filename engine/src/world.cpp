@@ -42,10 +42,25 @@ void checkLimit(const char* kind, const JointLimit& limit, double bound) {
     reject(kind, "angle limits must lie within [-pi, pi] rad");
 }
 
-void checkDrive(const char* kind, double target, double max_effort, double target_bound) {
+void checkDrive(const char* kind, double target, double max_effort, double target_bound, double until) {
   if (!std::isfinite(target)) reject(kind, "the drive target must be finite");
+  // isnan first: an ordered comparison with NaN raises FE_INVALID.
+  if (std::isnan(until) || until <= 0.0) reject(kind, "the drive's end time (until) must be > 0 s");
   if (std::abs(target) > target_bound) reject(kind, "an angle drive target must lie within [-pi, pi] rad");
   if (std::isnan(max_effort)) reject(kind, "the drive's maximum force or torque must be a number");
+}
+
+// A drive's spring (HingeDrive, PrismaticDrive): stiffness and damping
+// finite and >= 0, only on an angle or position drive, damping only with
+// a stiffness; trapezoidal integration only with a stiffness.
+void checkSpring(const char* kind, double stiffness, double damping, bool position_drive, bool trapezoidal) {
+  // isfinite first: an ordered comparison with NaN raises FE_INVALID.
+  if (!std::isfinite(stiffness) || stiffness < 0.0) reject(kind, "the drive's stiffness must be finite and >= 0");
+  if (!std::isfinite(damping) || damping < 0.0) reject(kind, "the drive's damping must be finite and >= 0");
+  if ((stiffness > 0.0 || damping > 0.0) && !position_drive)
+    reject(kind, "stiffness and damping are for an angle or position drive only");
+  if (damping > 0.0 && stiffness == 0.0) reject(kind, "the drive's damping needs a stiffness > 0");
+  if (trapezoidal && stiffness == 0.0) reject(kind, "trapezoidal integration is for a spring (a stiffness > 0)");
 }
 
 constexpr double kPi = std::numbers::pi;
@@ -237,7 +252,9 @@ HingeId World::addHinge(const HingeDef& def) {
   checkCompliance("hinge", def.compliance);
   checkLimit("hinge", def.limit, kPi);
   checkDrive("hinge", def.drive.target, def.drive.max_torque,
-             def.drive.mode == HingeDrive::Mode::Angle ? kPi : kAny);
+             def.drive.mode == HingeDrive::Mode::Angle ? kPi : kAny, def.drive.until);
+  checkSpring("hinge", def.drive.stiffness, def.drive.damping, def.drive.mode == HingeDrive::Mode::Angle,
+              def.drive.integration == HingeDrive::Integration::Trapezoidal);
   rotors_dirty_ = true;
   hinges_.push_back(makeHingeJoint(def, body(def.body), body(def.other)));
   return static_cast<HingeId>(hinges_.size() - 1);
@@ -249,7 +266,10 @@ PrismaticId World::addPrismatic(const PrismaticDef& def) {
   checkVector("prismatic joint", "anchor", def.anchor, false);
   checkCompliance("prismatic joint", def.compliance);
   checkLimit("prismatic joint", def.limit, kAny);
-  checkDrive("prismatic joint", def.drive.target, def.drive.max_force, kAny);
+  checkDrive("prismatic joint", def.drive.target, def.drive.max_force, kAny, def.drive.until);
+  checkSpring("prismatic joint", def.drive.stiffness, def.drive.damping,
+              def.drive.mode == PrismaticDrive::Mode::Position,
+              def.drive.integration == PrismaticDrive::Integration::Trapezoidal);
   rotors_dirty_ = true;
   prismatics_.push_back(makePrismaticJoint(def, body(def.body), body(def.other)));
   return static_cast<PrismaticId>(prismatics_.size() - 1);
@@ -350,6 +370,7 @@ void World::step(double dt) {
   last_iterations_ = 0;
   const double h = dt / settings_.substeps;
   for (int s = 0; s < settings_.substeps; ++s) {
+    releaseDrives(h);
     integrate(h);
     for (auto& hook : hooks_) hook(*this, h);
     const bool contacts = hasContacts();
@@ -374,6 +395,16 @@ void World::step(double dt) {
     time_ += h;
   }
   last_h_ = h;
+}
+
+void World::releaseDrives(double h) {
+  // Half a substep early, so that rounding in time_ cannot keep a drive one
+  // substep too long.
+  const double now = time_ + 0.5 * h;
+  for (HingeJoint& j : hinges_)
+    if (j.drive.mode != HingeDrive::Mode::None && now >= j.drive.until) j.drive = HingeDrive{};
+  for (PrismaticJoint& j : prismatics_)
+    if (j.drive.mode != PrismaticDrive::Mode::None && now >= j.drive.until) j.drive = PrismaticDrive{};
 }
 
 void World::integrate(double h) {

@@ -44,8 +44,9 @@ void addHinges(const nlohmann::json& hinges, const BodyNames& names, World& worl
 
 /// Adds "joints" (build_joints.cpp): prismatic, spherical and fixed joints
 /// between known bodies, two different ones; non-zero axes, limits with
-/// lower <= upper, angles in [-pi, pi] (a swing limit in [0, pi]), and an
-/// axis for a spherical joint's limits.
+/// lower <= upper, angles in [-pi, pi] (a swing limit in [0, pi]), an
+/// axis for a spherical joint's limits, and a position drive's
+/// damping_N_s_per_m only with stiffness_N_per_m.
 void addJoints(const nlohmann::json& joints, const BodyNames& names, World& world,
                const std::string& source);
 
@@ -55,7 +56,9 @@ JointLimit angleLimit(const nlohmann::json& limit, const std::string& pointer,
                       const std::string& source);
 
 /// The hinge drive at `pointer` (build_joints.cpp): velocity or angle mode,
-/// an angle target in [-pi, pi]; max_torque_N_m omitted means unlimited.
+/// an angle target in [-pi, pi]; max_torque_N_m omitted means unlimited;
+/// an angle drive's damping_N_m_s_per_rad only with stiffness_N_m_per_rad
+/// (a torsional spring; omitted: a rigid drive).
 HingeDrive hingeDrive(const nlohmann::json& drive, const std::string& pointer,
                       const std::string& source);
 

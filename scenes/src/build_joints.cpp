@@ -45,6 +45,31 @@ double angleIn(const json& value, const std::string& pointer, const std::string&
   return angle;
 }
 
+// The spring of an angle or position drive at `pointer` (schema-checked:
+// stiffness > 0, damping >= 0, integration "implicit" or "trapezoidal")
+// into `stiffness`, `damping` and `trapezoidal`, under the keys given;
+// damping and integration only with a stiffness. Omitted: a rigid drive.
+void driveSpring(const json& drive, const std::string& pointer, const char* stiffness_key,
+                 const char* damping_key, double& stiffness, double& damping, bool& trapezoidal,
+                 const std::string& source) {
+  const auto k = drive.find(stiffness_key);
+  const auto c = drive.find(damping_key);
+  if (c != drive.end() && k == drive.end())
+    throw SceneError(source, pointer + "/" + damping_key,
+                     std::string("no ") + damping_key + " without " + stiffness_key +
+                         " (damping belongs to a spring)",
+                     literal(*c));
+  const auto integration = drive.find("integration");
+  if (integration != drive.end() && k == drive.end())
+    throw SceneError(source, pointer + "/integration",
+                     std::string("no integration without ") + stiffness_key + " (integration belongs to a spring)",
+                     literal(*integration));
+  if (k == drive.end()) return;
+  stiffness = k->get<double>();
+  damping = drive.value(damping_key, 0.0);
+  trapezoidal = drive.value("integration", std::string("implicit")) == "trapezoidal";
+}
+
 // Passes World's own refusals on as a SceneError at the joint (the checks
 // above should leave none).
 template <class Add>
@@ -75,6 +100,13 @@ void addPrismatic(const json& j, const std::string& path, const BodyNames& names
     def.drive.mode = velocity ? PrismaticDrive::Mode::Velocity : PrismaticDrive::Mode::Position;
     def.drive.target = drive->at(velocity ? "target_m_per_s" : "target_m").get<double>();
     def.drive.max_force = drive->value("max_force_N", 0.0);  // omitted: unlimited
+    def.drive.until = drive->value("until_s", def.drive.until);  // omitted: always
+    if (!velocity) {
+      bool trapezoidal = false;
+      driveSpring(*drive, path + "/drive", "stiffness_N_per_m", "damping_N_s_per_m", def.drive.stiffness,
+                  def.drive.damping, trapezoidal, source);
+      if (trapezoidal) def.drive.integration = PrismaticDrive::Integration::Trapezoidal;
+    }
   }
   addChecked([&] { world.addPrismatic(def); }, path, source);
 }
@@ -134,8 +166,13 @@ HingeDrive hingeDrive(const json& drive, const std::string& pointer, const std::
   } else {
     result.mode = HingeDrive::Mode::Angle;
     result.target = angleIn(drive.at("target_rad"), pointer + "/target_rad", source);
+    bool trapezoidal = false;
+    driveSpring(drive, pointer, "stiffness_N_m_per_rad", "damping_N_m_s_per_rad", result.stiffness,
+                result.damping, trapezoidal, source);
+    if (trapezoidal) result.integration = HingeDrive::Integration::Trapezoidal;
   }
   result.max_torque = drive.value("max_torque_N_m", 0.0);  // omitted: unlimited
+  result.until = drive.value("until_s", result.until);      // omitted: always
   return result;
 }
 

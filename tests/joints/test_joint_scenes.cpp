@@ -193,6 +193,154 @@ TEST(JointScenes, AMotorFromJsonSpinsUpAtTorqueOverInertia) {
   EXPECT_NEAR(s.world->body(*s.world->findBody("wheel")).omega.z(), expected, 0.01 * expected);
 }
 
+// kJoints with the servo a torsional spring and the slider's drive a
+// linear spring, each with the extra keys `hinge_extra` and
+// `prismatic_extra` (JSON members, or "").
+constexpr const char* kServo = R"("target_rad": 0.25, "max_torque_N_m": 20)";
+constexpr const char* kSliderDrive = R"({"mode": "velocity", "target_m_per_s": 0.5, "max_force_N": 30})";
+
+std::string springsWith(const std::string& hinge_extra, const std::string& prismatic_extra) {
+  return with(jointsWith(kServo, std::string(kServo) + hinge_extra), kSliderDrive,
+              R"({"mode": "position", "target_m": 0.2)" + prismatic_extra + "}");
+}
+
+TEST(JointScenes, SpringDrivesMapToTheirValues) {
+  const nlohmann::json defs = nlohmann::json::parse(sceneSchemaJson()).at("definitions");
+  const Scene s = parseScene(springsWith(R"(, "stiffness_N_m_per_rad": 30, "damping_N_m_s_per_rad": 1.5)",
+                                         R"(, "stiffness_N_per_m": 400)"),
+                             "springs.json");
+  const World& w = *s.world;
+  EXPECT_EQ(w.hinge(0).drive.stiffness, 0.0);  // the motor: no spring
+  const HingeDrive& servo = w.hinge(1).drive;
+  EXPECT_EQ(servo.mode, HingeDrive::Mode::Angle);
+  EXPECT_EQ(servo.target, 0.25);
+  EXPECT_EQ(servo.max_torque, 20.0);
+  EXPECT_EQ(servo.stiffness, 30.0);
+  EXPECT_EQ(servo.damping, 1.5);
+  const PrismaticDrive& slider = w.prismatic(0).drive;
+  EXPECT_EQ(slider.mode, PrismaticDrive::Mode::Position);
+  EXPECT_EQ(slider.target, 0.2);
+  EXPECT_TRUE(isUnlimited(slider.max_force));
+  EXPECT_EQ(slider.stiffness, 400.0);
+  EXPECT_EQ(slider.damping, defs.at("prismatic_position_drive").at("properties").at("damping_N_s_per_m").at("default"));
+  EXPECT_EQ(defs.at("hinge_angle_drive").at("properties").at("damping_N_m_s_per_rad").at("default"), 0);
+  EXPECT_FALSE(defs.at("hinge_angle_drive").at("properties").at("stiffness_N_m_per_rad").contains("default"));
+}
+
+TEST(JointScenes, SpringIntegrationAndDriveEndTimesMapToTheirValues) {
+  const nlohmann::json defs = nlohmann::json::parse(sceneSchemaJson()).at("definitions");
+  const Scene s = parseScene(
+      with(springsWith(R"(, "stiffness_N_m_per_rad": 30, "integration": "trapezoidal", "until_s": 2.5)",
+                       R"(, "stiffness_N_per_m": 400, "integration": "trapezoidal")"),
+           R"("max_torque_N_m": 1.5})", R"("max_torque_N_m": 1.5, "until_s": 0.5})"),
+      "springs.json");
+  const World& w = *s.world;
+  EXPECT_EQ(w.hinge(0).drive.until, 0.5);
+  EXPECT_EQ(w.hinge(0).drive.integration, HingeDrive::Integration::Implicit);
+  EXPECT_EQ(w.hinge(1).drive.integration, HingeDrive::Integration::Trapezoidal);
+  EXPECT_TRUE(w.hinge(1).drive.isTrapezoidalSpring());
+  EXPECT_EQ(w.hinge(1).drive.until, 2.5);
+  EXPECT_EQ(w.prismatic(0).drive.integration, PrismaticDrive::Integration::Trapezoidal);
+  EXPECT_TRUE(std::isinf(w.prismatic(0).drive.until));  // omitted: always
+  EXPECT_EQ(defs.at("hinge_angle_drive").at("properties").at("integration").at("default"), "implicit");
+  EXPECT_EQ(defs.at("prismatic_position_drive").at("properties").at("integration").at("default"), "implicit");
+  const Scene plain = parseScene(springsWith(R"(, "stiffness_N_m_per_rad": 30)", ""), "springs.json");
+  EXPECT_EQ(plain.world->hinge(1).drive.integration, HingeDrive::Integration::Implicit);
+  EXPECT_FALSE(plain.world->hinge(1).drive.isTrapezoidalSpring());
+}
+
+// kJoints' motor with "until_s": 0.5 spins up at torque / inertia until
+// then and coasts on at tau 0.5 s / I (no drive, no friction); its drive is
+// gone (mode None) from then on.
+TEST(JointScenes, ADriveLetsGoAtItsEndTime) {
+  Scene s = parseScene(jointsWith(R"("max_torque_N_m": 1.5})", R"("max_torque_N_m": 1.5, "until_s": 0.5})"),
+                       "joints.json");
+  const BodyId wheel = *s.world->findBody("wheel");
+  const double inertia = 0.5 * 4.0 * 0.3 * 0.3;
+  for (int f = 0; f < 30; ++f) s.world->step(1.0 / s.frame_rate_hz);
+  EXPECT_EQ(s.world->hinge(0).drive.mode, HingeDrive::Mode::Velocity);
+  EXPECT_NEAR(s.world->body(wheel).omega.z(), 1.5 * 0.5 / inertia, 1e-9);
+  for (int f = 0; f < 30; ++f) s.world->step(1.0 / s.frame_rate_hz);
+  EXPECT_EQ(s.world->hinge(0).drive.mode, HingeDrive::Mode::None);
+  EXPECT_NEAR(s.world->body(wheel).omega.z(), 1.5 * 0.5 / inertia, 1e-9);
+}
+
+TEST(JointErrors, HingeStiffnessNotPositive) {
+  expectError(springsWith(R"(, "stiffness_N_m_per_rad": 0)", ""), "/hinges/1/drive/stiffness_N_m_per_rad",
+              "a number > 0", "0");
+}
+
+TEST(JointErrors, HingeStiffnessNotANumber) {
+  expectError(springsWith(R"(, "stiffness_N_m_per_rad": "stiff")", ""), "/hinges/1/drive/stiffness_N_m_per_rad",
+              "a number", "\"stiff\"");
+}
+
+TEST(JointErrors, NegativeHingeDamping) {
+  expectError(springsWith(R"(, "stiffness_N_m_per_rad": 30, "damping_N_m_s_per_rad": -1.5)", ""),
+              "/hinges/1/drive/damping_N_m_s_per_rad", "a number >= 0", "-1.5");
+}
+
+TEST(JointErrors, HingeDampingWithoutStiffness) {
+  expectError(springsWith(R"(, "damping_N_m_s_per_rad": 1.5)", ""), "/hinges/1/drive/damping_N_m_s_per_rad",
+              "no damping_N_m_s_per_rad without stiffness_N_m_per_rad", "1.5");
+}
+
+TEST(JointErrors, StiffnessOnAHingeVelocityDrive) {
+  expectError(jointsWith(R"("max_torque_N_m": 1.5)", R"("max_torque_N_m": 1.5, "stiffness_N_m_per_rad": 30)"),
+              "/hinges/0/drive/stiffness_N_m_per_rad",
+              "no property \"stiffness_N_m_per_rad\" (allowed: mode, target_rad_per_s, max_torque_N_m, until_s)",
+              "\"stiffness_N_m_per_rad\"");
+}
+
+TEST(JointErrors, PrismaticStiffnessNotPositive) {
+  expectError(springsWith("", R"(, "stiffness_N_per_m": -400)"), "/joints/0/drive/stiffness_N_per_m",
+              "a number > 0", "-400");
+}
+
+TEST(JointErrors, NegativePrismaticDamping) {
+  expectError(springsWith("", R"(, "stiffness_N_per_m": 400, "damping_N_s_per_m": -2)"),
+              "/joints/0/drive/damping_N_s_per_m", "a number >= 0", "-2");
+}
+
+TEST(JointErrors, PrismaticDampingWithoutStiffness) {
+  expectError(springsWith("", R"(, "damping_N_s_per_m": 2)"), "/joints/0/drive/damping_N_s_per_m",
+              "no damping_N_s_per_m without stiffness_N_per_m", "2");
+}
+
+TEST(JointErrors, StiffnessOnAPrismaticVelocityDrive) {
+  expectError(jointsWith(R"("max_force_N": 30)", R"("max_force_N": 30, "stiffness_N_per_m": 400)"),
+              "/joints/0/drive/stiffness_N_per_m",
+              "no property \"stiffness_N_per_m\" (allowed: mode, target_m_per_s, max_force_N, until_s)",
+              "\"stiffness_N_per_m\"");
+}
+
+TEST(JointErrors, HingeIntegrationWithoutStiffness) {
+  expectError(springsWith(R"(, "integration": "trapezoidal")", ""), "/hinges/1/drive/integration",
+              "no integration without stiffness_N_m_per_rad", "\"trapezoidal\"");
+}
+
+TEST(JointErrors, PrismaticIntegrationWithoutStiffness) {
+  expectError(springsWith("", R"(, "integration": "implicit")"), "/joints/0/drive/integration",
+              "no integration without stiffness_N_per_m", "\"implicit\"");
+}
+
+TEST(JointErrors, UnknownSpringIntegration) {
+  expectError(springsWith(R"(, "stiffness_N_m_per_rad": 30, "integration": "explicit")", ""),
+              "/hinges/1/drive/integration", R"(one of "implicit", "trapezoidal")", "\"explicit\"");
+}
+
+TEST(JointErrors, IntegrationOnAHingeVelocityDrive) {
+  expectError(jointsWith(R"("max_torque_N_m": 1.5})", R"("max_torque_N_m": 1.5, "integration": "trapezoidal"})"),
+              "/hinges/0/drive/integration",
+              "no property \"integration\" (allowed: mode, target_rad_per_s, max_torque_N_m, until_s)",
+              "\"integration\"");
+}
+
+TEST(JointErrors, DriveEndTimeNotPositive) {
+  expectError(jointsWith(R"("max_force_N": 30)", R"("max_force_N": 30, "until_s": 0)"),
+              "/joints/0/drive/until_s", "a number > 0", "0");
+}
+
 TEST(JointErrors, UnknownJointType) {
   expectError(jointsWith(R"("type": "fixed")", R"("type": "weld")"), "/joints/2/type",
               R"(one of "prismatic", "spherical", "fixed")", "\"weld\"");
@@ -274,7 +422,7 @@ TEST(JointErrors, PrismaticWithoutAxis) {
 TEST(JointErrors, VelocityDriveWithAnAngleTarget) {
   expectError(jointsWith(R"("target_rad_per_s": 10,)", R"("target_rad": 1,)"),
               "/hinges/0/drive/target_rad",
-              "no property \"target_rad\" (allowed: mode, target_rad_per_s, max_torque_N_m)",
+              "no property \"target_rad\" (allowed: mode, target_rad_per_s, max_torque_N_m, until_s)",
               "\"target_rad\"");
 }
 

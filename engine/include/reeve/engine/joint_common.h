@@ -62,6 +62,10 @@ struct JointCoordinate {
   double start = 0.0;         // coordinate at the start of the substep (rad or m)
   double drive_step = 0.0;    // change the drive asks for over the substep (rad or m)
   double max_drive_lambda = std::numeric_limits<double>::infinity();  // max effort x h^2
+  // Compliance alpha~ of the drive row, rad/(kg m^2) for angles, 1/kg for
+  // slides: 0 for a rigid drive, 1 / ((k + c / h) h^2) for a spring of
+  // stiffness k and damping c (joint_rows::prepareCoordinate).
+  double drive_compliance = 0.0;
 };
 
 /// `angle` (rad) wrapped to [-pi, pi].

@@ -4,6 +4,8 @@
 // SCA 2020 sec. 3.3.1-3.3.2.
 #pragma once
 
+#include <limits>
+
 #include "reeve/engine/body.h"
 #include "reeve/engine/joint_common.h"
 
@@ -13,11 +15,33 @@ namespace reeve {
 /// axis). Velocity: slides at `target` m/s; Position: slides to and holds
 /// `target` m. Either way with at most `max_force` N (<= 0 or infinity:
 /// unlimited, a rigid drive).
+///
+/// A Position drive with `stiffness` > 0 is a linear spring instead: the
+/// force on a along the axis is -stiffness (s - target) - damping ds/dt,
+/// still within max_force; one compliant XPBD row, implicit, as a hinge's
+/// spring (HingeDrive).
+///
+/// `integration`, as a hinge's (HingeDrive): Implicit (the default:
+/// implicit Euler) or Trapezoidal, the force -stiffness (e_+ + 2 e_0 +
+/// e_-) / 4 over a substep, e = s - target (the trapezoidal rule: an
+/// undamped spring keeps its energy at any stiffness and substep).
 struct PrismaticDrive {
   enum class Mode { None, Velocity, Position };
+  enum class Integration { Implicit, Trapezoidal };
   Mode mode = Mode::None;
   double target = 0.0;     // m/s (Velocity) or m (Position)
   double max_force = 0.0;  // N; <= 0 or infinity: unlimited
+  double stiffness = 0.0;  // N/m, finite; 0: rigid (Position only)
+  double damping = 0.0;    // N s/m, finite; only with stiffness > 0
+  Integration integration = Integration::Implicit;  // of a spring (stiffness > 0)
+  // s, > 0: the drive acts until then and is removed, as a hinge's
+  // (HingeDrive::until); infinity: always.
+  double until = std::numeric_limits<double>::infinity();
+
+  /// A spring integrated by the trapezoidal rule.
+  bool isTrapezoidalSpring() const {
+    return mode == Mode::Position && stiffness > 0.0 && integration == Integration::Trapezoidal;
+  }
 };
 
 /// A prismatic joint between `body` (a) and `other` (b; kWorldBody: the
@@ -49,6 +73,9 @@ struct PrismaticJoint {
   JointCoordinate slide;
   Vec3 impulse_linear = Vec3::Zero();
   Vec3 impulse_angular = Vec3::Zero();
+  // A trapezoidal spring's slide at the start of the previous substep (m;
+  // NaN before the first).
+  double spring_previous = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// Converts `def` to body-local form from the current poses of a and b.
@@ -63,8 +90,8 @@ void preparePrismaticJoint(PrismaticJoint& joint, const BodyState& a, const Body
 
 /// One Gauss-Seidel visit over a substep of `h` s: the orientation and
 /// cross-rail rows (alpha~ = compliance / h^2) as one block, solved together
-/// with each active drive and limit row on the slide in turn (rigid,
-/// clamped).
+/// with each active drive and limit row on the slide in turn (clamped;
+/// rigid, but a spring's drive row, as a hinge's).
 void solvePrismaticJoint(PrismaticJoint& joint, BodyState& a, BodyState& b, double h);
 
 /// Slide (m) of a relative to b along the axis from poses x_a, q_a, x_b,

@@ -85,7 +85,9 @@ class World {
   /// Adds a hinge from the current poses; throws std::invalid_argument for
   /// unknown or identical bodies, a zero axis, a negative compliance, a
   /// limit with lower > upper or outside [-pi, pi], an angle drive target
-  /// outside [-pi, pi], or anything not finite (but an infinite max torque).
+  /// outside [-pi, pi], a negative drive stiffness or damping, either on a
+  /// velocity drive, damping without stiffness, or anything not finite
+  /// (but an infinite max torque).
   HingeId addHinge(const HingeDef& def);
   /// Adds a prismatic joint from the current poses; throws
   /// std::invalid_argument as addHinge (limits in m, any finite range).
@@ -161,7 +163,9 @@ class World {
   /// Hinge angle (rad, in (-pi, pi]) of body a relative to b, 0 when added.
   double hingeAngle(HingeId id) const;
   /// Torque (N m) the hinge's drive put on body a about the axis over the
-  /// last substep: lambda_drive / h^2.
+  /// last substep: lambda_drive / h^2; for a spring, -stiffness (angle -
+  /// target) - damping x the angular velocity (HingeDrive; trapezoidal:
+  /// with the angle averaged over three substep ends as the rule does).
   double hingeDriveTorque(HingeId id) const;
 
   const std::vector<PrismaticJoint>& prismatics() const { return prismatics_; }
@@ -173,7 +177,9 @@ class World {
   /// Slide (m) of body a relative to b along the axis, 0 when added.
   double prismaticSlide(PrismaticId id) const;
   /// Force (N) the drive put on body a along the axis over the last
-  /// substep: lambda_drive / h^2.
+  /// substep: lambda_drive / h^2; for a spring, -stiffness (slide -
+  /// target) - damping x the slide's velocity (PrismaticDrive; trapezoidal:
+  /// with the slide averaged as the rule does).
   double prismaticDriveForce(PrismaticId id) const;
 
   const std::vector<SphericalJoint>& sphericals() const { return sphericals_; }
@@ -227,6 +233,9 @@ class World {
   bool rotorHingeChanged() const;
   /// The hinge wrenches of rotors, which have no hinge rows (direct solver).
   void rotorWrenches(double h);
+  /// Removes the drives whose `until` has come (HingeDrive::until), at the
+  /// start of a substep of h s.
+  void releaseDrives(double h);
   void integrate(double h);
   void solvePositions(double h);
   void updateVelocities(double h);

@@ -16,6 +16,8 @@
 #include "reeve/engine/correction.h"
 #include "reeve/engine/world.h"
 
+#include "run_frames.h"
+
 namespace reeve {
 namespace {
 
@@ -41,15 +43,7 @@ BodyId addBox(World& world, double mass, const Vec3& half, const Vec3& position,
   return world.addBody(def);
 }
 
-// Runs `world` for `seconds` in frames of `dt`, calling `each(t)` after each.
-template <class Each>
-void run(World& world, double seconds, double dt, Each each) {
-  const int frames = static_cast<int>(std::lround(seconds / dt));
-  for (int f = 0; f < frames; ++f) {
-    world.step(dt);
-    each(world.time());
-  }
-}
+using test::run;
 
 // -------------------------------------------------------------- kernels --
 

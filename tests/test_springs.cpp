@@ -22,6 +22,8 @@
 
 #include "reeve/engine/world.h"
 
+#include "run_frames.h"
+
 namespace reeve {
 namespace {
 
@@ -47,15 +49,7 @@ BodyId addBody(World& world, const Shape& shape, double mass, const Vec3& positi
   return world.addBody(def);
 }
 
-// Runs `world` for `seconds` in frames of `dt`, calling `each(t)` after each.
-template <class Each>
-void run(World& world, double seconds, double dt, Each each) {
-  const int frames = static_cast<int>(std::lround(seconds / dt));
-  for (int f = 0; f < frames; ++f) {
-    world.step(dt);
-    each(world.time());
-  }
-}
+using test::run;
 
 // A root of f (derivative df) by Newton's method from x.
 template <class F, class DF>

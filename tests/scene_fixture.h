@@ -13,6 +13,15 @@ namespace reeve::test {
 /// Loads scenes/NAME.json from the source tree.
 inline Scene scene(const std::string& name) { return loadScene(std::string(REEVE_SCENES_DIR) + "/" + name + ".json"); }
 
+/// scenes/NAME.json with its solver budget replaced: `substeps` per frame,
+/// `iterations` per substep.
+inline Scene scene(const std::string& name, int substeps, int iterations) {
+  Scene s = scene(name);
+  s.world->settings().substeps = substeps;
+  s.world->settings().iterations = iterations;
+  return s;
+}
+
 /// The id of the body named `name` (the scene must have it).
 inline BodyId body(const Scene& s, const std::string& name) { return *s.world->findBody(name); }
 

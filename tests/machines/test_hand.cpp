@@ -27,12 +27,7 @@ const Budget kBudgets[] = {{10, 2}, {1, 20}};  // the scene's; the paper's Table
 
 const char* const kDigits[] = {"index", "middle", "ring", "little", "thumb"};
 
-Scene load(const Budget b) {
-  Scene s = test::scene("hand");
-  s.world->settings().substeps = b.substeps;
-  s.world->settings().iterations = b.iterations;
-  return s;
-}
+Scene load(const Budget b) { return test::scene("hand", b.substeps, b.iterations); }
 
 double gravity(const Scene& s) { return -s.world->settings().gravity.y(); }
 

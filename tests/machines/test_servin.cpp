@@ -22,12 +22,7 @@ struct Budget {
 };
 const Budget kBudgets[] = {{10, 2}, {1, 10}};  // the scene's; the paper's Table 1
 
-Scene load(const Budget b) {
-  Scene s = test::scene("servin");
-  s.world->settings().substeps = b.substeps;
-  s.world->settings().iterations = b.iterations;
-  return s;
-}
+Scene load(const Budget b) { return test::scene("servin", b.substeps, b.iterations); }
 
 double gravity(const Scene& s) { return -s.world->settings().gravity.y(); }
 double weight(const Scene& s, const char* body) { return s.world->bodyMass(test::body(s, body)) * gravity(s); }

@@ -3,7 +3,7 @@
 // generated level-3 Hilbert machine (512 hinged wheels, one cable, a motor
 // on the first) and zig-zag cables over K = 8 .. 512 wheels at one step of
 // 10 iterations per frame. Per row: ms per frame (min / median / max over
-// repeats, each after a warm-up frame), the iterations the solver ran per
+// repeats, after a warm-up run), the iterations the solver ran per
 // frame (the direct solver stops once every row is met), ns per cable
 // joint per iteration run, and the heap allocations inside World::step
 // after the first frame (counted by replacing operator new in this
@@ -11,7 +11,6 @@
 // joints x iterations run. Prints only; nothing here passes or fails.
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
@@ -19,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "reeve/bench/timing.h"
 #include "reeve/machines/machines.h"
 
 namespace {
@@ -38,36 +38,44 @@ namespace {
 using namespace reeve;
 using namespace reeve::machines;
 
+const char* solverName(SolverKind s) { return s == SolverKind::Direct ? "direct" : "gauss-seidel"; }
+
+// The shared timing loop (reeve/bench/timing.h), counting the heap
+// allocations of the timed runs after each run's first frame.
+class CountingRun : public bench::SceneRun {
+ public:
+  using SceneRun::SceneRun;
+  void reset() override {
+    SceneRun::reset();
+    first_ = true;
+  }
+  void observe(int) override {
+    if (first_) before_ = g_allocations;
+    else allocations_ += g_allocations - before_, before_ = g_allocations;
+    first_ = false;
+  }
+  long allocations() const { return allocations_; }
+
+ private:
+  bool first_ = true;
+  long before_ = 0, allocations_ = 0;
+};
+
 struct Timing {
   double min_ms, median_ms, max_ms;
   double iterations;  // run per frame, mean
   long allocations;   // inside World::step after the first frame, all repeats
 };
 
-const char* solverName(SolverKind s) { return s == SolverKind::Direct ? "direct" : "gauss-seidel"; }
-
-// Builds a fresh scene with `make` for each of `repeats` runs, steps one
-// frame as a warm-up, then times `frames` frames.
+// `frames` frames of a fresh scene from `make`, `repeats` times, after a
+// warm-up.
 Timing time(const std::function<Scene()>& make, int frames, int repeats) {
-  std::vector<double> ms;
-  long allocations = 0, iterations = 0;
-  for (int r = 0; r < repeats; ++r) {
-    Scene scene = make();
-    const double dt = 1.0 / scene.frame_rate_hz;
-    scene.world->step(dt);
-    const long before = g_allocations;
-    double seconds = 0.0;
-    for (int f = 0; f < frames; ++f) {
-      const auto t0 = std::chrono::steady_clock::now();
-      scene.world->step(dt);
-      seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      iterations += scene.world->lastStepIterations();
-    }
-    allocations += g_allocations - before;
-    ms.push_back(1e3 * seconds / frames);
-  }
-  std::sort(ms.begin(), ms.end());
-  return {ms.front(), ms[ms.size() / 2], ms.back(), static_cast<double>(iterations) / (frames * repeats), allocations};
+  CountingRun run(make);
+  bench::TimingOptions options;
+  options.repeats = repeats;
+  options.observe_every_run = true;
+  const bench::FrameTiming t = bench::timeFrames(run, frames, options);
+  return {t.min_ms, t.median_ms, t.max_ms, t.iterations_per_frame, run.allocations()};
 }
 
 void header() {

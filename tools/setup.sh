@@ -14,6 +14,7 @@ packages=(
   libpng-dev             # PNG frames
   libgtest-dev           # tests
   ffmpeg                 # video (the program, piped to)
+  python3-matplotlib     # reeve bench --plot (bench/plot.py)
 )
 missing=()
 for p in "${packages[@]}"; do

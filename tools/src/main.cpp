@@ -1,9 +1,11 @@
-// The `reeve` command line: run a scene to PNG/MP4/CSV, or validate it.
+// The `reeve` command line: run a scene to PNG/MP4/CSV, validate it, generate
+// or segment one, or measure speed and accuracy (bench).
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
 #include <iostream>
 
+#include "bench_command.h"
 #include "commands.h"
 #include "generate_command.h"
 #include "segment_command.h"
@@ -68,6 +70,9 @@ int main(int argc, char** argv) {
                           "Output scene (default hilbert<level>.json, or hilbert<level>_loose.json with slack)");
   hilbert_cmd->add_flag("--force", hilbert.force, "Overwrite an existing output file");
 
+  CLI::App* bench_cmd = nullptr;
+  const std::function<int()> bench = reeve::addBenchCommand(app, bench_cmd);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -76,6 +81,7 @@ int main(int argc, char** argv) {
   }
   if (*run_cmd) return reeve::runCommand(run);
   if (*hilbert_cmd) return reeve::generateHilbertCommand(hilbert);
+  if (*bench_cmd) return bench();
   if (*segment_cmd) {
     if (*rope_mass_opt) segment.segment.rope_mass_kg = rope_mass;
     std::string line = "reeve segment";

@@ -1,0 +1,68 @@
+// The sub-commands of `reeve bench` (README "Performance and accuracy").
+// Each prints the environment and a table to stdout, writes the CSV and
+// PNG that `Output` asks for and returns a process exit code (0, or 1
+// when an output could not be written); none passes or fails on a time.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "reeve/bench/report.h"
+
+namespace reeve::bench {
+
+/// `reeve bench table1`: the paper's Table 1 machines at the paper's
+/// settings and at each scene's own, with both solvers.
+struct Table1Options {
+  Output output;
+  std::filesystem::path scenes_dir;  ///< holds simple.json, servin.json, ...
+  std::vector<std::string> only;     ///< machine names to run; empty: all
+  std::vector<std::string> solvers = {"direct", "gauss-seidel"};
+  int repeats = 5;
+  std::optional<int> frames;  ///< default: each scene's duration
+};
+int table1(const Table1Options& options);
+
+/// `reeve bench trade`: error against closed forms versus ms/frame over
+/// a grid of substeps x iterations, per solver, with the segmented rope
+/// on the Atwood machines.
+struct TradeOptions {
+  Output output;
+  std::filesystem::path scenes_dir;
+  std::vector<std::string> only;  ///< case names; empty: all
+  std::vector<int> substeps = {1, 2, 5, 10, 20, 50};
+  std::vector<int> iterations = {1, 2, 5, 10, 20};
+  std::vector<std::string> solvers = {"direct", "gauss-seidel"};
+  std::vector<int> rope_segments = {20, 100};  ///< empty: no rope series
+  int repeats = 3;
+};
+int trade(const TradeOptions& options);
+
+/// `reeve bench extremes`: a stability map over masses, compliance,
+/// frame rate, substeps, iterations, jerks and loads.
+struct ExtremesOptions {
+  Output output;
+  std::vector<std::string> machines = {"atwood", "simple"};
+  std::vector<std::string> conditions;  ///< names to run; empty: all
+  std::vector<double> rates_hz = {30, 60, 240, 2000};
+  std::vector<int> substeps = {1, 10, 100};
+  std::vector<int> iterations = {1, 10, 100};
+  std::vector<std::string> solvers = {"direct", "gauss-seidel"};
+  std::string cell;  ///< run only this cell (its key, as printed)
+};
+int extremes(const ExtremesOptions& options);
+
+/// Whether `reeve bench peers` was built (Debian's libmujoco-dev found).
+bool peersAvailable();
+
+/// `reeve bench peers`: the Atwood machine and zig-zags of K pulleys as
+/// MuJoCo spatial tendons next to Reeve, in the same run.
+struct PeersOptions {
+  Output output;
+  int repeats = 5;
+};
+int peers(const PeersOptions& options);
+
+}  // namespace reeve::bench

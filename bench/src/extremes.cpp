@@ -1,0 +1,94 @@
+// `reeve bench extremes`: the stability map.
+#include <algorithm>
+#include <cstdio>
+#include <stdexcept>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "extremes_cells.h"
+#include "reeve/bench/bench.h"
+#include "solvers.h"
+
+namespace reeve::bench {
+namespace {
+
+struct Cell {
+  Condition condition;
+  CellBudget budget;
+};
+
+std::vector<Cell> grid(const ExtremesOptions& o) {
+  std::vector<Cell> cells;
+  for (const std::string& machine : o.machines) {
+    std::vector<Condition> list = conditions(machine);
+    for (const std::string& name : o.conditions) {
+      bool known = false;
+      for (const std::string& m : o.machines)
+        for (const Condition& c : conditions(m)) known |= c.name == name;
+      if (!known) throw std::invalid_argument("--conditions: no condition called '" + name + "'");
+    }
+    for (const Condition& c : list) {
+      if (!o.conditions.empty() && std::find(o.conditions.begin(), o.conditions.end(), c.name) == o.conditions.end())
+        continue;
+      for (const std::string& solver : o.solvers)
+        for (const double rate : o.rates_hz)
+          for (const int substeps : o.substeps)
+            for (const int iterations : o.iterations) cells.push_back({c, {rate, substeps, iterations, solverKind(solver)}});
+    }
+  }
+  return cells;
+}
+
+// The cell called `key` in the full grid.
+Cell findCell(const std::string& key) {
+  const ExtremesOptions all;
+  for (const Cell& c : grid(all))
+    if (cellKey(c.condition, c.budget) == key) return c;
+  throw std::invalid_argument("--cell: no cell '" + key +
+                              "'; keys look like atwood/wheel_ratio=1e-6/30Hz/1x1/gauss-seidel");
+}
+
+}  // namespace
+
+int extremes(const ExtremesOptions& options) {
+  checkOutput(options.output);
+  const std::vector<Cell> cells = options.cell.empty() ? grid(options) : std::vector<Cell>{findCell(options.cell)};
+  const Environment env = environment();
+  printEnvironment(stdout, env);
+  std::printf(
+      "# Stable: finished, finite, peak span strain <= 1 %% + twice the static strain compliance predicts, energy\n"
+      "# growth (max E - E0) / (max kinetic + sum m g x 1 cm) <= 1 %%. g = 10 (none for jerks). Atwood 1 s,\n"
+      "# Simple 0.5 s, jerks 0.2 s past the snap. Errors are relative, at the last frame.\n");
+  Table table({"machine", "condition", "rate_hz", "substeps", "iterations", "solver", "finished", "finite",
+               "peak_stretch", "stretch_limit", "energy_growth", "tension_error", "speed_error", "axle_offset_m",
+               "stable", "cause", "key"});
+  std::map<std::string, std::pair<int, int>> tally;  // solver: stable, total
+  std::vector<std::string> unstable;
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    const Cell& cell = cells[i];
+    const CellResult r = runCell(cell.condition, cell.budget);
+    const std::string key = cellKey(cell.condition, cell.budget), solver = solverMethodName(cell.budget.solver);
+    table.add({cell.condition.machine, cell.condition.name, shortNumber(cell.budget.rate_hz),
+               std::to_string(cell.budget.substeps), std::to_string(cell.budget.iterations), solver,
+               r.finished ? "1" : "0", r.finite ? "1" : "0", number(r.peak_stretch, 3), number(r.stretch_limit, 3),
+               number(r.energy_growth, 3), number(r.tension_error, 3), number(r.speed_error, 3),
+               number(r.axle_offset, 3), r.stable() ? "1" : "0", r.cause, key});
+    auto& t = tally[solver];
+    t.first += r.stable();
+    ++t.second;
+    if (!r.stable()) unstable.push_back("reeve bench extremes --cell '" + key + "'   # " + r.cause);
+    if ((i + 1) % 100 == 0) std::fprintf(stderr, "extremes: %zu of %zu cells\n", i + 1, cells.size());
+  }
+  if (cells.size() <= 40) table.print(stdout);
+  for (const auto& [solver, t] : tally)
+    std::printf("%s: %d of %d cells stable (%.1f %%)\n", solver.c_str(), t.first, t.second, 100.0 * t.first / t.second);
+  if (!unstable.empty()) {
+    std::printf("unstable cells, each with the command that reproduces it:\n");
+    for (const std::string& line : unstable) std::printf("  %s\n", line.c_str());
+  }
+  writeOutputs(options.output, table, env, "extremes");
+  return 0;
+}
+
+}  // namespace reeve::bench

@@ -1,0 +1,104 @@
+// `reeve bench table1`: the paper's Table 1 (sec. 5) reproduced.
+#include <algorithm>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "reeve/bench/bench.h"
+#include "reeve/bench/timing.h"
+#include "solvers.h"
+
+namespace reeve::bench {
+namespace {
+
+// A Table 1 row: the paper's cable joints, one step per frame with its
+// iterations (the bow: 10 substeps x 10, sec. 5) and its ms/frame on a
+// 3.5 GHz Core i7. Simple at 10 iterations (0.036 ms) and Hilbert3 at
+// 100 (60 ms) are from the text of sec. 5; the table gives 1 and 10.
+struct PaperSetting {
+  int substeps, iterations;
+  double ms;
+};
+struct Machine {
+  const char* name;
+  const char* file;
+  int paper_joints;  // 0: not given
+  std::vector<PaperSetting> paper;
+};
+
+const std::vector<Machine>& machines() {
+  static const std::vector<Machine> list = {
+      {"Simple", "simple.json", 4, {{1, 1, 0.012}, {1, 10, 0.036}}},
+      {"Servin", "servin.json", 16, {{1, 10, 0.25}}},
+      {"Pulley", "pulley.json", 6, {{1, 15, 0.3}}},
+      {"Hand", "hand.json", 28, {{1, 20, 1.7}}},
+      {"Gym", "gym.json", 16, {{1, 20, 2.5}}},
+      {"Hilbert2", "hilbert2.json", 62, {{1, 10, 1.8}}},
+      {"Hilbert3", "hilbert3.json", 498, {{1, 10, 60.0}, {1, 100, 60.0}}},
+      {"Bow", "bow.json", 0, {{10, 10, 25.0}}},
+  };
+  return list;
+}
+
+int cableJoints(const Scene& s) {
+  int joints = 0;
+  for (const Cable& c : s.cables->cables()) joints += static_cast<int>(c.joints.size());
+  return joints;
+}
+
+}  // namespace
+
+int table1(const Table1Options& options) {
+  checkOutput(options.output);
+  for (const std::string& name : options.only) {
+    bool known = false;
+    for (const Machine& m : machines()) known |= name == m.name;
+    if (!known) throw std::invalid_argument("--only: no Table 1 machine called '" + name + "'");
+  }
+  const Environment env = environment();
+  printEnvironment(stdout, env);
+  std::printf(
+      "# Table 1 (Mueller et al. 2018, sec. 5). Absolute times depend on the machine; the paper's were measured\n"
+      "# on a 3.5 GHz Core i7. ms/frame of physics: min / median / max over %d runs, each after a warm-up.\n",
+      options.repeats);
+  Table table({"machine", "setting", "solver", "substeps", "iterations", "frames", "joints", "paper_joints",
+               "min_ms", "median_ms", "max_ms", "paper_ms", "speedup", "iterations_run", "ns_per_joint_iteration"});
+  TimingOptions timing;
+  timing.repeats = options.repeats;
+  for (const Machine& m : machines()) {
+    if (!options.only.empty() && std::find(options.only.begin(), options.only.end(), m.name) == options.only.end())
+      continue;
+    const std::filesystem::path file = options.scenes_dir / m.file;
+    const Scene probe = loadScene(file);
+    const int joints = cableJoints(probe);
+    const int frames = options.frames ? std::min(*options.frames, probe.frameCount()) : probe.frameCount();
+    std::vector<PaperSetting> settings = m.paper;
+    settings.push_back({probe.world->settings().substeps, probe.world->settings().iterations, 0.0});
+    for (std::size_t k = 0; k < settings.size(); ++k)
+      for (const std::string& solver : options.solvers) {
+        const PaperSetting& at = settings[k];
+        SceneRun run([&] {
+          Scene s = loadScene(file);
+          s.world->settings().substeps = at.substeps;
+          s.world->settings().iterations = at.iterations;
+          s.world->settings().solver = solverKind(solver);
+          return s;
+        });
+        const FrameTiming t = timeFrames(run, frames, timing);
+        const bool paper = k + 1 < settings.size();
+        const double ns = 1e6 * t.median_ms / (joints * t.iterations_per_frame);
+        table.add({m.name, paper ? "paper" : "default", solver, std::to_string(at.substeps),
+                   std::to_string(at.iterations), std::to_string(frames), std::to_string(joints),
+                   m.paper_joints ? std::to_string(m.paper_joints) : "", number(t.min_ms, 3), number(t.median_ms, 3),
+                   number(t.max_ms, 3), paper ? number(at.ms, 3) : "", paper ? number(at.ms / t.median_ms, 3) : "",
+                   number(t.iterations_per_frame, 3), number(ns, 3)});
+        std::fflush(stdout);
+      }
+  }
+  table.print(stdout);
+  writeOutputs(options.output, table, env, "table1");
+  return 0;
+}
+
+}  // namespace reeve::bench

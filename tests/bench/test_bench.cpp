@@ -1,0 +1,255 @@
+// `reeve bench` as a user runs it, on tiny grids: the errors it reports
+// equal those computed here from runs of the same machines, a setting
+// known to fail is reported unstable with the command that reproduces it,
+// and its outputs follow the rules of every reeve output.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "reeve/machines/closed_forms.h"
+#include "reeve/machines/machines.h"
+#include "reeve/machines/probe.h"
+#include "reeve/scene/scene.h"
+#include "temp_dir.h"
+
+namespace reeve {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int code;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream f(p);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+Result reeve(const test::TempDir& dir, const std::string& args) {
+  const fs::path out = dir.path() / "stdout.txt", err = dir.path() / "stderr.txt";
+  const std::string cmd = std::string(REEVE_BINARY) + " " + args + " >" + out.string() + " 2>" + err.string();
+  const int status = std::system(cmd.c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+}
+
+// A CSV (RFC 4180 quoting) as rows of column -> cell.
+std::vector<std::map<std::string, std::string>> readCsv(const fs::path& path) {
+  std::ifstream in(path);
+  std::vector<std::vector<std::string>> lines;
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> cells(1);
+    bool quoted = false;
+    for (std::size_t i = 0; i < line.size(); ++i) {
+      const char c = line[i];
+      if (quoted && c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+        cells.back() += '"';
+        ++i;
+      } else if (c == '"') {
+        quoted = !quoted;
+      } else if (c == ',' && !quoted) {
+        cells.emplace_back();
+      } else {
+        cells.back() += c;
+      }
+    }
+    lines.push_back(cells);
+  }
+  std::vector<std::map<std::string, std::string>> rows;
+  for (std::size_t r = 1; r < lines.size(); ++r) {
+    std::map<std::string, std::string> row;
+    for (std::size_t c = 0; c < lines[0].size() && c < lines[r].size(); ++c) row[lines[0][c]] = lines[r][c];
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+// "a=1;b=2" -> {a: 1, b: 2}
+std::map<std::string, double> parts(const std::string& detail) {
+  std::map<std::string, double> m;
+  std::stringstream s(detail);
+  for (std::string item; std::getline(s, item, ';');) {
+    const auto eq = item.find('=');
+    m[item.substr(0, eq)] = std::stod(item.substr(eq + 1));
+  }
+  return m;
+}
+
+double relative(double got, double want) { return std::abs(got - want) / std::abs(want); }
+
+TEST(BenchTrade, ReportsTheAtwoodAndSpoolErrorsOfADirectRun) {
+  test::TempDir dir;
+  const fs::path csv = dir.path() / "trade.csv";
+  const Result r = reeve(dir, "bench trade --only atwood_1_2,spool --substeps 1,10 --iterations 2 --solver direct "
+                              "--rope-segments 0 --repeats 1 --csv " + csv.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto rows = readCsv(csv);
+  ASSERT_EQ(rows.size(), 4u);
+  int checked = 0;
+  for (const auto& row : rows) {
+    const int substeps = std::stoi(row.at("substeps"));
+    EXPECT_EQ(row.at("iterations"), "2");
+    EXPECT_EQ(row.at("series"), "reeve direct");
+    EXPECT_FALSE(row.at("cpu").empty());
+    EXPECT_FALSE(row.at("build_type").empty());
+    const auto got = parts(row.at("detail"));
+    // The same machine, run here: 1:2 kg over a 2 kg wheel, g = 9.81
+    // (scenes/atwood.json), or 1 kg unwinding a 2 kg spool; 0.5 s.
+    const bool atwood = row.at("case") == "atwood_1_2";
+    Scene s = loadScene(fs::path(REEVE_SCENES_DIR) / (atwood ? "atwood.json" : "spool.json"));
+    s.world->settings().substeps = substeps;
+    s.world->settings().iterations = 2;
+    s.world->settings().solver = SolverKind::Direct;
+    const BodyId falling = *s.world->findBody(atwood ? "heavy" : "weight");
+    const double y0 = s.world->body(falling).x.y(), g = 9.81, T = 0.5;
+    for (int f = 0; f < 30; ++f) s.world->step(1.0 / 60.0);
+    const double a = 2.0 * (y0 - s.world->body(falling).x.y()) / (T * T);
+    std::map<std::string, double> want;
+    if (atwood) {
+      const machines::AtwoodMotion m = machines::atwoodMotion(1.0, 2.0, 2.0, g);
+      want = {{"acceleration", relative(a, m.acceleration)},
+              {"tension_light", relative(s.cables->tension(0, 0), m.tension_light)},
+              {"tension_heavy", relative(s.cables->tension(0, 1), m.tension_heavy)}};
+    } else {
+      want = {{"acceleration", relative(a, g / 2.0)}, {"tension", relative(s.cables->tension(0, 0), g / 2.0)}};
+    }
+    ASSERT_EQ(got.size(), want.size()) << row.at("detail");
+    double worst = 0.0;
+    for (const auto& [name, value] : want) {
+      ASSERT_TRUE(got.count(name)) << name;
+      EXPECT_NEAR(got.at(name), value, 1e-5 * value + 1e-15) << row.at("case") << " " << name;
+      worst = std::max(worst, value);
+    }
+    EXPECT_NEAR(std::stod(row.at("error")), worst, 1e-3 * worst);
+    // Symplectic Euler puts the position ahead by h / T of the fall: the
+    // acceleration error is 1 / (30 substeps) at 1, 1 / 300 at 10.
+    if (atwood) {
+      EXPECT_NEAR(got.at("acceleration"), 1.0 / (30.0 * substeps), 1e-3 / substeps);
+    }
+    ++checked;
+  }
+  EXPECT_EQ(checked, 4);
+  // More substeps cost more and err less: both points are on the front.
+  for (const auto& row : rows) EXPECT_EQ(row.at("pareto"), "1") << row.at("case") << " " << row.at("substeps");
+}
+
+TEST(BenchExtremes, ReportsAStableDirectCellAsMeasuredHereAndTheKnownFailureAsUnstable) {
+  test::TempDir dir;
+  const fs::path csv = dir.path() / "extremes.csv";
+  const Result r = reeve(dir, "bench extremes --machines atwood --conditions wheel_ratio=1e-6 --rates 30 "
+                              "--substeps 1 --iterations 10 --solver direct,gauss-seidel --csv " + csv.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto rows = readCsv(csv);
+  ASSERT_EQ(rows.size(), 2u);
+  for (const auto& row : rows) {
+    if (row.at("solver") == "direct") {
+      // The same cell run here: 1 and 2 kg over a 1 mg wheel, g = 10, 1 s at
+      // 30 Hz, one substep of 10 iterations.
+      machines::AtwoodSpec spec;
+      spec.light_kg = 1.0;
+      spec.heavy_kg = 2.0;
+      spec.wheel_kg = 1e-6;
+      spec.drop_m = 6.0;
+      spec.budget = {1, 10, SolverKind::Direct};
+      machines::Atwood m = machines::atwood(spec);
+      double stretch = 0.0;
+      for (int f = 0; f < 30; ++f) {
+        m.scene.world->step(1.0 / 30.0);
+        stretch = std::max(stretch, machines::maxStretch(*m.scene.cables, m.cable));
+      }
+      const machines::AtwoodMotion want = machines::atwoodMotion(1.0, 2.0, 1e-6, 10.0);
+      const double tension_error = std::max(relative(m.scene.cables->tension(m.cable, 0), want.tension_light),
+                                            relative(m.scene.cables->tension(m.cable, 1), want.tension_heavy));
+      EXPECT_EQ(row.at("stable"), "1") << row.at("cause");
+      EXPECT_NEAR(std::stod(row.at("tension_error")), tension_error, 1e-2 * tension_error + 1e-12);
+      EXPECT_NEAR(std::stod(row.at("peak_stretch")), stretch, 1e-2 * stretch + 1e-15);
+      EXPECT_LT(tension_error, 1e-6);
+    } else {
+      // Gauss-Seidel with a wheel 1e-6 of the load: the cable pulls the
+      // wheel off its axle (README, solver methods); the span stretches.
+      EXPECT_EQ(row.at("stable"), "0");
+      EXPECT_GT(std::stod(row.at("peak_stretch")), 0.01);
+      EXPECT_NE(row.at("cause").find("stretch"), std::string::npos) << row.at("cause");
+    }
+  }
+  EXPECT_NE(r.out.find("direct: 1 of 1 cells stable"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("reeve bench extremes --cell 'atwood/wheel_ratio=1e-6/30Hz/1x10/gauss-seidel'"),
+            std::string::npos)
+      << r.out;
+}
+
+TEST(BenchExtremes, TheReproduceCommandRunsThatOneCell) {
+  test::TempDir dir;
+  const Result r = reeve(dir, "bench extremes --cell 'atwood/load_N=1e5/30Hz/1x1/gauss-seidel'");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("gauss-seidel: 0 of 1 cells stable"), std::string::npos) << r.out;
+  const Result bad = reeve(dir, "bench extremes --cell 'atwood/nope/30Hz/1x1/direct'");
+  EXPECT_EQ(bad.code, 64);
+  EXPECT_NE(bad.err.find("no cell 'atwood/nope/30Hz/1x1/direct'"), std::string::npos) << bad.err;
+}
+
+TEST(BenchTable1, ReportsTheSceneTheEnvironmentAndTheSpeedUpItMeasured) {
+  test::TempDir dir;
+  const fs::path csv = dir.path() / "t1.csv";
+  const Result r = reeve(dir, "bench table1 --only Simple --solver direct --repeats 1 --frames 10 --csv " + csv.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  for (const char* key : {"# cpu: ", "# compiler: ", "# build type: ", "# date: ", "# threads: "})
+    EXPECT_NE(r.out.find(key), std::string::npos) << key;
+  const auto rows = readCsv(csv);
+  ASSERT_EQ(rows.size(), 3u);  // paper 1 x 1, paper 1 x 10, scene default 10 x 2
+  for (const auto& row : rows) {
+    EXPECT_EQ(row.at("joints"), "4");
+    EXPECT_EQ(row.at("frames"), "10");
+    const double min = std::stod(row.at("min_ms")), median = std::stod(row.at("median_ms"));
+    EXPECT_GT(median, 0.0);
+    EXPECT_LE(min, median);
+    if (row.at("setting") == "paper") {
+      const double paper = std::stod(row.at("paper_ms"));
+      EXPECT_EQ(paper, row.at("iterations") == "1" ? 0.012 : 0.036);
+      EXPECT_NEAR(std::stod(row.at("speedup")), paper / median, 1e-2 * paper / median);
+    } else {
+      EXPECT_EQ(row.at("substeps") + "x" + row.at("iterations"), "10x2");
+      EXPECT_EQ(row.at("speedup"), "");
+    }
+  }
+}
+
+TEST(BenchOutputs, RefusesToOverwriteAndRejectsUnknownNames) {
+  test::TempDir dir;
+  const fs::path csv = dir.path() / "kept.csv";
+  std::ofstream(csv) << "mine\n";
+  const Result r = reeve(dir, "bench extremes --cell 'atwood/load_ratio=1/30Hz/1x1/direct' --csv " + csv.string());
+  EXPECT_EQ(r.code, 3);
+  EXPECT_NE(r.err.find("exists; pass --force"), std::string::npos) << r.err;
+  EXPECT_EQ(slurp(csv), "mine\n");
+  EXPECT_EQ(reeve(dir, "bench trade --only nope").code, 64);
+  EXPECT_EQ(reeve(dir, "bench table1 --only Nope").code, 64);
+  EXPECT_EQ(reeve(dir, "bench extremes --conditions nope").code, 64);
+  EXPECT_EQ(reeve(dir, "bench trade --solver jacobi").code, 64);
+}
+
+TEST(BenchOutputs, PlotsAPng) {
+  test::TempDir dir;
+  const fs::path png = dir.path() / "map.png";
+  const Result r = reeve(dir, "bench extremes --machines atwood --conditions load_ratio=1,wheel_ratio=1e-6 --rates 30 "
+                              "--substeps 1 --iterations 1 --plot " + png.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string bytes = slurp(png);
+  ASSERT_GT(bytes.size(), 1000u);
+  EXPECT_EQ(bytes.substr(1, 3), "PNG");
+  for (const auto& entry : fs::directory_iterator(dir.path()))  // no partial files left
+    EXPECT_EQ(entry.path().filename().string().find(".partial"), std::string::npos) << entry.path();
+}
+
+}  // namespace
+}  // namespace reeve

@@ -1,0 +1,131 @@
+#include "bench_command.h"
+
+#include <cstdio>
+#include <memory>
+#include <stdexcept>
+
+#include "commands.h"
+#include "reeve/bench/bench.h"
+#include "reeve/scene/scene.h"
+
+namespace reeve {
+namespace {
+
+void addOutput(CLI::App* cmd, bench::Output& out, bool plot) {
+  cmd->add_option("--csv", out.csv, "Write the table as CSV (with the CPU, compiler, build type and date)");
+  if (plot) cmd->add_option("--plot", out.plot, "Draw the results as a PNG (python3 with matplotlib)");
+  cmd->add_flag("--force", out.force, "Overwrite existing output files");
+}
+
+CLI::Option* addSolvers(CLI::App* cmd, std::vector<std::string>& solvers) {
+  return cmd->add_option("--solver", solvers, "Solvers to run (default: direct gauss-seidel)")
+      ->check(CLI::IsMember({"direct", "gauss-seidel"}))
+      ->delimiter(',');
+}
+
+// Runs a sub-command, turning its errors into exit codes and one line.
+int guarded(const std::function<int()>& run) {
+  try {
+    return run();
+  } catch (const bench::OutputExists& e) {
+    std::fprintf(stderr, "reeve bench: %s\n", e.what());
+    return kExitWouldOverwrite;
+  } catch (const SceneError& e) {
+    std::fprintf(stderr, "reeve bench: %s\n", e.what());
+    return kExitBadScene;
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "reeve bench: %s\n", e.what());
+    return kExitUsage;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "reeve bench: %s\n", e.what());
+    return kExitFailure;
+  }
+}
+
+}  // namespace
+
+std::function<int()> addBenchCommand(CLI::App& app, CLI::App*& bench_cmd) {
+  bench_cmd = app.add_subcommand(
+      "bench", "Measure speed and accuracy: Table 1, the speed/accuracy trade, stability at the extremes.");
+  bench_cmd->require_subcommand(1);
+  bench_cmd->footer(
+      "Prints the CPU, compiler, build type, date and threads with every result; never passes or fails on a "
+      "time. Absolute times depend on the machine (the paper's: a 3.5 GHz Core i7).");
+  const std::string scenes = REEVE_SCENES_DIR;
+
+  auto table1 = std::make_shared<bench::Table1Options>();
+  table1->scenes_dir = scenes;
+  CLI::App* t1 = bench_cmd->add_subcommand(
+      "table1", "The paper's Table 1 machines at the paper's settings and at each scene's own: ms/frame and speed-up.");
+  addOutput(t1, table1->output, true);
+  t1->add_option("--scenes", table1->scenes_dir, "Folder of the scene files")->capture_default_str();
+  t1->add_option("--only", table1->only, "Machines to run (Simple, Servin, Pulley, Hand, Gym, Hilbert2, Hilbert3, Bow)")
+      ->delimiter(',');
+  addSolvers(t1, table1->solvers);
+  t1->add_option("--repeats", table1->repeats, "Timed runs per row (default 5)")->check(CLI::PositiveNumber);
+  t1->add_option("--frames", table1->frames, "Frames per run (default: the scene's duration)")
+      ->check(CLI::PositiveNumber);
+
+  auto trade = std::make_shared<bench::TradeOptions>();
+  trade->scenes_dir = scenes;
+  CLI::App* tr = bench_cmd->add_subcommand(
+      "trade", "Error against closed forms vs ms/frame over substeps x iterations; the segmented rope alongside.");
+  addOutput(tr, trade->output, true);
+  tr->add_option("--scenes", trade->scenes_dir, "Folder of the scene files")->capture_default_str();
+  tr->add_option("--only", trade->only,
+                 "Cases to run (atwood_1_2, atwood_1_100, atwood_light_wheel, simple_equilibrium, gear_1_to_4, "
+                 "spool, elastic, pinhole, block_and_tackle)")
+      ->delimiter(',');
+  tr->add_option("--substeps", trade->substeps, "Substep counts (default 1,2,5,10,20,50)")
+      ->delimiter(',')
+      ->check(CLI::PositiveNumber);
+  tr->add_option("--iterations", trade->iterations, "Iteration counts (default 1,2,5,10,20)")
+      ->delimiter(',')
+      ->check(CLI::PositiveNumber);
+  addSolvers(tr, trade->solvers);
+  tr->add_option("--rope-segments", trade->rope_segments,
+                 "Segmented-rope series on the Atwood cases (default 20,100; 0 for none)")
+      ->delimiter(',')
+      ->check(CLI::NonNegativeNumber);
+  tr->add_option("--repeats", trade->repeats, "Timed runs per point, at most (default 3)")->check(CLI::PositiveNumber);
+
+  auto ex = std::make_shared<bench::ExtremesOptions>();
+  CLI::App* exc = bench_cmd->add_subcommand(
+      "extremes", "A stability map over masses, compliance, frame rate, substeps, iterations, jerks and loads.");
+  addOutput(exc, ex->output, true);
+  exc->add_option("--machines", ex->machines, "atwood, simple (default both)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"atwood", "simple"}));
+  exc->add_option("--conditions", ex->conditions, "Conditions to run, e.g. wheel_ratio=1e-6 (default all)")
+      ->delimiter(',');
+  exc->add_option("--rates", ex->rates_hz, "Frame rates, Hz (default 30,60,240,2000)")
+      ->delimiter(',')
+      ->check(CLI::PositiveNumber);
+  exc->add_option("--substeps", ex->substeps, "Substep counts (default 1,10,100)")
+      ->delimiter(',')
+      ->check(CLI::PositiveNumber);
+  exc->add_option("--iterations", ex->iterations, "Iteration counts (default 1,10,100)")
+      ->delimiter(',')
+      ->check(CLI::PositiveNumber);
+  addSolvers(exc, ex->solvers);
+  exc->add_option("--cell", ex->cell, "Run only this cell, by the key the report prints");
+
+  auto peers = std::make_shared<bench::PeersOptions>();
+  CLI::App* pe = bench_cmd->add_subcommand(
+      "peers", bench::peersAvailable()
+                   ? "The Atwood machine and chains of pulleys as MuJoCo tendons, next to Reeve."
+                   : "(not built: needs Debian's libmujoco-dev when configuring) MuJoCo next to Reeve.");
+  addOutput(pe, peers->output, false);
+  pe->add_option("--repeats", peers->repeats, "Timed runs per row (default 5)")->check(CLI::PositiveNumber);
+
+  return [=]() {
+    // Zero rope segments means none.
+    std::erase(trade->rope_segments, 0);
+    if (*t1) return guarded([&] { return bench::table1(*table1); });
+    if (*tr) return guarded([&] { return bench::trade(*trade); });
+    if (*exc) return guarded([&] { return bench::extremes(*ex); });
+    return guarded([&] { return bench::peers(*peers); });
+  };
+}
+
+}  // namespace reeve

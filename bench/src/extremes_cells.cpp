@@ -22,7 +22,7 @@ struct Rig {
   Scene scene;
   double seconds = 1.0;
   std::vector<double> tensions;  // per cable joint; empty: none applies
-  BodyId heavy = 0;
+  BodyId light = 0, heavy = 0;
   double speed_after_snap = 0.0;  // > 0 for a jerk
 };
 
@@ -59,6 +59,7 @@ Rig atwoodRig(const Condition& c, const CellBudget& b) {
     rig.tensions = {want.tension_light, want.tension_heavy};
   }
   machines::Atwood a = machines::atwood(spec);
+  rig.light = a.light;
   rig.heavy = a.heavy;
   rig.scene = std::move(a.scene);
   return rig;
@@ -201,8 +202,11 @@ CellResult runCell(const Condition& c, const CellBudget& b) {
           r.tension_error = std::max(r.tension_error, std::abs(s.cables->tension(0, static_cast<int>(j)) - rig.tensions[j]) /
                                                           rig.tensions[j]);
       }
-      if (rig.speed_after_snap > 0.0)
-        r.speed_error = std::abs(-s.world->body(rig.heavy).v.y() - rig.speed_after_snap) / rig.speed_after_snap;
+      if (rig.speed_after_snap > 0.0) {  // both boxes: the light one must not outrun the cable
+        const double down = -s.world->body(rig.heavy).v.y(), up = s.world->body(rig.light).v.y();
+        r.speed_error = std::max(std::abs(down - rig.speed_after_snap), std::abs(up - rig.speed_after_snap)) /
+                        rig.speed_after_snap;
+      }
     }
   } catch (const std::exception& e) {
     r.cause = std::string("exception: ") + e.what();

@@ -44,7 +44,7 @@ struct CellResult {
   double stretch_limit = 0.0;  ///< 1 % + twice the static strain compliance predicts
   double energy_growth = 0.0;  ///< (max E - E(0)) / (max kinetic + sum m g x 1 cm)
   double tension_error = std::numeric_limits<double>::quiet_NaN();  ///< last frame, worst span
-  double speed_error = std::numeric_limits<double>::quiet_NaN();    ///< jerks: after the snap
+  double speed_error = std::numeric_limits<double>::quiet_NaN();    ///< jerks: either box, after the snap
   double axle_offset = 0.0;    ///< m, largest hinge anchor gap
   std::string cause;           ///< why unstable; "" when stable
   bool stable() const { return cause.empty(); }

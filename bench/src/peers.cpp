@@ -23,8 +23,8 @@ namespace reeve::bench {
 namespace {
 
 constexpr double kFrameHz = 60.0;
-constexpr int kFrames = 60;          // 1 s
-constexpr int kStepsPerFrame = 10;   // MuJoCo's steps: Reeve's default 10 substeps
+constexpr int kFrames = 60;         // 1 s
+constexpr int kStepsPerFrame = 10;  // MuJoCo's steps: Reeve's default 10 substeps
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // A machine of boxes hanging from one cable over K wheels on fixed axles,
@@ -44,10 +44,10 @@ struct Case {
 std::vector<Case> cases() {
   std::vector<Case> all;
   const machines::AtwoodSpec atwood;
-  const machines::Atwood a = machines::atwood(atwood);
+  const machines::Atwood machine = machines::atwood(atwood);
   const auto turning = machines::atwoodMotion(atwood.light_kg, atwood.heavy_kg, atwood.wheel_kg, atwood.gravity);
   const auto fixed = machines::atwoodMotion(atwood.light_kg, atwood.heavy_kg, 0.0, atwood.gravity);
-  all.push_back({"atwood", 1, [atwood] { return machines::atwood(atwood).scene; }, a.heavy, a.cable,
+  all.push_back({"atwood", 1, [atwood] { return machines::atwood(atwood).scene; }, machine.heavy, machine.cable,
                  turning.acceleration, turning.tension_light, fixed.acceleration, fixed.tension_light});
   for (const int K : {2, 8, 32}) {
     machines::ZigZagSpec spec;
@@ -67,6 +67,8 @@ struct Observed {
   double heavy_y = kNaN, tension = kNaN, max_stretch = 0.0;
 };
 
+// A case's Reeve scene; the rope's stretch is its spans' lengths over
+// their rest lengths.
 class ReeveRope : public SceneRun {
  public:
   explicit ReeveRope(const Case& c) : SceneRun(c.make), heavy_(c.heavy), cable_(c.cable) {}
@@ -87,6 +89,14 @@ class ReeveRope : public SceneRun {
   int cable_;
 };
 
+// "x y z", exactly (17 digits).
+std::string xyz(const Vec3& v) {
+  std::ostringstream s;
+  s.precision(17);
+  s << v.x() << ' ' << v.y() << ' ' << v.z();
+  return s.str();
+}
+
 // The cable of `scene` as a MuJoCo model: each box tied to it a free body
 // with a site at the tie point, each wheel a fixed cylinder the tendon
 // wraps, its side picked by a sidesite beyond the wheel (above it where the
@@ -101,25 +111,25 @@ std::string mjcf(const Scene& scene, int cable, double length_m) {
   std::ostringstream xml, bodies, path;
   xml.precision(17);
   bodies.precision(17);
-  const Vec3 g = world.settings().gravity;
   xml << "<mujoco model=\"" << scene.name << "\">\n  <option timestep=\"" << 1.0 / (kFrameHz * kStepsPerFrame)
-      << "\" gravity=\"" << g.x() << ' ' << g.y() << ' ' << g.z() << "\"><flag contact=\"disable\"/></option>\n";
+      << "\" gravity=\"" << xyz(world.settings().gravity) << "\"><flag contact=\"disable\"/></option>\n";
   for (std::size_t i = 0; i < c.links.size(); ++i) {
     const Link& link = c.links[i];
     const BodyState& body = world.body(link.body);
     const std::string name = world.bodyDef(link.body).name;
     if (link.type == LinkType::Attachment) {
       const Vec3 half = world.bodyDef(link.body).shape.half_extents;
-      bodies << "    <body name=\"" << name << "\" pos=\"" << body.x.transpose() << "\"><joint type=\"free\"/>"
-             << "<geom type=\"box\" size=\"" << half.transpose() << "\" mass=\"" << 1.0 / body.inv_mass << "\"/>"
-             << "<site name=\"" << name << "_tie\" pos=\"" << link.point.transpose() << "\"/></body>\n";
+      bodies << "    <body name=\"" << name << "\" pos=\"" << xyz(body.x) << "\"><joint type=\"free\"/>"
+             << "<geom type=\"box\" size=\"" << xyz(half) << "\" mass=\"" << 1.0 / body.inv_mass << "\"/>"
+             << "<site name=\"" << name << "_tie\" pos=\"" << xyz(link.point) << "\"/></body>\n";
       path << "      <site site=\"" << name << "_tie\"/>\n";
       continue;
     }
-    const double r = world.bodyDef(link.body).shape.radius, side = link.orientation < 0 ? 1.0 : -1.0;
-    bodies << "    <geom name=\"" << name << "\" type=\"cylinder\" size=\"" << r << " 0.05\" pos=\""
-           << body.x.transpose() << "\"/>\n    <site name=\"" << name << "_side\" pos=\""
-           << (body.x + Vec3(0.0, 2.0 * side * r, 0.0)).transpose() << "\"/>\n";
+    const Shape& wheel = world.bodyDef(link.body).shape;
+    const double r = wheel.radius, side = link.orientation < 0 ? 1.0 : -1.0;
+    bodies << "    <geom name=\"" << name << "\" type=\"cylinder\" size=\"" << r << ' ' << wheel.half_length
+           << "\" pos=\"" << xyz(body.x) << "\"/>\n    <site name=\"" << name << "_side\" pos=\""
+           << xyz(body.x + Vec3(0.0, 2.0 * side * r, 0.0)) << "\"/>\n";
     path << "      <geom geom=\"" << name << "\" sidesite=\"" << name << "_side\"/>\n";
     const Link& next = c.links[i + 1];
     if (next.type == LinkType::Attachment) continue;
@@ -128,7 +138,7 @@ std::string mjcf(const Scene& scene, int cable, double length_m) {
     const Vec3 to = world.body(next.body).x, along = (to - body.x).normalized();
     const double next_side = next.orientation < 0 ? 1.0 : -1.0;
     const Vec3 at = 0.5 * (body.x + to) + (side == next_side ? side * r : 0.0) * Vec3(-along.y(), along.x(), 0.0);
-    bodies << "    <site name=\"" << name << "_span\" pos=\"" << at.transpose() << "\"/>\n";
+    bodies << "    <site name=\"" << name << "_span\" pos=\"" << xyz(at) << "\"/>\n";
     path << "      <site site=\"" << name << "_span\"/>\n";
   }
   xml << "  <worldbody>\n" << bodies.str() << "  </worldbody>\n  <tendon>\n    <spatial name=\"rope\"";
@@ -138,6 +148,7 @@ std::string mjcf(const Scene& scene, int cable, double length_m) {
 }
 
 using ModelPtr = std::unique_ptr<mjModel, decltype(&mj_deleteModel)>;
+using DataPtr = std::unique_ptr<mjData, decltype(&mj_deleteData)>;
 
 ModelPtr load(const std::string& xml) {
   auto vfs = std::make_unique<mjVFS>();  // megabytes: not on the stack
@@ -153,6 +164,7 @@ ModelPtr load(const std::string& xml) {
   return model;
 }
 
+// A case as MuJoCo's model (mjcf()), each frame kStepsPerFrame mj_steps.
 class MujocoRope : public FrameRun {
  public:
   // The rope's length is what MuJoCo measures on the model without the
@@ -162,10 +174,9 @@ class MujocoRope : public FrameRun {
     const Scene scene = c.make();
     {
       const ModelPtr free = load(mjcf(scene, c.cable, 0.0));
-      mjData* d = mj_makeData(free.get());
-      mj_forward(free.get(), d);
+      const DataPtr d(mj_makeData(free.get()), mj_deleteData);
+      mj_forward(free.get(), d.get());
       length_ = d->ten_length[0];
-      mj_deleteData(d);
     }
     const double reeve_length = scene.cables->totalLength(c.cable);
     if (std::abs(length_ - reeve_length) > 1e-9 * reeve_length)
@@ -205,7 +216,7 @@ class MujocoRope : public FrameRun {
 
  private:
   ModelPtr model_{nullptr, mj_deleteModel};
-  std::unique_ptr<mjData, decltype(&mj_deleteData)> data_{nullptr, mj_deleteData};
+  DataPtr data_{nullptr, mj_deleteData};
   double length_ = 0.0;
   int heavy_y_ = 0;
 };
@@ -225,8 +236,8 @@ int peers(const PeersOptions& options) {
   std::printf(
       "# %d frames at %g Hz (1 s). Reeve: %d substeps x %d iterations, direct solver. MuJoCo %s: timestep\n"
       "# 1/%g s (%d steps per frame), default solver and soft constraints otherwise. Boxes are free bodies in\n"
-      "# both; MuJoCo's rope is a spatial tendon wrapping fixed cylinders, its length limited from above\n"
-      "# (one-sided, like a cable).\n"
+      "# both; MuJoCo's rope is a spatial tendon wrapping fixed cylinders, as long as Reeve's cable (checked),\n"
+      "# its length limited from above (one-sided, like a cable).\n"
       "# accel_error: the heavy box's a = 2 (y0 - y(1 s)) / (1 s)^2 against the closed form of the engine's\n"
       "# own model (MuJoCo's: massless wheels); vs_turning_wheels: against the real machine's. Both engines\n"
       "# step with semi-implicit Euler, which carries a box at constant a 1 + h / (1 s) = 1.0017 times as far\n"

@@ -41,6 +41,40 @@ const std::vector<Machine>& machines() {
   return list;
 }
 
+struct Measured {
+  std::string machine, solver;
+  bool paper;
+  int substeps, iterations;
+  double median_ms, speedup, ns_per_joint_iteration;
+};
+
+// The yardsticks: the smallest speed-up over the paper per
+// solver, and whether cost stays linear in joints x iterations from
+// Hilbert2 to Hilbert3 (their ns per joint-iteration at 1 x 10).
+void printSummary(const std::vector<Measured>& rows, const std::vector<std::string>& solvers) {
+  for (const std::string& solver : solvers) {
+    const Measured* slowest = nullptr;
+    const Measured *h2 = nullptr, *h3 = nullptr;
+    for (const Measured& m : rows) {
+      if (m.solver != solver || !m.paper) continue;
+      if (!slowest || m.speedup < slowest->speedup) slowest = &m;
+      if (m.substeps == 1 && m.iterations == 10) {
+        if (m.machine == "Hilbert2") h2 = &m;
+        if (m.machine == "Hilbert3") h3 = &m;
+      }
+    }
+    if (slowest)
+      std::printf("%s: smallest speed-up over the paper %sx (%s at %d x %d)\n", solver.c_str(),
+                  number(slowest->speedup, 3).c_str(), slowest->machine.c_str(), slowest->substeps,
+                  slowest->iterations);
+    if (h3) std::printf("%s: Hilbert3 at 1 x 10: %s ms/frame\n", solver.c_str(), number(h3->median_ms, 3).c_str());
+    if (h2 && h3)
+      std::printf("%s: ns per joint-iteration at 1 x 10: Hilbert2 %s, Hilbert3 %s (ratio %s)\n", solver.c_str(),
+                  number(h2->ns_per_joint_iteration, 3).c_str(), number(h3->ns_per_joint_iteration, 3).c_str(),
+                  number(h3->ns_per_joint_iteration / h2->ns_per_joint_iteration, 3).c_str());
+  }
+}
+
 int cableJoints(const Scene& s) {
   int joints = 0;
   for (const Cable& c : s.cables->cables()) joints += static_cast<int>(c.joints.size());
@@ -64,6 +98,7 @@ int table1(const Table1Options& options) {
       options.repeats);
   Table table({"machine", "setting", "solver", "substeps", "iterations", "frames", "joints", "paper_joints",
                "min_ms", "median_ms", "max_ms", "paper_ms", "speedup", "iterations_run", "ns_per_joint_iteration"});
+  std::vector<Measured> measured;
   TimingOptions timing;
   timing.repeats = options.repeats;
   for (const Machine& m : machines()) {
@@ -93,10 +128,13 @@ int table1(const Table1Options& options) {
                    m.paper_joints ? std::to_string(m.paper_joints) : "", number(t.min_ms, 3), number(t.median_ms, 3),
                    number(t.max_ms, 3), paper ? number(at.ms, 3) : "", paper ? number(at.ms / t.median_ms, 3) : "",
                    number(t.iterations_per_frame, 3), number(ns, 3)});
-        std::fflush(stdout);
+        measured.push_back({m.name, solver, paper, at.substeps, at.iterations, t.median_ms,
+                            paper ? at.ms / t.median_ms : 0.0, ns});
       }
+    std::fprintf(stderr, "table1: %s done\n", m.name);
   }
   table.print(stdout);
+  printSummary(measured, options.solvers);
   writeOutputs(options.output, table, env, "table1");
   return 0;
 }

@@ -104,7 +104,7 @@ std::function<int()> addBenchCommand(CLI::App& app, CLI::App*& bench_cmd) {
   exc->add_option("--substeps", ex->substeps, "Substep counts (default 1,10,100)")
       ->delimiter(',')
       ->check(CLI::PositiveNumber);
-  exc->add_option("--iterations", ex->iterations, "Iteration counts (default 1,10,100)")
+  exc->add_option("--iterations", ex->iterations, "Iteration counts (default 1,2,10,100)")
       ->delimiter(',')
       ->check(CLI::PositiveNumber);
   addSolvers(exc, ex->solvers);

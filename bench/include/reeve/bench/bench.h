@@ -48,7 +48,7 @@ struct ExtremesOptions {
   std::vector<std::string> conditions;  ///< names to run; empty: all
   std::vector<double> rates_hz = {30, 60, 240, 2000};
   std::vector<int> substeps = {1, 10, 100};
-  std::vector<int> iterations = {1, 10, 100};
+  std::vector<int> iterations = {1, 2, 10, 100};
   std::vector<std::string> solvers = {"direct", "gauss-seidel"};
   std::string cell;  ///< run only this cell (its key, as printed)
 };

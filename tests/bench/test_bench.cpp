@@ -87,13 +87,21 @@ std::map<std::string, double> parts(const std::string& detail) {
 
 double relative(double got, double want) { return std::abs(got - want) / std::abs(want); }
 
+// Runs `reeve bench ARGS --csv FILE` and returns the CSV's rows (none, and
+// a failure, when it exits non-zero); `out` gets what it printed.
+std::vector<std::map<std::string, std::string>> benchRows(const test::TempDir& dir, const std::string& args,
+                                                          std::string* out = nullptr) {
+  const fs::path csv = dir.path() / "bench.csv";
+  const Result r = reeve(dir, "bench " + args + " --csv " + csv.string());
+  EXPECT_EQ(r.code, 0) << r.err;
+  if (out) *out = r.out;
+  return r.code == 0 ? readCsv(csv) : std::vector<std::map<std::string, std::string>>{};
+}
+
 TEST(BenchTrade, ReportsTheAtwoodAndSpoolErrorsOfADirectRun) {
   test::TempDir dir;
-  const fs::path csv = dir.path() / "trade.csv";
-  const Result r = reeve(dir, "bench trade --only atwood_1_2,spool --substeps 1,10 --iterations 2 --solver direct "
-                              "--rope-segments 0 --repeats 1 --csv " + csv.string());
-  ASSERT_EQ(r.code, 0) << r.err;
-  const auto rows = readCsv(csv);
+  const auto rows = benchRows(
+      dir, "trade --only atwood_1_2,spool --substeps 1,10 --iterations 2 --solver direct --rope-segments 0 --repeats 1");
   ASSERT_EQ(rows.size(), 4u);
   int checked = 0;
   for (const auto& row : rows) {
@@ -145,11 +153,11 @@ TEST(BenchTrade, ReportsTheAtwoodAndSpoolErrorsOfADirectRun) {
 
 TEST(BenchExtremes, ReportsAStableDirectCellAsMeasuredHereAndTheKnownFailureAsUnstable) {
   test::TempDir dir;
-  const fs::path csv = dir.path() / "extremes.csv";
-  const Result r = reeve(dir, "bench extremes --machines atwood --conditions wheel_ratio=1e-6 --rates 30 "
-                              "--substeps 1 --iterations 10 --solver direct,gauss-seidel --csv " + csv.string());
-  ASSERT_EQ(r.code, 0) << r.err;
-  const auto rows = readCsv(csv);
+  std::string out;
+  const auto rows = benchRows(dir,
+                              "extremes --machines atwood --conditions wheel_ratio=1e-6 --rates 30 --substeps 1 "
+                              "--iterations 10 --solver direct,gauss-seidel",
+                              &out);
   ASSERT_EQ(rows.size(), 2u);
   for (const auto& row : rows) {
     if (row.at("solver") == "direct") {
@@ -182,10 +190,10 @@ TEST(BenchExtremes, ReportsAStableDirectCellAsMeasuredHereAndTheKnownFailureAsUn
       EXPECT_NE(row.at("cause").find("stretch"), std::string::npos) << row.at("cause");
     }
   }
-  EXPECT_NE(r.out.find("direct: 1 of 1 cells stable"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("reeve bench extremes --cell 'atwood/wheel_ratio=1e-6/30Hz/1x10/gauss-seidel'"),
+  EXPECT_NE(out.find("direct: 1 of 1 cells stable"), std::string::npos) << out;
+  EXPECT_NE(out.find("reeve bench extremes --cell 'atwood/wheel_ratio=1e-6/30Hz/1x10/gauss-seidel'"),
             std::string::npos)
-      << r.out;
+      << out;
 }
 
 TEST(BenchExtremes, TheReproduceCommandRunsThatOneCell) {
@@ -200,12 +208,10 @@ TEST(BenchExtremes, TheReproduceCommandRunsThatOneCell) {
 
 TEST(BenchTable1, ReportsTheSceneTheEnvironmentAndTheSpeedUpItMeasured) {
   test::TempDir dir;
-  const fs::path csv = dir.path() / "t1.csv";
-  const Result r = reeve(dir, "bench table1 --only Simple --solver direct --repeats 1 --frames 10 --csv " + csv.string());
-  ASSERT_EQ(r.code, 0) << r.err;
+  std::string out;
+  const auto rows = benchRows(dir, "table1 --only Simple --solver direct --repeats 1 --frames 10", &out);
   for (const char* key : {"# cpu: ", "# compiler: ", "# build type: ", "# date: ", "# threads: "})
-    EXPECT_NE(r.out.find(key), std::string::npos) << key;
-  const auto rows = readCsv(csv);
+    EXPECT_NE(out.find(key), std::string::npos) << key;
   ASSERT_EQ(rows.size(), 3u);  // paper 1 x 1, paper 1 x 10, scene default 10 x 2
   for (const auto& row : rows) {
     EXPECT_EQ(row.at("joints"), "4");

@@ -108,5 +108,43 @@ TEST(Collide, NearlyTouchingBoxesGiveGapContactsWithinTheMarginOnly) {
   EXPECT_TRUE(collide(cube, a, cube, far).empty());
 }
 
+TEST(Collide, ThinRodOnAWheelTouchesOnTheRadiusThroughBothAxes) {
+  // A rope segment (radius 0.01 m) lying on a wheel (radius 0.3 m, axle
+  // along z), tangent to it at angle phi, up to 1.5 cm deep, shifted along
+  // itself and along the axle, either body first. Two cylinders whose sides
+  // touch push along the common perpendicular of their axes: the wheel's
+  // radius to the rod, never along the axle, by exactly the overlap, and
+  // through both axes, so that the push turns neither the rod about its
+  // own axis (its inertia about it is tiny) nor the wheel about its axle.
+  // (MPR's point lies up to 2 um beside the rod's axis.)
+  for (const double half_length : {0.05, 0.25})
+    for (int k = 0; k < 24; ++k) {
+      const double phi = 2.0 * pi * k / 24.0 + 0.1;
+      const double depth = 0.015 * (k % 4) / 3.0;
+      const double along = 0.03 * ((k % 3) - 1), z = (half_length - 0.03) * ((k % 5) / 2.0 - 1.0);
+      const Vec3 radial(std::cos(phi), std::sin(phi), 0.0), tangent(-std::sin(phi), std::cos(phi), 0.0);
+      const Shape wheel = Shape::cylinder(0.3, half_length), rod = Shape::cylinder(0.01, 0.08);
+      const BodyState w = at(Vec3::Zero());
+      const BodyState r = at((0.31 - depth) * radial + along * tangent + Vec3(0.0, 0.0, z),
+                             Quat::FromTwoVectors(Vec3::UnitZ(), tangent));
+      for (const bool wheel_first : {true, false}) {
+        SCOPED_TRACE(testing::Message() << "half length " << half_length << ", phi " << phi << ", depth "
+                                        << depth << (wheel_first ? ", wheel first" : ", rod first"));
+        const std::vector<Contact> contacts = wheel_first ? collide(wheel, w, rod, r) : collide(rod, r, wheel, w);
+        ASSERT_EQ(contacts.size(), 1u);
+        const Contact& c = contacts.front();
+        const BodyState &a = wheel_first ? w : r, &b = wheel_first ? r : w;
+        const Vec3 n = wheel_first ? c.normal : Vec3(-c.normal);  // out of the wheel
+        EXPECT_NEAR((n - radial).norm(), 0.0, 1e-6);
+        EXPECT_NEAR(separation(c, a, b), -depth, 1e-9);
+        const Vec3 on_rod = (wheel_first ? b : a).toWorld(wheel_first ? c.local_b : c.local_a);
+        const Vec3 on_wheel = (wheel_first ? a : b).toWorld(wheel_first ? c.local_a : c.local_b);
+        // Lever of the push about the rod's axis and about the axle (m).
+        EXPECT_LT(std::abs((on_rod - r.x).cross(n).dot(tangent)), 1e-12);
+        EXPECT_LT(std::abs(on_wheel.cross(n).z()), 1e-12);
+      }
+    }
+}
+
 }  // namespace
 }  // namespace reeve

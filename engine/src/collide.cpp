@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include <ccd/ccd.h>
 
@@ -45,6 +46,29 @@ void ccdSupport(const void* obj, const ccd_vec3_t* dir, ccd_vec3_t* out) {
   const double len = d.norm();
   const Vec3 p = worldSupport(*o->shape, *o->body, d) + (len > 0.0 ? o->margin / len : 0.0) * d;
   ccdVec3Set(out, p.x(), p.y(), p.z());
+}
+
+// The point of a curved surface that touches along the unit world
+// direction `out` (outward from the shape), nearest to the world point
+// `near`: on a cylinder's side, the point of the side line under `out`
+// nearest to `near`; on a sphere, its support point. Then the normal
+// through it passes through the cylinder's axis or the sphere's centre,
+// as the force of a curved contact must. (MPR's point is merely inside the
+// overlap: 2 um beside a thin rod's axis, which turned the rod's weight on
+// a wheel into a torque about the rod's axis, and its tiny inertia about
+// that axis into hundreds of rad/s of spin that friction made a roll
+// along the wheel.) nullopt for flat features (boxes, hulls, cylinder
+// caps): MPR's point stands there.
+std::optional<Vec3> curvedSurfacePoint(const Shape& s, const BodyState& body, const Vec3& out,
+                                       const Vec3& near) {
+  const Vec3 d = body.q.conjugate() * out;
+  if (s.type == Shape::Type::Sphere) return body.toWorld(localSupport(s, d));
+  if (s.type != Shape::Type::Cylinder) return std::nullopt;
+  const double radial = std::hypot(d.x(), d.y());
+  if (!(radial > std::abs(d.z()))) return std::nullopt;  // a cap faces `out`
+  const Vec3 local = body.toLocal(near);
+  const double z = std::clamp(local.z(), -s.half_length, s.half_length);
+  return body.toWorld(Vec3(s.radius * d.x() / radial, s.radius * d.y() / radial, z));
 }
 
 void ccdCenter(const void* obj, ccd_vec3_t* out) {
@@ -165,10 +189,13 @@ void collideBodies(BodyId id_a, const Shape& shape_a, const BodyState& a, BodyId
     }
     if (out.size() > first) return;
   }
-  // Edge on edge, or a curved surface on anything but a face: MPR's point.
+  // Edge on edge, or a curved surface on anything but a face: MPR's point,
+  // on each curved surface moved to where that surface touches along n.
   const Vec3 mid(pos.v[0], pos.v[1], pos.v[2]);
-  out.push_back(makeContact(id_a, a, mid + 0.5 * depth * n, id_b, b, mid - 0.5 * depth * n, n,
-                            material));
+  const Vec3 p_a = curvedSurfacePoint(shape_a, a, n, mid).value_or(Vec3(mid + 0.5 * depth * n));
+  const Vec3 p_b = curvedSurfacePoint(shape_b, b, -n, mid).value_or(Vec3(mid - 0.5 * depth * n));
+  if ((p_b - p_a).dot(n) >= margin) return;
+  out.push_back(makeContact(id_a, a, p_a, id_b, b, p_b, n, material));
 }
 
 }  // namespace reeve

@@ -54,7 +54,10 @@ void collideGround(const GroundPlane& ground, BodyId id, const Shape& shape,
 /// to the prism over it; every clipped point less than the margin above
 /// the reference plane is a contact, its point on the reference body
 /// projected onto the plane. Otherwise (edge on edge, curved on curved)
-/// MPR's single point. Nothing when the shapes are further apart.
+/// MPR's single point and normal, the point moved onto each curved
+/// surface (a cylinder's side, a sphere) where it touches along the
+/// normal, so that the normal passes through the cylinder's axis or the
+/// sphere's centre. Nothing when the shapes are further apart.
 void collideBodies(BodyId id_a, const Shape& shape_a, const BodyState& a, BodyId id_b,
                    const Shape& shape_b, const BodyState& b, const ContactMaterial& material,
                    std::vector<Contact>& out);

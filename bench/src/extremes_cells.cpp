@@ -187,6 +187,10 @@ CellResult runCell(const Condition& c, const CellBudget& b) {
         r.finite = false;
         break;
       }
+      if (const auto broken = s.cables->invariantViolation()) {
+        r.bookkeeping = *broken;
+        break;
+      }
       r.peak_stretch = std::max(r.peak_stretch, machines::maxStretch(*s.cables, 0));
       for (HingeId h = 0; h < static_cast<HingeId>(s.world->hinges().size()); ++h)
         r.axle_offset = std::max(r.axle_offset, machines::axleOffset(*s.world, h));
@@ -210,6 +214,10 @@ CellResult runCell(const Condition& c, const CellBudget& b) {
     }
   } catch (const std::exception& e) {
     r.cause = std::string("exception: ") + e.what();
+    return r;
+  }
+  if (!r.bookkeeping.empty()) {
+    r.cause = "cable bookkeeping broken: " + r.bookkeeping;
     return r;
   }
   char why[96] = "";

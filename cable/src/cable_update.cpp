@@ -1,5 +1,6 @@
 // The per-substep cable update: paper Alg. 1 (tangent points, rest
 // lengths, pinholes) and Alg. 2 (stored cable, hybrid links, merge, split).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -76,15 +77,28 @@ void CableSystem::updateJoint(Cable& cable, int j) {
   // since the last update; the arc from the new tangent point back to the
   // old anchor is cable paid out into the span (leaving side) or taken up
   // from it (arriving side).
+  double wound_a = 0.0, wound_b = 0.0;  // taken up from the span by each end
   if (from.rolls()) {
     const double s = payOut(from, joint.local_a, anchors->first, turn_[from.body]);
     joint.rest_length += s;
     from.stored -= s;
+    wound_a = std::max(0.0, -s);
   }
   if (to.rolls()) {
     const double s = payOut(to, joint.local_b, anchors->second, turn_[to.body]);
     joint.rest_length -= s;
     to.stored += s;
+    wound_b = std::max(0.0, s);
+  }
+  // A span holds no less than no cable. A wheel that turned further than
+  // the span could feed it (an unconverged solve: Gauss-Seidel on a wheel
+  // 1e-6 of its load) slips on the cable: what it could not wind stays in
+  // the span, so the total length is kept and the span pulls its far end in.
+  if (joint.rest_length < 0.0 && wound_a + wound_b > 0.0) {
+    const double deficit = std::min(-joint.rest_length, wound_a + wound_b);
+    from.stored -= deficit * wound_a / (wound_a + wound_b);
+    to.stored -= deficit * wound_b / (wound_a + wound_b);
+    joint.rest_length += deficit;
   }
   joint.local_a = anchors->first;
   joint.local_b = anchors->second;

@@ -50,6 +50,7 @@ class TradeRun : public FrameRun {
 
 struct Point {
   std::string case_name, series;
+  int substeps = 0, iterations = 0;
   double ms = 0, error = std::numeric_limits<double>::quiet_NaN();
   bool pareto = false;
 };
@@ -77,7 +78,8 @@ void printDominance(const std::vector<Point>& points) {
     if (rope.series.rfind("rope", 0) != 0) continue;
     double best = std::numeric_limits<double>::infinity();
     for (const Point& q : points)
-      if (q.case_name == rope.case_name && q.series.rfind("reeve", 0) == 0 && q.ms <= rope.ms && std::isfinite(q.error))
+      if (q.case_name == rope.case_name && q.series.rfind("reeve", 0) == 0 && q.ms <= rope.ms &&
+          std::isfinite(q.error))
         best = std::min(best, q.error);
     auto& w = worst.try_emplace({rope.case_name, rope.series}, std::numeric_limits<double>::infinity(), "").first->second;
     if (!std::isfinite(best)) {
@@ -94,6 +96,31 @@ void printDominance(const std::vector<Point>& points) {
                 !w.second.empty() ? w.second.c_str()
                 : std::isfinite(w.first) ? (number(w.first, 3) + " x").c_str()
                                          : "every rope point failed");
+}
+
+// Substeps for Reeve to cost what each rope point on a front costs: the
+// grid's Reeve points stop at 50 substeps (well under a millisecond), the
+// ropes' run to 100 ms, and "equal ms/frame" needs Reeve there too. Reeve's
+// cost grows linearly with substeps; its series' dearest one-iteration
+// point gives the cost of one. Rounded down to two significant figures,
+// at most 1e5.
+std::map<std::string, std::set<int>> matchedSubsteps(const std::vector<Point>& points, const std::string& reeve,
+                                                     const std::vector<int>& grid_substeps) {
+  const int grid_max = *std::max_element(grid_substeps.begin(), grid_substeps.end());
+  std::map<std::string, std::set<int>> out;
+  for (const Point& rope : points) {
+    if (rope.series.rfind("rope", 0) != 0 || !rope.pareto) continue;
+    double ms_per_substep = 0.0;
+    for (const Point& q : points)
+      if (q.case_name == rope.case_name && q.series == reeve && q.iterations == 1 && q.substeps == grid_max)
+        ms_per_substep = q.ms / grid_max;
+    if (!(ms_per_substep > 0.0)) continue;
+    const double want = std::min(1e5, rope.ms / ms_per_substep);
+    if (want <= grid_max) continue;
+    const double scale = std::pow(10.0, std::floor(std::log10(want)) - 1.0);
+    out[rope.case_name].insert(static_cast<int>(std::floor(want / scale) * scale));
+  }
+  return out;
 }
 
 }  // namespace
@@ -137,34 +164,46 @@ int trade(const TradeOptions& options) {
   timing.repeats = options.repeats;
   timing.warmup_frames = 0;  // the runs are short; the first timed run warms up the rest
   timing.max_seconds = 2.0;
+  const auto measure = [&](ClosedFormCase& c, const std::string& series, const std::string& solver, int substeps,
+                           int iterations) {
+    TradeRun run(c, substeps, iterations, solverKind(solver));
+    Point p{c.name(), series, substeps, iterations};
+    std::string worst, detail;
+    try {
+      p.ms = timeFrames(run, c.frames(), timing).median_ms;
+      if (run.finite()) {
+        const auto w = run.errors().worst();
+        p.error = w.second;
+        worst = w.first;
+        for (const auto& [name, value] : run.errors().parts)
+          detail += (detail.empty() ? "" : ";") + name + "=" + number(value, 6);
+      } else {
+        worst = "non-finite state";
+      }
+    } catch (const std::exception& e) {
+      worst = std::string("failed: ") + e.what();
+    }
+    points.push_back(p);
+    cells.push_back({c.name(), series, solver, std::to_string(substeps), std::to_string(iterations), number(p.ms, 4),
+                     number(p.error, 4), worst, "", detail});
+  };
   for (const auto& [series, c] : order) {
     const std::string solver = series.substr(series.find(' ') + 1);
     for (const int substeps : options.substeps)
-      for (const int iterations : options.iterations) {
-        TradeRun run(*c, substeps, iterations, solverKind(solver));
-        Point p{c->name(), series};
-        std::string worst, detail;
-        try {
-          p.ms = timeFrames(run, c->frames(), timing).median_ms;
-          if (run.finite()) {
-            const auto w = run.errors().worst();
-            p.error = w.second;
-            worst = w.first;
-            for (const auto& [name, value] : run.errors().parts)
-              detail += (detail.empty() ? "" : ";") + name + "=" + number(value, 6);
-          } else {
-            worst = "non-finite state";
-          }
-        } catch (const std::exception& e) {
-          worst = std::string("failed: ") + e.what();
-        }
-        points.push_back(p);
-        cells.push_back({c->name(), series, solver, std::to_string(substeps), std::to_string(iterations),
-                         number(p.ms, 4), number(p.error, 4), worst, "", detail});
-      }
+      for (const int iterations : options.iterations) measure(*c, series, solver, substeps, iterations);
     std::fprintf(stderr, "trade: %s, %s done\n", c->name().c_str(), series.c_str());
   }
   markPareto(points);
+  // Reeve (its first solver, one iteration) at the cost of the ropes' fronts.
+  if (!ropes.empty() && !options.solvers.empty()) {
+    const std::string solver = options.solvers.front();
+    const auto matched = matchedSubsteps(points, "reeve " + solver, options.substeps);
+    for (auto& c : cases)
+      if (matched.count(c->name()))
+        for (const int substeps : matched.at(c->name()))
+          measure(*c, "reeve " + solver + " at the ropes' cost", solver, substeps, 1);
+    markPareto(points);
+  }
   for (std::size_t i = 0; i < points.size(); ++i) {
     cells[i][8] = points[i].pareto ? "1" : "0";
     table.add(cells[i]);

@@ -151,6 +151,28 @@ TEST(BenchTrade, ReportsTheAtwoodAndSpoolErrorsOfADirectRun) {
   for (const auto& row : rows) EXPECT_EQ(row.at("pareto"), "1") << row.at("case") << " " << row.at("substeps");
 }
 
+TEST(BenchTrade, RunsReeveAtTheRopesCostAndItsErrorIsTheIntegratorsThere) {
+  // The grid's Reeve points cost far less than the rope's; Reeve is run
+  // again at as many substeps as a rope point's ms/frame buys, and compared
+  // there. Its acceleration error is still symplectic Euler's 1 / (30 n).
+  test::TempDir dir;
+  std::string out;
+  const auto rows = benchRows(
+      dir, "trade --only atwood_1_2 --substeps 1,2 --iterations 1 --solver direct --rope-segments 20 --repeats 1",
+      &out);
+  int matched = 0;
+  for (const auto& row : rows) {
+    if (row.at("series") != "reeve direct at the ropes' cost") continue;
+    const int substeps = std::stoi(row.at("substeps"));
+    EXPECT_GT(substeps, 2);
+    EXPECT_EQ(row.at("iterations"), "1");
+    EXPECT_NEAR(parts(row.at("detail")).at("acceleration"), 1.0 / (30.0 * substeps), 1e-3 / substeps);
+    ++matched;
+  }
+  EXPECT_GE(matched, 1);
+  EXPECT_NE(out.find("#   atwood_1_2           rope20 direct"), std::string::npos) << out;
+}
+
 TEST(BenchExtremes, ReportsAStableDirectCellAsMeasuredHereAndTheKnownFailureAsUnstable) {
   test::TempDir dir;
   std::string out;

@@ -46,9 +46,10 @@ struct SolverSettings {
   int iterations = 2;
   SolverKind solver = SolverKind::Direct;
   /// The direct solver stops iterating within a substep once every row is
-  /// met to this (m for positions, rad for angles): the iterations left
-  /// would change tensions by about tolerance x mass / h^2, 4e-7 N for 1 kg
-  /// at h = 1/60 s. 0: always run every iteration (to time one).
+  /// met to this (m for positions, rad for angles) times min(1, (h / (1/600
+  /// s))^2): the iterations left would change tensions by about tolerance x
+  /// mass / h^2, 4e-7 N for 1 kg at h = 1/60 s and 4e-5 N at h = 1/600 s
+  /// or any shorter substep. 0: always run every iteration (to time one).
   double tolerance = 1e-10;
   /// Speed guards: after each substep a body's linear speed (m/s) and
   /// angular speed (rad/s) are clamped to these, so a bad set-up cannot

@@ -164,13 +164,9 @@ TEST(WheelMass, AWheelThatTurnsFurtherThanTheSpanHoldsSlipsOnIt) {
   // wheel, pulled off its axle, spins further in a substep than the short
   // span can feed it. A span never holds less than no cable, and the
   // cable's total length is kept: the wheel slips on it.
-  machines::AtwoodSpec spec;
-  spec.light_kg = 1.0;
-  spec.heavy_kg = 2.0;
-  spec.wheel_kg = 1e-6;
-  spec.drop_m = 6.0;
-  spec.budget = {1, 10, SolverKind::GaussSeidel};
-  machines::Atwood m = machines::atwood(spec);
+  machines::Atwood m = machines::atwood({.wheel_kg = 1e-6, .drop_m = 6.0, .budget = {1, 10, SolverKind::GaussSeidel}});
+  ASSERT_EQ(m.spec.light_kg, 1.0);
+  ASSERT_EQ(m.spec.heavy_kg, 2.0);
   CableSystem& cables = *m.scene.cables;
   for (int f = 0; f < 30; ++f) {
     m.scene.world->step(1.0 / 30.0);

@@ -1,3 +1,5 @@
+#include <limits>
+
 #include "build.h"
 #include "describe.h"
 
@@ -5,6 +7,7 @@ namespace reeve::scene_detail {
 namespace {
 
 constexpr const char* kWorldName = "world";
+constexpr double kHuge = std::numeric_limits<double>::max();
 
 // The "shape" object at `path` (schema-checked), and a hull's degenerate
 // points as a SceneError.
@@ -109,6 +112,32 @@ BodyNames addBodies(const nlohmann::json& bodies, World& world, const std::strin
         def.angular_velocity = vec3(*w);
       def.linear_damping = b.value("linear_damping_per_s", 0.0);
       def.angular_damping = b.value("angular_damping_per_s", 0.0);
+    }
+    if (!def.is_static) {
+      // Mass and moments of inertia whose squares (energies, the solver's
+      // products of them) stay finite and non-zero in double precision:
+      // half extents of 1e-200 m have volume 0, a radius of 1e-300 m an
+      // inertia of 0, a density of 1e308 a mass past 1e154 kg. The engine
+      // would refuse some with no JSON path, miss the others.
+      const double volume_m3 = volume(def.shape);
+      const double m = has_mass ? def.mass : def.density * volume_m3;
+      const auto representable = [](double x) { return x * x > 0.0 && x * x < kHuge; };
+      if (!representable(m))
+        fail(has_mass ? "mass_kg" : "density_kg_per_m3",
+             "a mass between 1e-154 and 1e154 kg (its square finite and non-zero in double precision)",
+             has_mass ? number(m) + " kg"
+                      : number(def.density) + " kg/m^3 x " + number(volume_m3) + " m^3 = " + number(m) + " kg");
+      const Mat3 inertia = inertiaTensor(def.shape, m);
+      const Vec3 moments = inertia.diagonal();
+      if (!representable(moments.minCoeff()) || !representable(moments.maxCoeff()) || !inertia.inverse().allFinite())
+        fail("shape", "a size whose moments of inertia are between 1e-154 and 1e154 kg m^2",
+             "moments " + number(moments.x()) + ", " + number(moments.y()) + ", " + number(moments.z()) +
+                 " kg m^2 for " + number(m) + " kg");
+      for (const Vec3* v : {&def.linear_velocity, &def.angular_velocity})
+        if (!(v->squaredNorm() < kHuge))
+          fail(v == &def.linear_velocity ? "linear_velocity_m_per_s" : "angular_velocity_rad_per_s",
+               "a velocity whose square is finite in double precision", literal(b.at(
+                   v == &def.linear_velocity ? "linear_velocity_m_per_s" : "angular_velocity_rad_per_s")));
     }
     const BodyId id = world.addBody(def);
     names.ids.emplace(def.name, id);

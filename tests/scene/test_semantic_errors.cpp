@@ -209,5 +209,40 @@ TEST(SemanticErrors, DurationShorterThanAFrame) {
               "a duration of 1 to", "0.001 s (0 frames)");
 }
 
+// Sizes and densities whose mass or inertia leave double precision: the
+// same clean error from validate and run (they both load), never an abort.
+TEST(SemanticErrors, ABoxTooSmallForItsVolumeHasNoMass) {
+  // (1e-200 m)^3 underflows to 0: 1000 kg/m^3 x 0 m^3.
+  expectError(baseWith(R"("half_extents_m": [0.2, 0.2, 0.2]},
+     "mass_kg": 2)", R"("half_extents_m": [1e-200, 1e-200, 1e-200]},
+     "density_kg_per_m3": 1000)"),
+              "/bodies/1/density_kg_per_m3",
+              "a mass between 1e-154 and 1e154 kg (its square finite and non-zero in double precision)",
+              "1000 kg/m^3 x 0 m^3 = 0 kg");
+}
+
+TEST(SemanticErrors, ABoxTooSmallGivenAMassHasNoInertia) {
+  // 2 kg x ((1e-200)^2 + (1e-200)^2) / 3 underflows to 0 about every axis.
+  expectError(baseWith(R"("half_extents_m": [0.2, 0.2, 0.2]})", R"("half_extents_m": [1e-200, 1e-200, 1e-200]})"),
+              "/bodies/1/shape", "a size whose moments of inertia are between 1e-154 and 1e154 kg m^2",
+              "moments 0, 0, 0 kg m^2 for 2 kg");
+}
+
+TEST(SemanticErrors, ADensityOf1e308GivesAMassWhoseSquareOverflows) {
+  // A 1 m^3 box: 1e308 kg, whose square (in energies) is infinite.
+  expectError(baseWith(R"("half_extents_m": [0.2, 0.2, 0.2]},
+     "mass_kg": 2)", R"("half_extents_m": [0.5, 0.5, 0.5]},
+     "density_kg_per_m3": 1e308)"),
+              "/bodies/1/density_kg_per_m3",
+              "a mass between 1e-154 and 1e154 kg (its square finite and non-zero in double precision)",
+              "1e+308 kg/m^3 x 1 m^3 = 1e+308 kg");
+}
+
+TEST(SemanticErrors, AVelocityWhoseSquareOverflows) {
+  expectError(baseWith(R"("mass_kg": 1,)", R"("mass_kg": 1, "linear_velocity_m_per_s": [1e300, 0, 0],)"),
+              "/bodies/2/linear_velocity_m_per_s", "a velocity whose square is finite in double precision",
+              "[1e+300,0,0]");
+}
+
 }  // namespace
 }  // namespace reeve::test

@@ -161,6 +161,9 @@ int validateCommand(const std::string& scene) {
   } catch (const SceneError& e) {
     std::cerr << "reeve: " << e.what() << '\n';
     return kExitBadScene;
+  } catch (const std::exception& e) {  // a check the loader missed: still an error, never an abort
+    std::cerr << "reeve: " << e.what() << '\n';
+    return kExitFailure;
   }
 }
 

@@ -12,6 +12,28 @@ Scene loadScene(const std::filesystem::path& path) {
   const auto unreadable = [&] {
     return SceneError::unreadable(name, std::generic_category().message(errno));
   };
+  // Looked at before opening: opening a FIFO with no writer blocks, and
+  // /dev/zero never ends.
+  std::error_code status_error;
+  const std::filesystem::file_status status = std::filesystem::status(path, status_error);
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
+    using std::filesystem::file_type;
+    const file_type t = status.type();
+    const char* what = t == file_type::directory ? "a folder"
+                       : t == file_type::fifo    ? "a FIFO (named pipe)"
+                       : t == file_type::character || t == file_type::block ? "a device"
+                       : t == file_type::socket ? "a socket"
+                                                : "not a file";
+    throw SceneError::unreadable(name, std::string(what) + ", not a regular file");
+  }
+  const auto too_large = [&](std::uintmax_t bytes) {
+    return SceneError::unreadable(name, std::to_string(bytes) + " bytes, more than a scene may have (" +
+                                            std::to_string(kMaxSceneFileBytes) + ")");
+  };
+  if (std::filesystem::exists(status)) {
+    const std::uintmax_t bytes = std::filesystem::file_size(path, status_error);
+    if (!status_error && bytes > kMaxSceneFileBytes) throw too_large(bytes);
+  }
   errno = 0;
   const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(name.c_str(), "rb"),
                                                              &std::fclose);
@@ -19,8 +41,11 @@ Scene loadScene(const std::filesystem::path& path) {
   std::string text;
   char buffer[1 << 16];
   std::size_t n = 0;
-  while ((n = std::fread(buffer, 1, sizeof buffer, file.get())) > 0) text.append(buffer, n);
-  if (std::ferror(file.get())) throw unreadable();  // e.g. EISDIR for a folder
+  while ((n = std::fread(buffer, 1, sizeof buffer, file.get())) > 0) {
+    text.append(buffer, n);
+    if (text.size() > kMaxSceneFileBytes) throw too_large(text.size());  // it grew while read
+  }
+  if (std::ferror(file.get())) throw unreadable();
   return parseScene(text, name);
 }
 

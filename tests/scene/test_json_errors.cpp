@@ -1,5 +1,8 @@
 // Errors before the schema: unreadable files and JSON syntax.
+#include <sys/stat.h>
+
 #include <cstdio>
+#include <fstream>
 
 #include "scene_test_util.h"
 
@@ -70,13 +73,51 @@ TEST(JsonErrors, UnreadableFileNamesFileAndReason) {
   }
 }
 
-TEST(JsonErrors, FolderIsUnreadable) {
+// What loadScene() says about `path` (it must refuse it).
+std::string refusal(const std::filesystem::path& path) {
   try {
-    loadScene(kScenesDir);
-    FAIL() << "no error";
+    loadScene(path);
   } catch (const SceneError& e) {
-    EXPECT_EQ(std::string(e.what()), kScenesDir.string() + ": cannot read: Is a directory");
+    EXPECT_EQ(e.expected(), "a readable file");
+    return e.what();
   }
+  ADD_FAILURE() << path << " loaded";
+  return "";
+}
+
+TEST(JsonErrors, FolderIsUnreadable) {
+  EXPECT_EQ(refusal(kScenesDir), kScenesDir.string() + ": cannot read: a folder, not a regular file");
+}
+
+TEST(JsonErrors, DevicesAndFifosAreRefusedBeforeTheyAreOpened) {
+  // /dev/zero never ends; opening a FIFO with no writer never returns.
+  EXPECT_EQ(refusal("/dev/zero"), "/dev/zero: cannot read: a device, not a regular file");
+  const std::filesystem::path fifo = std::filesystem::temp_directory_path() / "reeve_scene_test_fifo.json";
+  std::filesystem::remove(fifo);
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  EXPECT_EQ(refusal(fifo), fifo.string() + ": cannot read: a FIFO (named pipe), not a regular file");
+  std::filesystem::remove(fifo);
+}
+
+TEST(JsonErrors, AFileLargerThanTheLimitIsRefusedUnread) {
+  // One byte over: a sparse file, so nothing is written to disk.
+  const std::filesystem::path big = std::filesystem::temp_directory_path() / "reeve_scene_test_big.json";
+  { std::ofstream touch(big); }
+  std::filesystem::resize_file(big, kMaxSceneFileBytes + 1);
+  EXPECT_EQ(refusal(big), big.string() + ": cannot read: " + std::to_string(kMaxSceneFileBytes + 1) +
+                              " bytes, more than a scene may have (" + std::to_string(kMaxSceneFileBytes) + ")");
+  std::filesystem::resize_file(big, 0);  // at the limit a valid scene still loads
+  {
+    std::ofstream out(big);
+    out << kBase;
+  }
+  std::filesystem::resize_file(big, kMaxSceneFileBytes);  // padded with NULs: not JSON, but read
+  try {
+    loadScene(big);
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.expected(), "valid JSON") << e.what();
+  }
+  std::filesystem::remove(big);
 }
 
 TEST(JsonErrors, LoadSceneErrorsNameTheFile) {

@@ -5,6 +5,7 @@
 // expected and what was found; never a crash, never a silent default.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -83,8 +84,15 @@ class SceneError : public std::runtime_error {
   int line_ = 0, column_ = 0;
 };
 
+/// Largest scene file loadScene() reads (bytes): 100 times the largest
+/// shipped scene (hilbert3.json, 170 kB, 512 wheels).
+inline constexpr std::uintmax_t kMaxSceneFileBytes = 16u << 20;
+
 /// Reads and builds the scene in the JSON file at `path`.
-/// Throws SceneError if the file cannot be read or the scene is invalid.
+/// Throws SceneError if the file cannot be read, is not a regular file (a
+/// FIFO, a device such as /dev/zero, a folder: refused before it is
+/// opened, so nothing blocks), is larger than kMaxSceneFileBytes, or the
+/// scene is invalid.
 Scene loadScene(const std::filesystem::path& path);
 
 /// Builds the scene in `json_text`; `source_name` names it in errors (a file

@@ -7,9 +7,12 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "csv_writer.h"
 #include "event_log.h"
+#include "output_file.h"
 #include "progress.h"
 #include "reeve/render/renderer.h"
 #include "reeve/render/video.h"
@@ -24,9 +27,32 @@ struct WouldOverwrite : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Two outputs on one file, or an output on the scene being run: refused
+// even with --force (exit 64).
+struct OutputClash : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 void refuseOverwrite(const fs::path& path, bool force) {
-  if (!force && fs::exists(path))
+  if (!force && fs::exists(path) && !isStream(path))
     throw WouldOverwrite(path.string() + ": exists; pass --force to overwrite it");
+}
+
+void refuseClashes(const RunOptions& o) {
+  std::vector<std::pair<std::string, fs::path>> files;
+  if (!o.scene.empty()) files.push_back({"the scene", o.scene});
+  for (const auto& [option, path] : {std::pair{"--csv", o.csv}, {"--events", o.events}, {"--video", o.video}})
+    if (!path.empty()) files.push_back({option, path});
+  for (std::size_t i = 0; i < files.size(); ++i)
+    for (std::size_t j = i + 1; j < files.size(); ++j) {
+      std::error_code ec;
+      const bool same = fs::weakly_canonical(files[i].second, ec) == fs::weakly_canonical(files[j].second, ec) ||
+                        fs::equivalent(files[i].second, files[j].second, ec);
+      if (same && !isStream(files[j].second))
+        throw OutputClash(files[j].first + " " + files[j].second.string() + " is the same file as " +
+                          files[i].first + (i == 0 && !o.scene.empty() ? "" : " " + files[i].second.string()) +
+                          "; give each output its own file (--force does not change this)");
+    }
 }
 
 fs::path framePath(const fs::path& dir, int frame) {
@@ -38,6 +64,7 @@ fs::path framePath(const fs::path& dir, int frame) {
 // Checks every output before simulating, so nothing is half-written when
 // a later output turns out to be refused.
 void checkOutputs(const RunOptions& o, int frames) {
+  refuseClashes(o);
   if (!o.csv.empty()) refuseOverwrite(o.csv, o.force);
   if (!o.events.empty()) refuseOverwrite(o.events, o.force);
   if (!o.video.empty()) {
@@ -76,15 +103,25 @@ int simulate(const RunOptions& o) {
   std::unique_ptr<CsvWriter> csv;
   if (!o.csv.empty()) {
     createParent(o.csv);
-    csv = std::make_unique<CsvWriter>(o.csv, *scene.cables);
+    csv = std::make_unique<CsvWriter>(o.csv, o.force, *scene.cables);
   }
   std::unique_ptr<EventLog> events;
   if (!o.events.empty()) {
     createParent(o.events);
-    events = std::make_unique<EventLog>(o.events);
+    events = std::make_unique<EventLog>(o.events, o.force);
   }
   const bool draw = !o.png_dir.empty() || !o.video.empty();
   std::unique_ptr<Renderer> renderer;
+  // ffmpeg writes a temporary file beside the video (an absolute name, so
+  // "file:x.mp4" is a file, not a protocol), moved into place at the end;
+  // removed if the run fails (after ffmpeg has been waited for).
+  struct RemoveUnlessMoved {
+    fs::path path;
+    ~RemoveUnlessMoved() {
+      std::error_code ec;
+      if (!path.empty()) fs::remove(path, ec);
+    }
+  } video_file;
   std::unique_ptr<VideoWriter> video;
   Camera camera;
   if (draw) {
@@ -94,7 +131,8 @@ int simulate(const RunOptions& o) {
   if (!o.png_dir.empty()) fs::create_directories(o.png_dir);
   if (!o.video.empty()) {
     createParent(o.video);
-    video = std::make_unique<VideoWriter>(o.video, o.width, o.height, scene.frame_rate_hz);
+    video_file.path = temporarySibling(o.video);
+    video = std::make_unique<VideoWriter>(video_file.path, o.width, o.height, scene.frame_rate_hz);
   }
 
   const double dt = 1.0 / scene.frame_rate_hz;
@@ -119,7 +157,16 @@ int simulate(const RunOptions& o) {
     }
     progress.update(f + 1);
   }
+  // Every output complete before any is moved into place.
   if (video) video->finish();
+  if (csv) csv->close();
+  if (events) events->close();
+  if (video) {
+    moveIntoPlace(video_file.path, o.video, o.force);
+    video_file.path.clear();
+  }
+  if (csv) csv->commit();
+  if (events) events->commit();
 
   std::printf("reeve: simulated %d frames of '%s' (%.3f s, %d substeps x %d iterations, %s) in %.3f ms/frame of physics\n",
               frames, scene.name.c_str(), frames * dt, scene.world->settings().substeps,
@@ -147,6 +194,9 @@ int runCommand(const RunOptions& options) {
   } catch (const WouldOverwrite& e) {
     std::cerr << "reeve: " << e.what() << '\n';
     return kExitWouldOverwrite;
+  } catch (const OutputClash& e) {
+    std::cerr << "reeve: " << e.what() << '\n';
+    return kExitUsage;
   } catch (const std::exception& e) {
     std::cerr << "reeve: " << e.what() << '\n';
     return kExitFailure;

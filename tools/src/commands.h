@@ -10,7 +10,7 @@ namespace reeve {
 inline constexpr int kExitFailure = 1;       ///< I/O, rendering, video or a non-finite state
 inline constexpr int kExitBadScene = 2;      ///< the scene file is invalid
 inline constexpr int kExitWouldOverwrite = 3;  ///< an output exists and --force was not given
-inline constexpr int kExitUsage = 64;        ///< bad command line
+inline constexpr int kExitUsage = 64;        ///< bad command line, or outputs that clash
 
 struct RunOptions {
   std::string scene;  ///< empty: the built-in default scene

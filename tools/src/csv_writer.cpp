@@ -1,47 +1,76 @@
 #include "csv_writer.h"
 
-#include <cstring>
+#include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 namespace reeve {
 
-CsvWriter::CsvWriter(const std::filesystem::path& path, const CableSystem& cables)
-    : out_(path), cables_(cables) {
-  if (!out_) throw std::runtime_error(path.string() + ": cannot write: " + std::strerror(errno));
-  out_.precision(10);
+std::string csvField(const std::string& field) {
+  if (field.find_first_of(",\"\r\n") == std::string::npos) return field;
+  std::string quoted = "\"";
+  for (const char c : field) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
+}
+
+namespace {
+
+// Appends ",value" (or "value" first), refusing what is not finite.
+void append(std::string& row, double value, double time_s, const std::string& what) {
+  if (!std::isfinite(value))
+    throw std::runtime_error("the simulation became non-finite at t = " + std::to_string(time_s) + " s: " +
+                             what + " is " + std::to_string(value) +
+                             "; no row of that frame was written. Try more substeps or iterations");
+  char text[32];
+  std::snprintf(text, sizeof text, "%.10g", value == 0.0 ? 0.0 : value);  // never "-0"
+  if (!row.empty()) row += ',';
+  row += text;
+}
+
+}  // namespace
+
+CsvWriter::CsvWriter(const std::filesystem::path& path, bool replace, const CableSystem& cables)
+    : out_(path, replace), cables_(cables) {
   const World& world = cables.world();
-  out_ << "time_s";
+  std::string header = "time_s";
+  const auto add = [&](const std::string& name) { header += "," + csvField(name); };
   for (BodyId b = 0; b < world.bodyCount(); ++b) {
     if (world.bodyDef(b).is_static) continue;
     const std::string& n = world.bodyDef(b).name;
-    out_ << ',' << n << ".x_m," << n << ".y_m," << n << ".z_m";
+    for (const char* axis : {".x_m", ".y_m", ".z_m"}) add(n + axis);
   }
   for (const Cable& c : cables.cables()) {
     for (size_t j = 0; j < c.joints.size(); ++j) {
       const std::string p = c.name + "." + std::to_string(j);
-      out_ << ',' << p << ".tension_N," << p << ".rest_length_m," << p << ".length_m";
+      for (const char* column : {".tension_N", ".rest_length_m", ".length_m"}) add(p + column);
     }
-    for (size_t k = 0; k < c.links.size(); ++k) out_ << ',' << c.name << ".link" << k << ".stored_m";
+    for (size_t k = 0; k < c.links.size(); ++k) add(c.name + ".link" + std::to_string(k) + ".stored_m");
   }
-  out_ << '\n';
+  out_.write(header + "\n");
 }
 
 void CsvWriter::writeRow() {
   const World& world = cables_.world();
-  out_ << world.time();
+  const double t = world.time();
+  std::string row;
+  append(row, t, t, "the time");
   for (BodyId b = 0; b < world.bodyCount(); ++b) {
     if (world.bodyDef(b).is_static) continue;
     const Vec3& x = world.body(b).x;
-    out_ << ',' << x.x() << ',' << x.y() << ',' << x.z();
+    for (int i = 0; i < 3; ++i) append(row, x[i], t, "body '" + world.bodyDef(b).name + "' position");
   }
   for (int c = 0; c < static_cast<int>(cables_.cables().size()); ++c) {
-    for (int j = 0; j < static_cast<int>(cables_.cables()[c].joints.size()); ++j)
-      out_ << ',' << cables_.tension(c, j) << ',' << cables_.restLength(c, j) << ','
-           << cables_.length(c, j);
-    for (const Link& link : cables_.cables()[c].links) out_ << ',' << link.stored;
+    const Cable& cable = cables_.cables()[c];
+    for (int j = 0; j < static_cast<int>(cable.joints.size()); ++j) {
+      const std::string joint = "cable '" + cable.name + "' joint " + std::to_string(j);
+      append(row, cables_.tension(c, j), t, joint + " tension");
+      append(row, cables_.restLength(c, j), t, joint + " rest length");
+      append(row, cables_.length(c, j), t, joint + " length");
+    }
+    for (std::size_t k = 0; k < cable.links.size(); ++k)
+      append(row, cable.links[k].stored, t, "cable '" + cable.name + "' link " + std::to_string(k) + " stored cable");
   }
-  out_ << '\n';
-  if (!out_) throw std::runtime_error("CSV write failed (disk full?)");
+  out_.write(row + "\n");
 }
 
 }  // namespace reeve

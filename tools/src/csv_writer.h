@@ -1,9 +1,10 @@
 // Per-frame CSV of body positions and cable joint state.
 #pragma once
 
-#include <fstream>
 #include <filesystem>
+#include <string>
 
+#include "output_file.h"
 #include "reeve/cable/cable.h"
 
 namespace reeve {
@@ -11,16 +12,27 @@ namespace reeve {
 /// Writes a header, then one row per frame: time_s; for each dynamic body
 /// B: B.x_m, B.y_m, B.z_m; for each cable C, each joint j (0-based):
 /// C.j.tension_N, C.j.rest_length_m, C.j.length_m (0 while the joint is
-/// merged away), then each link k: C.link<k>.stored_m.
+/// merged away), then each link k: C.link<k>.stored_m. Header fields are
+/// quoted per RFC 4180 where a name holds a comma, a quote or a line
+/// break. Numbers have 10 significant digits; -0 is written 0.
 class CsvWriter {
  public:
-  /// Opens `path` for writing; throws std::runtime_error naming it.
-  CsvWriter(const std::filesystem::path& path, const CableSystem& cables);
+  /// Opens `path` (an OutputFile: nothing appears there before commit()).
+  CsvWriter(const std::filesystem::path& path, bool replace, const CableSystem& cables);
+  /// Appends the current state. Throws std::runtime_error naming the
+  /// quantity if any number is not finite, before writing any of the row.
   void writeRow();
+  void flush() { out_.flush(); }
+  void close() { out_.close(); }
+  void commit() { out_.commit(); }
 
  private:
-  std::ofstream out_;
+  OutputFile out_;
   const CableSystem& cables_;
 };
+
+/// `field` as an RFC 4180 CSV field: quoted, with quotes doubled, when it
+/// holds a comma, a quote, a CR or an LF; as it is otherwise.
+std::string csvField(const std::string& field);
 
 }  // namespace reeve

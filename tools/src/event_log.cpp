@@ -1,15 +1,10 @@
 #include "event_log.h"
 
-#include <cerrno>
-#include <cstring>
 #include <nlohmann/json.hpp>
-#include <stdexcept>
 
 namespace reeve {
 
-EventLog::EventLog(const std::filesystem::path& path) : out_(path) {
-  if (!out_) throw std::runtime_error(path.string() + ": cannot write: " + std::strerror(errno));
-}
+EventLog::EventLog(const std::filesystem::path& path, bool replace) : out_(path, replace) {}
 
 void EventLog::drain(CableSystem& cables) {
   for (const CableEvent& e : cables.takeEvents()) {
@@ -18,9 +13,8 @@ void EventLog::drain(CableSystem& cables) {
                                  {"link", e.link},
                                  {"event", eventName(e.kind)},
                                  {"orientation", e.orientation > 0 ? "ccw" : "cw"}};
-    out_ << line.dump() << '\n';
+    out_.write(line.dump() + "\n");
   }
-  if (!out_) throw std::runtime_error("event log write failed (disk full?)");
 }
 
 }  // namespace reeve

@@ -2,8 +2,8 @@
 #pragma once
 
 #include <filesystem>
-#include <fstream>
 
+#include "output_file.h"
 #include "reeve/cable/cable.h"
 
 namespace reeve {
@@ -11,13 +11,16 @@ namespace reeve {
 /// Writes {"time_s", "cable", "link", "event", "orientation"} per line.
 class EventLog {
  public:
-  /// Opens `path`; throws std::runtime_error naming it.
-  explicit EventLog(const std::filesystem::path& path);
+  /// Opens `path` (an OutputFile: nothing appears there before commit()).
+  EventLog(const std::filesystem::path& path, bool replace);
   /// Writes and clears the events the cable system gathered.
   void drain(CableSystem& cables);
+  void flush() { out_.flush(); }
+  void close() { out_.close(); }
+  void commit() { out_.commit(); }
 
  private:
-  std::ofstream out_;
+  OutputFile out_;
 };
 
 }  // namespace reeve

@@ -1,0 +1,137 @@
+// What `reeve run` writes, under faults: full disks, clashing names, names
+// ffmpeg would read as protocols, body names that need CSV quoting, and
+// runs that fail half-way (issue 12).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "cli_fixture.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using test::Cli;
+using test::reeve;
+using test::Result;
+
+const std::string kAtwood = std::string(REEVE_SCENES_DIR) + "/atwood.json";
+const std::string kMergeSplit = std::string(REEVE_SCENES_DIR) + "/merge_split.json";  // has events
+
+std::string slurp(const std::string& file) {
+  std::ifstream f(file);
+  return {std::istreambuf_iterator<char>(f), {}};
+}
+
+std::vector<std::string> listing(const fs::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+// RFC 4180 fields of one record (quoted fields may hold commas, doubled
+// quotes and line breaks); `text` from `pos`, which it moves past the record.
+std::vector<std::string> record(const std::string& text, std::size_t& pos) {
+  std::vector<std::string> fields(1);
+  bool quoted = false;
+  for (; pos < text.size(); ++pos) {
+    const char c = text[pos];
+    if (quoted) {
+      if (c == '"' && pos + 1 < text.size() && text[pos + 1] == '"') {
+        fields.back() += '"';
+        ++pos;
+      } else if (c == '"') {
+        quoted = false;
+      } else {
+        fields.back() += c;
+      }
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      fields.emplace_back();
+    } else if (c == '\n') {
+      ++pos;
+      break;
+    } else {
+      fields.back() += c;
+    }
+  }
+  return fields;
+}
+
+TEST_F(Cli, AFullDiskIsAnErrorNamingTheFile) {
+  for (const std::string& option : {std::string("--csv"), std::string("--events")}) {
+    const Result r = reeve("run " + kMergeSplit + " " + option + " /dev/full");
+    EXPECT_EQ(r.code, 1) << option;
+    EXPECT_NE(r.err.find("/dev/full: cannot write: No space left on device"), std::string::npos) << r.err;
+  }
+}
+
+TEST_F(Cli, ARunThatFailsLeavesNothingNewAndAReRunSucceeds) {
+  // The events fail (a full disk) after the CSV has had rows: neither the
+  // CSV nor a temporary file is left, so the corrected run is not refused.
+  const std::string csv = path("run.csv");
+  const Result failed = reeve("run " + kMergeSplit + " --csv " + csv + " --events /dev/full");
+  EXPECT_EQ(failed.code, 1) << failed.err;
+  EXPECT_TRUE(listing(dir_).empty()) << listing(dir_).front();
+  const Result ok = reeve("run " + kMergeSplit + " --csv " + csv + " --events " + path("events.jsonl"));
+  EXPECT_EQ(ok.code, 0) << ok.err;
+  EXPECT_EQ(listing(dir_), (std::vector<std::string>{"events.jsonl", "run.csv"}));
+}
+
+TEST_F(Cli, OutputsThatClashAreRefusedEvenWithForce) {
+  const Result both = reeve("run " + kAtwood + " --frames 2 --csv " + path("x") + " --events " + path("x") + " --force");
+  EXPECT_EQ(both.code, 64);
+  EXPECT_NE(both.err.find("--events " + path("x") + " is the same file as --csv " + path("x")), std::string::npos)
+      << both.err;
+  const std::string scene = write("scene.json", slurp(kAtwood));
+  const Result over = reeve("run " + scene + " --frames 2 --csv " + dir_.string() + "/./scene.json --force");
+  EXPECT_EQ(over.code, 64);
+  EXPECT_NE(over.err.find("is the same file as the scene"), std::string::npos) << over.err;
+  EXPECT_EQ(slurp(scene), slurp(kAtwood));
+  EXPECT_EQ(listing(dir_), std::vector<std::string>{"scene.json"});
+}
+
+TEST_F(Cli, AVideoNameIsAFileNeverAnFfmpegProtocol) {
+  // "file:victim.mp4" once reached ffmpeg as its file protocol and replaced
+  // victim.mp4 without --force. It names a file of that name.
+  write("victim.mp4", "my video\n");
+  const Result r = reeve("run " + kAtwood + " --frames 2 --width 64 --height 48 --video file:victim.mp4",
+                         "cd " + dir_.string() + " &&");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(slurp(path("victim.mp4")), "my video\n");
+  EXPECT_EQ(listing(dir_), (std::vector<std::string>{"file:victim.mp4", "victim.mp4"}));
+  EXPECT_GT(fs::file_size(path("file:victim.mp4")), 0u);
+}
+
+TEST_F(Cli, BodyNamesWithCommasQuotesAndLineBreaksAreQuotedInTheCsvHeader) {
+  std::string scene = slurp(kAtwood);
+  const auto rename = [&](const std::string& from, const std::string& to) {
+    for (std::size_t at; (at = scene.find(from)) != std::string::npos;) scene.replace(at, from.size(), to);
+  };
+  rename("\"light\"", R"("a,b")");
+  rename("\"heavy\"", R"("say \"hi\"\nthere")");
+  const Result r = reeve("run " + write("names.json", scene) + " --frames 3 --csv " + path("out.csv"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string text = slurp(path("out.csv"));
+  std::size_t pos = 0;
+  const std::vector<std::string> header = record(text, pos);
+  ASSERT_GE(header.size(), 7u);
+  EXPECT_EQ(header[4], "a,b.x_m");
+  EXPECT_EQ(header[7], "say \"hi\"\nthere.x_m");
+  int rows = 0;
+  while (pos < text.size()) {
+    const std::vector<std::string> row = record(text, pos);
+    EXPECT_EQ(row.size(), header.size()) << "row " << rows;
+    for (const std::string& cell : row) EXPECT_NE(cell, "-0");
+    ++rows;
+  }
+  EXPECT_EQ(rows, 3);
+}
+
+}  // namespace

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cli_fixture.h"
@@ -132,6 +133,43 @@ TEST_F(Cli, BodyNamesWithCommasQuotesAndLineBreaksAreQuotedInTheCsvHeader) {
     ++rows;
   }
   EXPECT_EQ(rows, 3);
+}
+
+TEST_F(Cli, AnInterruptEndsTheFrameClosesEveryOutputAndExits128PlusTheSignal) {
+  // SIGINT or SIGTERM 1.5 s into a long run of merge_split with every output:
+  // the CSV holds whole rows of the frames done, the video as many frames
+  // (ffmpeg is waited for, not killed), the events file is there, and the
+  // count is printed. (bash with set -m: a background job of a shell
+  // without job control inherits SIGINT ignored, and keeps it so, as
+  // under nohup. A run still going 30 s after the signal is killed.)
+  for (const auto& [signal, code] : {std::pair{"INT", 130}, {"TERM", 143}}) {
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    const std::string script =
+        "set -m; cd " + dir_.string() + " && { " REEVE_BINARY " run " REEVE_SCENES_DIR
+        "/merge_split.json --frames 10000000 --width 64 --height 48 --csv c.csv --events e.jsonl --video v.mp4"
+        " >out.txt 2>err.txt & }; pid=$!; sleep 1.5; kill -" + std::string(signal) +
+        " $pid; for i in $(seq 300); do kill -0 $pid 2>/dev/null || break; sleep 0.1; done;"
+        " kill -KILL $pid 2>/dev/null; wait $pid; echo $? > " + path("code.txt");
+    ASSERT_EQ(std::system(("bash -c '" + script + "'").c_str()), 0);
+    EXPECT_EQ(std::stoi(slurp(path("code.txt"))), code) << slurp(path("err.txt"));
+    const std::string err = slurp(path("err.txt"));
+    const std::size_t at = err.find("stopped after ");
+    ASSERT_NE(at, std::string::npos) << err;
+    const int done = std::stoi(err.substr(at + 14));
+    EXPECT_GT(done, 0);
+    const std::string csv = slurp(path("c.csv"));
+    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), done + 1) << "a header and a row per frame";
+    EXPECT_EQ(csv.back(), '\n');
+    EXPECT_TRUE(fs::exists(path("e.jsonl")));
+    const std::string probe = "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+                              "stream=nb_read_frames -of csv=p=0 " + path("v.mp4") + " > " + path("probe.txt");
+    ASSERT_EQ(std::system(probe.c_str()), 0);
+    EXPECT_EQ(std::stoi(slurp(path("probe.txt"))), done);
+    EXPECT_EQ(listing(dir_), (std::vector<std::string>{"c.csv", "code.txt", "e.jsonl", "err.txt", "out.txt",
+                                                       "probe.txt", "v.mp4"}))
+        << "no temporary file left";
+  }
 }
 
 }  // namespace

@@ -79,7 +79,14 @@ VideoWriter::VideoWriter(const std::filesystem::path& path, int width, int heigh
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_adddup2(&actions, fds[1], STDIN_FILENO);  // clears CLOEXEC
-  const int error = posix_spawn(&child_, argv[0], &actions, nullptr, argv.data(), environ);
+  // Its own process group: a Ctrl-C at the terminal reaches the writer,
+  // which ends the video after its last whole frame, not ffmpeg half-way.
+  posix_spawnattr_t attributes;
+  posix_spawnattr_init(&attributes);
+  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);
+  posix_spawnattr_setpgroup(&attributes, 0);
+  const int error = posix_spawn(&child_, argv[0], &actions, &attributes, argv.data(), environ);
+  posix_spawnattr_destroy(&attributes);
   posix_spawn_file_actions_destroy(&actions);
   close(fds[1]);
   if (error != 0) {

@@ -1,6 +1,8 @@
 #include "commands.h"
 
+#include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -12,6 +14,7 @@
 
 #include "csv_writer.h"
 #include "event_log.h"
+#include "interrupt.h"
 #include "output_file.h"
 #include "progress.h"
 #include "reeve/render/renderer.h"
@@ -137,8 +140,10 @@ int simulate(const RunOptions& o) {
 
   const double dt = 1.0 / scene.frame_rate_hz;
   double physics_s = 0.0;
+  const InterruptGuard interrupt;
+  int done = 0;  // frames written
   ProgressBar progress(frames);
-  for (int f = 0; f < frames; ++f) {
+  for (int f = 0; f < frames && !interrupt.received(); ++f) {
     const auto t0 = std::chrono::steady_clock::now();
     scene.world->step(dt);
     physics_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -156,8 +161,10 @@ int simulate(const RunOptions& o) {
       if (video) video->add(image);
     }
     progress.update(f + 1);
+    done = f + 1;
   }
-  // Every output complete before any is moved into place.
+  // Every output complete before any is moved into place (on an interrupt
+  // too: they hold the frames done, each whole).
   if (video) video->finish();
   if (csv) csv->close();
   if (events) events->close();
@@ -168,19 +175,23 @@ int simulate(const RunOptions& o) {
   if (csv) csv->commit();
   if (events) events->commit();
 
+  const int signal = interrupt.received();
+  if (signal)
+    std::fprintf(stderr, "reeve: %s: stopped after %d of %d frames; the outputs hold those %d frames\n",
+                 signal == SIGINT ? "interrupted (SIGINT)" : "terminated (SIGTERM)", done, frames, done);
   std::printf("reeve: simulated %d frames of '%s' (%.3f s, %d substeps x %d iterations, %s) in %.3f ms/frame of physics\n",
-              frames, scene.name.c_str(), frames * dt, scene.world->settings().substeps,
+              done, scene.name.c_str(), done * dt, scene.world->settings().substeps,
               scene.world->settings().iterations, solverMethodName(scene.world->settings().solver),
-              1e3 * physics_s / frames);
-  if (!o.png_dir.empty())
+              1e3 * physics_s / std::max(done, 1));
+  if (!o.png_dir.empty() && done > 0)
     std::printf("  PNG frames: %s .. %s\n", framePath(o.png_dir, 0).c_str(),
-                framePath(o.png_dir, frames - 1).filename().c_str());
+                framePath(o.png_dir, done - 1).filename().c_str());
   if (!o.video.empty()) std::printf("  video:      %s\n", o.video.c_str());
   if (!o.csv.empty()) std::printf("  CSV:        %s\n", o.csv.c_str());
   if (!o.events.empty()) std::printf("  events:     %s\n", o.events.c_str());
   if (o.png_dir.empty() && o.video.empty() && o.csv.empty() && o.events.empty())
     std::printf("  (no output requested: add --png DIR, --video FILE.mp4, --csv FILE or --events FILE)\n");
-  return 0;
+  return signal ? 128 + signal : 0;  // the shells' convention: 130 for SIGINT, 143 for SIGTERM
 }
 
 }  // namespace

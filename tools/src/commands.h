@@ -21,7 +21,9 @@ struct RunOptions {
   bool force = false;
 };
 
-/// `reeve run`: returns the process exit code; errors go to stderr.
+/// `reeve run`: returns the process exit code (above, or 128 + SIGINT or
+/// SIGTERM when one stopped the run after a whole frame); errors go to
+/// stderr.
 int runCommand(const RunOptions& options);
 
 /// `reeve validate`: 0 and "SCENE: ok" when valid, else kExitBadScene.

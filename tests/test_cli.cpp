@@ -177,7 +177,7 @@ TEST_F(Cli, AStoneFlungFasterThanADoubleCanSquareIsRefusedAtLoad) {
      "position_m": [0, 0, 0], "linear_velocity_m_per_s": [1e308, 0, 0]}]})");
   const Result r = reeve("run " + scene + " --frames 5 --csv " + path("out.csv"));
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("fling.json: /bodies/0/linear_velocity_m_per_s: expected a velocity whose square is finite"),
+  EXPECT_NE(r.err.find("fling.json: /bodies/0/linear_velocity_m_per_s/0: expected a number of magnitude at most 1e153"),
             std::string::npos)
       << r.err;
   EXPECT_FALSE(std::filesystem::exists(path("out.csv")));

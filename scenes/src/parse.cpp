@@ -1,4 +1,5 @@
 #include "build.h"
+#include "magnitudes.h"
 #include "parse_json.h"
 #include "reeve/scene/scene.h"
 #include "schema_validate.h"
@@ -8,6 +9,7 @@ namespace reeve {
 Scene parseScene(const std::string& json_text, const std::string& source_name) {
   const nlohmann::json document = scene_detail::parseJson(json_text, source_name);
   scene_detail::validateSceneSchema(document, source_name);
+  scene_detail::refuseHugeNumbers(document, source_name);
   return scene_detail::buildScene(document, source_name);
 }
 

@@ -111,10 +111,12 @@ std::vector<std::string> allowedKeys(const Schemas& schemas) {
       closed.push_back(s);
   std::vector<std::string> keys;
   if (closed.empty()) return keys;
-  for (const auto& [key, _] : closed.front()->at("properties").items())
+  for (const auto& item : closed.front()->at("properties").items()) {
+    const std::string& key = item.key();  // a structured binding: clang 14 cannot capture one
     if (std::all_of(closed.begin(), closed.end(),
                     [&](const ordered_json* s) { return s->at("properties").contains(key); }))
       keys.push_back(key);
+  }
   return keys;
 }
 

@@ -228,20 +228,26 @@ TEST(SemanticErrors, ABoxTooSmallGivenAMassHasNoInertia) {
               "moments 0, 0, 0 kg m^2 for 2 kg");
 }
 
-TEST(SemanticErrors, ADensityOf1e308GivesAMassWhoseSquareOverflows) {
-  // A 1 m^3 box: 1e308 kg, whose square (in energies) is infinite.
+TEST(SemanticErrors, ADensityAndSizeWhoseMassSquareOverflows) {
+  // Each number is allowed, their product is not: 1e150 kg/m^3 over
+  // (1000 m)^3 is 1e159 kg, whose square (in energies) is infinite.
   expectError(baseWith(R"("half_extents_m": [0.2, 0.2, 0.2]},
-     "mass_kg": 2)", R"("half_extents_m": [0.5, 0.5, 0.5]},
-     "density_kg_per_m3": 1e308)"),
+     "mass_kg": 2)", R"("half_extents_m": [500, 500, 500]},
+     "density_kg_per_m3": 1e150)"),
               "/bodies/1/density_kg_per_m3",
               "a mass between 1e-154 and 1e154 kg (its square finite and non-zero in double precision)",
-              "1e+308 kg/m^3 x 1 m^3 = 1e+308 kg");
+              "1e+150 kg/m^3 x 1e+09 m^3 = 1e+159 kg");
 }
 
-TEST(SemanticErrors, AVelocityWhoseSquareOverflows) {
+TEST(SemanticErrors, ANumberWhoseSquareOverflowsIsRefusedWhereverItIs) {
+  // Positions, velocities, gravity: their squares (kinetic energy,
+  // distances) must be finite, for a vector of three too.
   expectError(baseWith(R"("mass_kg": 1,)", R"("mass_kg": 1, "linear_velocity_m_per_s": [1e300, 0, 0],)"),
-              "/bodies/2/linear_velocity_m_per_s", "a velocity whose square is finite in double precision",
-              "[1e+300,0,0]");
+              "/bodies/2/linear_velocity_m_per_s/0", "a number of magnitude at most 1e153 (its square must be finite)",
+              "1e+300");
+  expectError(baseWith(R"("position_m": [0.5, -2, 0])", R"("position_m": [0.5, -2e154, 0])"),
+              "/bodies/2/position_m/1", "a number of magnitude at most 1e153 (its square must be finite)",
+              "-2e+154");
 }
 
 }  // namespace

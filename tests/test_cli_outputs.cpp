@@ -172,4 +172,23 @@ TEST_F(Cli, AnInterruptEndsTheFrameClosesEveryOutputAndExits128PlusTheSignal) {
   }
 }
 
+TEST_F(Cli, EveryShippedScenesCsvIsTheSameBytesFromTwoProcesses) {
+  int scenes = 0;
+  for (const auto& entry : fs::directory_iterator(REEVE_SCENES_DIR)) {
+    if (entry.path().extension() != ".json" || entry.path().filename() == "scene.schema.json") continue;
+    const std::string name = entry.path().stem().string();
+    std::string csv[2];
+    for (int run = 0; run < 2; ++run) {
+      const std::string file = path(name + std::to_string(run) + ".csv");
+      const Result r = reeve("run " + entry.path().string() + " --frames 20 --csv " + file);
+      ASSERT_EQ(r.code, 0) << name << ": " << r.err;
+      csv[run] = slurp(file);
+    }
+    EXPECT_FALSE(csv[0].empty()) << name;
+    EXPECT_TRUE(csv[0] == csv[1]) << name << ": the two runs differ";
+    ++scenes;
+  }
+  EXPECT_GE(scenes, 17);
+}
+
 }  // namespace

@@ -213,7 +213,14 @@ TEST_F(Cli, SolverMethodComesFromTheSceneUnlessOverridden) {
 
 TEST_F(Cli, UsageErrorsAndHelp) {
   EXPECT_EQ(reeve("run --frames -3").code, 64);
+  const Result zero = reeve("run --frames 0");
+  EXPECT_EQ(zero.code, 64);
+  EXPECT_NE(zero.err.find("--frames: Value 0 not in range 1 to 100000000"), std::string::npos) << zero.err;
+  EXPECT_EQ(reeve("run --substeps 100001").code, 64);  // the scene schema's range
   EXPECT_EQ(reeve("frobnicate").code, 64);
+  const Result run_help = reeve("run --help");
+  EXPECT_NE(run_help.out.find("=1280"), std::string::npos) << run_help.out;  // defaults shown
+  EXPECT_NE(run_help.out.find("Exit codes: 0 done; 1 the run failed"), std::string::npos) << run_help.out;
   const Result help = reeve("--help");
   EXPECT_EQ(help.code, 0);
   EXPECT_NE(help.out.find("run"), std::string::npos);

@@ -19,12 +19,13 @@ int main(int argc, char** argv) {
   reeve::RunOptions run;
   CLI::App* run_cmd = app.add_subcommand("run", "Simulate a scene; write PNG frames, an MP4 video and/or a CSV.");
   run_cmd->add_option("scene", run.scene, "Scene JSON file (default: the built-in Simple scene)");
-  run_cmd->add_option("--frames", run.frames, "Frames to simulate (default: the scene's duration)")
-      ->check(CLI::PositiveNumber);
-  run_cmd->add_option("--substeps", run.substeps, "Substeps per frame (overrides the scene)")
-      ->check(CLI::PositiveNumber);
-  run_cmd->add_option("--iterations", run.iterations, "Solver iterations per substep (overrides the scene)")
-      ->check(CLI::PositiveNumber);
+  // The same ranges as the scene schema's solver settings.
+  run_cmd->add_option("--frames", run.frames, "Frames to simulate, 1..100000000 (default: the scene's duration)")
+      ->check(CLI::Range(1, 100000000));
+  run_cmd->add_option("--substeps", run.substeps, "Substeps per frame, 1..100000 (default: the scene's)")
+      ->check(CLI::Range(1, 100000));
+  run_cmd->add_option("--iterations", run.iterations, "Solver iterations per substep, 1..100000 (default: the scene's)")
+      ->check(CLI::Range(1, 100000));
   run_cmd->add_option("--solver", run.solver,
                       "direct (joints and cables solved together) or gauss-seidel (the paper's); overrides the scene")
       ->check(CLI::IsMember({"direct", "gauss-seidel"}));
@@ -32,8 +33,12 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--video", run.video, "Write an H.264 MP4 video (needs the ffmpeg program)");
   run_cmd->add_option("--csv", run.csv, "Write time, body positions and cable tensions per frame");
   run_cmd->add_option("--events", run.events, "Write link switches, merges and splits as JSON lines");
-  run_cmd->add_option("--width", run.width, "Image width in pixels")->check(CLI::Range(16, 8192));
-  run_cmd->add_option("--height", run.height, "Image height in pixels")->check(CLI::Range(16, 8192));
+  run_cmd->add_option("--width", run.width, "Image width in pixels")->check(CLI::Range(16, 8192))->capture_default_str();
+  run_cmd->add_option("--height", run.height, "Image height in pixels")->check(CLI::Range(16, 8192))->capture_default_str();
+  run_cmd->footer(
+      "Exit codes: 0 done; 1 the run failed (I/O, a full disk, rendering, ffmpeg, a non-finite state); 2 the scene is\n"
+      "invalid; 3 an output exists (pass --force); 64 a bad command line or outputs that clash; 130 or 143 stopped by\n"
+      "SIGINT or SIGTERM after a whole frame, with every output closed.\n");
   run_cmd->add_flag("--force", run.force, "Overwrite existing output files");
 
   std::string validate_scene;

@@ -48,9 +48,9 @@ void refuseClashes(const RunOptions& o) {
     if (!path.empty()) files.push_back({option, path});
   for (std::size_t i = 0; i < files.size(); ++i)
     for (std::size_t j = i + 1; j < files.size(); ++j) {
-      std::error_code ec;
-      const bool same = fs::weakly_canonical(files[i].second, ec) == fs::weakly_canonical(files[j].second, ec) ||
-                        fs::equivalent(files[i].second, files[j].second, ec);
+      std::error_code ec_i, ec_j, ec;
+      const fs::path a = fs::weakly_canonical(files[i].second, ec_i), b = fs::weakly_canonical(files[j].second, ec_j);
+      const bool same = (!ec_i && !ec_j && a == b) || fs::equivalent(files[i].second, files[j].second, ec);
       if (same && !isStream(files[j].second))
         throw OutputClash(files[j].first + " " + files[j].second.string() + " is the same file as " +
                           files[i].first + (i == 0 && !o.scene.empty() ? "" : " " + files[i].second.string()) +

@@ -36,8 +36,13 @@ fs::path temporarySibling(const fs::path& path) {
 }
 
 void moveIntoPlace(const fs::path& from, const fs::path& to, bool replace) {
-  // link() refuses an existing target where rename() would replace it.
-  const int failed = replace ? std::rename(from.c_str(), to.c_str()) : ::link(from.c_str(), to.c_str());
+  // link() refuses an existing target where rename() would replace it. A
+  // file system without hard links (vfat) gets a check, then rename().
+  int failed = replace ? std::rename(from.c_str(), to.c_str()) : ::link(from.c_str(), to.c_str());
+  if (failed != 0 && !replace && errno != EEXIST && !fs::exists(to)) {
+    failed = std::rename(from.c_str(), to.c_str());
+    if (failed == 0) return;
+  }
   if (failed != 0) {
     const int error = errno;
     throw std::runtime_error(to.string() + ": cannot write: " +

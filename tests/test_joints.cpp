@@ -573,7 +573,9 @@ TEST(FixedJoint, TwoWeldedBodiesFallAndTumbleAsOne) {
     const BodyState &a = world.body(lower), &b = world.body(upper);
     return std::pair(b.toLocal(a.x), Quat(b.q.conjugate() * a.q));
   };
-  const auto [x0, q0] = relative();
+  const auto start = relative();  // not a structured binding: clang 14 cannot capture one
+  const Vec3 x0 = start.first;
+  const Quat q0 = start.second;
   double drift = 0.0, turn = 0.0;
   run(world, 2.0, 1.0 / 60.0, [&](double) {
     const auto [x, q] = relative();

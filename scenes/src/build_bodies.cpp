@@ -118,8 +118,8 @@ BodyNames addBodies(const nlohmann::json& bodies, World& world, const std::strin
       // products of them) stay finite and non-zero in double precision
       // (every number in the file is at most 1e153: magnitudes.h):
       // half extents of 1e-200 m have volume 0, a radius of 1e-300 m an
-      // inertia of 0, a density of 1e308 a mass past 1e154 kg. The engine
-      // would refuse some with no JSON path, miss the others.
+      // inertia of 0, 1e150 kg/m^3 over a 1000 m box a mass of 1e159 kg.
+      // The engine would refuse some with no JSON path, miss the others.
       const double volume_m3 = volume(def.shape);
       const double m = has_mass ? def.mass : def.density * volume_m3;
       const auto representable = [](double x) { return x * x > 0.0 && x * x < kHuge; };

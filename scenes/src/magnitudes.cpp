@@ -9,7 +9,7 @@ namespace reeve::scene_detail {
 namespace {
 
 void walk(const nlohmann::json& value, const std::string& pointer, const std::string& source) {
-  if (value.is_number_float() || value.is_number_integer()) {
+  if (value.is_number()) {
     if (std::abs(value.get<double>()) > kMaxSceneMagnitude)
       throw SceneError(source, pointer, "a number of magnitude at most 1e153 (its square must be finite)",
                        literal(value));

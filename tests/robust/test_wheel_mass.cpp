@@ -144,7 +144,8 @@ TEST(WheelMass, TensionsStayResolvedAtTenThousandSubstepsAFrame) {
   // substep's gravity moves the boxes 3e-11 m, under a fixed 1e-10 m
   // tolerance, and the solve once stopped before it started (no tension,
   // or 17 times it when the drift caught up). Every frame's tensions meet
-  // the closed form.
+  // the closed form to 1e-3: the tolerance resolves 4e-5 N per kg, 4e-3 N
+  // of the heavy side's 29 N (1.4e-4) at worst.
   AtwoodSpec spec;
   spec.light_kg = 1.0;
   spec.heavy_kg = 100.0;
@@ -153,8 +154,8 @@ TEST(WheelMass, TensionsStayResolvedAtTenThousandSubstepsAFrame) {
   const auto want = machines::atwoodMotion(spec.light_kg, spec.heavy_kg, spec.wheel_kg, spec.gravity);
   for (int f = 0; f < 3; ++f) {
     m.scene.world->step(1.0 / 60.0);
-    EXPECT_NEAR(m.scene.cables->tension(m.cable, 0), want.tension_light, 1e-4 * want.tension_light) << f;
-    EXPECT_NEAR(m.scene.cables->tension(m.cable, 1), want.tension_heavy, 1e-4 * want.tension_heavy) << f;
+    EXPECT_NEAR(m.scene.cables->tension(m.cable, 0), want.tension_light, 1e-3 * want.tension_light) << f;
+    EXPECT_NEAR(m.scene.cables->tension(m.cable, 1), want.tension_heavy, 1e-3 * want.tension_heavy) << f;
   }
 }
 

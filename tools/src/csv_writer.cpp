@@ -15,11 +15,13 @@ std::string csvField(const std::string& field) {
 
 namespace {
 
-// Appends ",value" (or "value" first), refusing what is not finite.
-void append(std::string& row, double value, double time_s, const std::string& what) {
+// Appends ",value" (or "value" first), refusing what is not finite; `what`
+// names the value, built only then (no allocation per value and frame).
+template <class What>
+void append(std::string& row, double value, double time_s, const What& what) {
   if (!std::isfinite(value))
     throw std::runtime_error("the simulation became non-finite at t = " + std::to_string(time_s) + " s: " +
-                             what + " is " + std::to_string(value) +
+                             what() + " is " + std::to_string(value) +
                              "; no row of that frame was written. Try more substeps or iterations");
   char text[32];
   std::snprintf(text, sizeof text, "%.10g", value == 0.0 ? 0.0 : value);  // never "-0"
@@ -33,7 +35,10 @@ CsvWriter::CsvWriter(const std::filesystem::path& path, bool replace, const Cabl
     : out_(path, replace), cables_(cables) {
   const World& world = cables.world();
   std::string header = "time_s";
-  const auto add = [&](const std::string& name) { header += "," + csvField(name); };
+  const auto add = [&](const std::string& name) {
+    header += ',';
+    header += csvField(name);
+  };
   for (BodyId b = 0; b < world.bodyCount(); ++b) {
     if (world.bodyDef(b).is_static) continue;
     const std::string& n = world.bodyDef(b).name;
@@ -53,22 +58,26 @@ void CsvWriter::writeRow() {
   const World& world = cables_.world();
   const double t = world.time();
   std::string row;
-  append(row, t, t, "the time");
+  append(row, t, t, [] { return std::string("the time"); });
   for (BodyId b = 0; b < world.bodyCount(); ++b) {
     if (world.bodyDef(b).is_static) continue;
     const Vec3& x = world.body(b).x;
-    for (int i = 0; i < 3; ++i) append(row, x[i], t, "body '" + world.bodyDef(b).name + "' position");
+    for (int i = 0; i < 3; ++i)
+      append(row, x[i], t, [&] { return "body '" + world.bodyDef(b).name + "' position"; });
   }
   for (int c = 0; c < static_cast<int>(cables_.cables().size()); ++c) {
     const Cable& cable = cables_.cables()[c];
     for (int j = 0; j < static_cast<int>(cable.joints.size()); ++j) {
-      const std::string joint = "cable '" + cable.name + "' joint " + std::to_string(j);
-      append(row, cables_.tension(c, j), t, joint + " tension");
-      append(row, cables_.restLength(c, j), t, joint + " rest length");
-      append(row, cables_.length(c, j), t, joint + " length");
+      const auto joint = [&](const char* quantity) {
+        return [&cable, j, quantity] { return "cable '" + cable.name + "' joint " + std::to_string(j) + quantity; };
+      };
+      append(row, cables_.tension(c, j), t, joint(" tension"));
+      append(row, cables_.restLength(c, j), t, joint(" rest length"));
+      append(row, cables_.length(c, j), t, joint(" length"));
     }
     for (std::size_t k = 0; k < cable.links.size(); ++k)
-      append(row, cable.links[k].stored, t, "cable '" + cable.name + "' link " + std::to_string(k) + " stored cable");
+      append(row, cable.links[k].stored, t,
+             [&] { return "cable '" + cable.name + "' link " + std::to_string(k) + " stored cable"; });
   }
   out_.write(row + "\n");
 }

@@ -22,7 +22,6 @@ class CsvWriter {
   /// Appends the current state. Throws std::runtime_error naming the
   /// quantity if any number is not finite, before writing any of the row.
   void writeRow();
-  void flush() { out_.flush(); }
   void close() { out_.close(); }
   void commit() { out_.commit(); }
 

@@ -15,7 +15,6 @@ class EventLog {
   EventLog(const std::filesystem::path& path, bool replace);
   /// Writes and clears the events the cable system gathered.
   void drain(CableSystem& cables);
-  void flush() { out_.flush(); }
   void close() { out_.close(); }
   void commit() { out_.commit(); }
 

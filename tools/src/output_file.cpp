@@ -58,7 +58,7 @@ OutputFile::OutputFile(fs::path path, bool replace) : path_(std::move(path)), re
   if (in_place_) {
     writing_ = path_;
     file_ = std::fopen(path_.c_str(), "wb");
-    if (!file_) fail("cannot write");
+    if (!file_) fail();
     return;
   }
   int fd = -1;
@@ -67,17 +67,14 @@ OutputFile::OutputFile(fs::path path, bool replace) : path_(std::move(path)), re
     fd = ::open(writing_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);  // umask applies
     if (fd < 0 && errno != EEXIST) break;
   }
-  if (fd < 0) {
-    writing_ = path_;  // name what the user asked for
-    fail("cannot write");
-  }
+  if (fd < 0) fail();
   file_ = ::fdopen(fd, "wb");
   if (!file_) {
     const int error = errno;
     ::close(fd);
     ::unlink(writing_.c_str());
     errno = error;
-    fail("cannot write");
+    fail();
   }
 }
 
@@ -86,25 +83,21 @@ OutputFile::~OutputFile() {
   if (!in_place_ && !writing_.empty() && writing_ != path_) ::unlink(writing_.c_str());
 }
 
-void OutputFile::fail(const char* what) const {
-  throw std::runtime_error(path_.string() + ": " + what + ": " + std::strerror(errno));
+void OutputFile::fail() const {
+  throw std::runtime_error(path_.string() + ": cannot write: " + std::strerror(errno));
 }
 
 void OutputFile::write(std::string_view text) {
   if (!file_) throw std::logic_error(path_.string() + ": written after commit()");
-  if (std::fwrite(text.data(), 1, text.size(), file_) != text.size()) fail("cannot write");
-}
-
-void OutputFile::flush() {
-  if (file_ && std::fflush(file_) != 0) fail("cannot write");
+  if (std::fwrite(text.data(), 1, text.size(), file_) != text.size()) fail();
 }
 
 void OutputFile::close() {
   if (!file_) return;
-  flush();
+  const bool flushed = std::fflush(file_) == 0;
   std::FILE* f = file_;
   file_ = nullptr;
-  if (std::fclose(f) != 0) fail("cannot write");
+  if (std::fclose(f) != 0 || !flushed) fail();
 }
 
 void OutputFile::commit() {

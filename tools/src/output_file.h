@@ -25,19 +25,15 @@ class OutputFile {
   OutputFile& operator=(const OutputFile&) = delete;
 
   void write(std::string_view text);
-  /// Pushes what was written to the file.
-  void flush();
   /// Closes the file, checking that everything reached it.
   void close();
   /// Moves the closed file onto `path`. Close every output of a run before
   /// committing any, so that a failing one leaves none in place.
   void commit();
 
-  /// Where the bytes go until commit(): the temporary name, or `path`.
-  const std::filesystem::path& writingTo() const { return writing_; }
-
  private:
-  [[noreturn]] void fail(const char* what) const;
+  /// Throws "PATH: cannot write: strerror(errno)".
+  [[noreturn]] void fail() const;
 
   std::filesystem::path path_, writing_;
   bool replace_ = false, in_place_ = false;

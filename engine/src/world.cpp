@@ -372,6 +372,7 @@ void World::step(double dt) {
   for (int s = 0; s < settings_.substeps; ++s) {
     releaseDrives(h);
     integrate(h);
+    if (!non_finite_) checkFinite(time_ + h, false, h);  // born before any constraint spreads it
     for (auto& hook : hooks_) hook(*this, h);
     const bool contacts = hasContacts();
     if (contacts) findContacts();
@@ -392,6 +393,7 @@ void World::step(double dt) {
     }
     if (settings_.solver == SolverKind::Direct) rotorWrenches(h);
     limitSpeeds();  // last, so no later pass can push past the guard
+    if (!non_finite_) checkFinite(time_ + h, true, h);
     time_ += h;
   }
   last_h_ = h;
@@ -516,6 +518,35 @@ void World::limitSpeeds() {
     if (const double v = b.v.norm(); v > settings_.max_linear_speed) b.v *= settings_.max_linear_speed / v;
     if (const double w = b.omega.norm(); w > settings_.max_angular_speed) b.omega *= settings_.max_angular_speed / w;
   }
+}
+
+const char* quantityName(NonFiniteState::Quantity quantity) {
+  switch (quantity) {
+    case NonFiniteState::Quantity::Position: return "position";
+    case NonFiniteState::Quantity::Orientation: return "orientation";
+    case NonFiniteState::Quantity::Velocity: return "velocity";
+    case NonFiniteState::Quantity::AngularVelocity: return "angular velocity";
+    case NonFiniteState::Quantity::Tension: return "tension";
+  }
+  return "?";
+}
+
+void World::checkFinite(double end_s, bool tensions, double h) {
+  using Q = NonFiniteState::Quantity;
+  for (BodyId id = 0; id < bodyCount(); ++id) {
+    const BodyState& b = bodies_[id];
+    const auto found = [&](Q quantity) { non_finite_ = NonFiniteState{id, kWorldBody, quantity, end_s}; };
+    if (!b.x.allFinite()) return found(Q::Position);
+    if (!b.q.coeffs().allFinite()) return found(Q::Orientation);
+    if (!b.v.allFinite()) return found(Q::Velocity);
+    if (!b.omega.allFinite()) return found(Q::AngularVelocity);
+  }
+  if (!tensions) return;
+  for (const DistanceConstraint& d : distances_)
+    if (!std::isfinite(d.lambda / (h * h))) {
+      non_finite_ = NonFiniteState{d.a, d.b, Q::Tension, end_s};
+      return;
+    }
 }
 
 std::optional<BodyId> World::firstNonFiniteBody() const {

@@ -68,6 +68,18 @@ using PathId = int;
 
 class DirectSolver;
 
+/// The first non-finite value a World produced (World::firstNonFinite).
+struct NonFiniteState {
+  enum class Quantity { Position, Orientation, Velocity, AngularVelocity, Tension };
+  BodyId body = 0;  ///< the body; for Tension, body a of the distance constraint
+  BodyId other = kWorldBody;  ///< for Tension, body b of the constraint
+  Quantity quantity = Quantity::Position;
+  double time_s = 0.0;  ///< simulated time at the end of that substep, s
+};
+/// "position", "orientation", "velocity", "angular velocity", "tension".
+const char* quantityName(NonFiniteState::Quantity quantity);
+
+
 class World {
  public:
   /// Called once per substep after integration and before the position
@@ -147,9 +159,15 @@ class World {
   /// BodyState has zero inverse mass, this its real mass.
   double bodyMass(BodyId id) const { return id == kWorldBody ? 0.0 : mass_[id]; }
   /// The first body whose position, orientation or velocity is not
-  /// finite, if any: check after step(), which never throws, to stop a run
-  /// with the body's name instead of writing NaN frames.
+  /// finite now, if any (lowest index first).
   std::optional<BodyId> firstNonFiniteBody() const;
+  /// What became non-finite first since the World was made, if anything:
+  /// step() checks every body after integrating and after solving each
+  /// substep, and every distance constraint's tension after each substep,
+  /// so a non-finite value is caught in the substep it is born, before it
+  /// spreads through the constraints. step() never throws: check this
+  /// after it to stop a run naming the body and quantity.
+  const std::optional<NonFiniteState>& firstNonFinite() const { return non_finite_; }
   /// Body named `name`, if any.
   std::optional<BodyId> findBody(const std::string& name) const;
 
@@ -241,6 +259,9 @@ class World {
   void solvePositions(double h);
   void updateVelocities(double h);
   void limitSpeeds();
+  // Records the first non-finite body state (and, with `tensions`, distance
+  // constraint tension) at the end of the substep ending at `end_s`.
+  void checkFinite(double end_s, bool tensions, double h);
   /// Broad phase (sort and sweep of bounding spheres along x over the
   /// colliding bodies) and narrow phase (collide.h) into contacts_.
   void findContacts();
@@ -263,6 +284,7 @@ class World {
   std::vector<ContactManifold> manifolds_;  // ranges of contacts_, one per touching pair
   double time_ = 0.0;
   double last_h_ = 0.0;
+  std::optional<NonFiniteState> non_finite_;
   int last_iterations_ = 0;
   std::vector<double> mass_;  // kg per body, 0 when static
   std::unique_ptr<DirectSolver> direct_;

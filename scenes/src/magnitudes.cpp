@@ -1,6 +1,7 @@
 #include "magnitudes.h"
 
 #include <cmath>
+#include <cstdint>
 
 #include "describe.h"
 #include "reeve/scene/scene.h"
@@ -21,6 +22,15 @@ void walk(const nlohmann::json& value, const std::string& pointer, const std::st
 }
 
 }  // namespace
+
+void integralNumbersAsIntegers(nlohmann::json& document) {
+  if (document.is_number_float()) {
+    const double x = document.get<double>();
+    if (std::trunc(x) == x && std::abs(x) <= 9007199254740992.0) document = static_cast<std::int64_t>(x);
+  } else if (document.is_structured()) {
+    for (nlohmann::json& item : document) integralNumbersAsIntegers(item);
+  }
+}
 
 void refuseHugeNumbers(const nlohmann::json& document, const std::string& source) { walk(document, "", source); }
 

@@ -7,7 +7,8 @@
 namespace reeve {
 
 Scene parseScene(const std::string& json_text, const std::string& source_name) {
-  const nlohmann::json document = scene_detail::parseJson(json_text, source_name);
+  nlohmann::json document = scene_detail::parseJson(json_text, source_name);
+  scene_detail::integralNumbersAsIntegers(document);
   scene_detail::validateSceneSchema(document, source_name);
   scene_detail::refuseHugeNumbers(document, source_name);
   return scene_detail::buildScene(document, source_name);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "describe.h"
+#include "reeve/engine/fp_exceptions.h"
 #include "reeve/scene/scene.h"
 
 namespace reeve::scene_detail {
@@ -130,6 +131,7 @@ SceneError syntaxError(const std::string& text, std::size_t position, const std:
 
 nlohmann::json parseJson(const std::string& text, const std::string& source) {
   DocumentBuilder builder;
+  const FloatingPointExceptionsMasked overflow_is_tested;  // strtod overflows on 1e999, an error below
   if (json::sax_parse(text, &builder, json::input_format_t::json, true, false))
     return std::move(builder.document());
   if (builder.repeatedKey())

@@ -101,6 +101,16 @@ TEST(SchemaErrors, ZeroSubsteps) {
               "an integer >= 1 and <= 100000", "0");
 }
 
+// JSON Schema counts 10.0 as an integer (draft 6 on); 10.5 is not one.
+TEST(SchemaErrors, IntegerSettingsAcceptAWholeNumberWithAFraction) {
+  const Scene s = parseScene(baseWith(R"("solver": {})", R"("solver": {"substeps": 10.0, "iterations": 3e0})"),
+                             "test.json");
+  EXPECT_EQ(s.world->settings().substeps, 10);
+  EXPECT_EQ(s.world->settings().iterations, 3);
+  expectError(baseWith(R"("solver": {})", R"("solver": {"substeps": 10.5})"), "/solver/substeps",
+              "an integer", "10.5");
+}
+
 TEST(SchemaErrors, FieldOfViewOutOfRange) {
   expectError(
       baseWith(

@@ -8,7 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
+#include <iterator>
 #include <string>
 
 namespace test {
@@ -20,21 +20,24 @@ struct Result {
   std::string out, err;
 };
 
+// The whole of a file (empty if it cannot be read).
+inline std::string slurp(const std::string& file) {
+  std::ifstream f(file);
+  return {std::istreambuf_iterator<char>(f), {}};
+}
+
 // Runs `reeve ARGS` through the shell with stdout and stderr captured in
-// files named after the running test, so tests may run in parallel.
+// files named after the running test, so tests may run in parallel; with
+// floating-point traps on (REEVE_TRAP_FP=1, unless `env` sets it), as in
+// fp_main.cpp.
 inline Result reeve(const std::string& args, const std::string& env = "") {
   const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
   const fs::path dir = fs::temp_directory_path();
   const std::string out = (dir / ("reeve_cli_out_" + test + ".txt")).string();
   const std::string err = (dir / ("reeve_cli_err_" + test + ".txt")).string();
-  const std::string cmd = env + " " REEVE_BINARY " " + args + " >" + out + " 2>" + err;
+  const std::string traps = env.find("REEVE_TRAP_FP") == std::string::npos ? " REEVE_TRAP_FP=1 " : " ";
+  const std::string cmd = env + traps + REEVE_BINARY " " + args + " >" + out + " 2>" + err;
   const int status = std::system(cmd.c_str());
-  const auto slurp = [](const std::string& p) {
-    std::ifstream f(p);
-    std::stringstream s;
-    s << f.rdbuf();
-    return s.str();
-  };
   Result r{WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
   fs::remove(out);
   fs::remove(err);

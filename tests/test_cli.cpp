@@ -76,10 +76,13 @@ TEST_F(Cli, RunOfTheDefaultSceneWritesFramesAndCsv) {
     EXPECT_NE(std::find(cols.begin(), cols.end(), col), cols.end()) << col;
   int rows = 0;
   while (std::getline(csv, line)) {
+    if (rows == 0) {
+      EXPECT_EQ(split(line)[0], "0") << "the first row is the scene as loaded";
+    }
     ++rows;
     EXPECT_EQ(split(line).size(), cols.size());
   }
-  EXPECT_EQ(rows, 3);
+  EXPECT_EQ(rows, 1 + 3) << "t = 0 and a row per frame";
 }
 
 TEST_F(Cli, EventsAreLoggedAsJsonLinesAndStoredCableIsInTheCsv) {
@@ -166,6 +169,25 @@ TEST_F(Cli, BadScenesExitWithCode2AndNameFilePathExpectedAndFound) {
     EXPECT_EQ(v.err, run.err);
     EXPECT_NE(v.err.find(std::string(name) + ": /bodies/0/"), std::string::npos) << v.err;
   }
+}
+
+TEST_F(Cli, AStateThatBecomesNonFiniteStopsTheRunNamingTheBodyAndQuantity) {
+  // The Simple scene at one frame per 1e100 s: within every limit, but its
+  // first substep (1e99 s) flings the boxes 1e199 m and the cable spins the
+  // wheels past what a double holds. (Traps off: with them the program
+  // stops at the overflow itself, which is what REEVE_TRAP_FP is for.)
+  std::string scene = test::slurp(std::string(REEVE_SCENES_DIR) + "/simple.json");
+  const auto set = [&](const std::string& from, const std::string& to) { scene.replace(scene.find(from), from.size(), to); };
+  set(R"("frame_rate_hz": 60)", R"("frame_rate_hz": 1e-100)");
+  set(R"("duration_s": 5.0)", R"("duration_s": 1e102)");
+  const Result r = reeve("run " + write("slow.json", scene) + " --csv " + path("out.csv"), "REEVE_TRAP_FP=0");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("reeve: the simulation became non-finite at t = "), std::string::npos) << r.err;
+  const std::regex named("at t = [0-9.e+]+ s: (body '(wheel_left|wheel_right|left_top|left_bottom|right)' "
+                         "(position|orientation|velocity|angular velocity)|the tension between '[a-z_]+' and "
+                         "'[a-z_]+'); nothing of that frame was written");
+  EXPECT_TRUE(std::regex_search(r.err, named)) << r.err;
+  EXPECT_FALSE(fs::exists(path("out.csv")));
 }
 
 TEST_F(Cli, AStoneFlungFasterThanADoubleCanSquareIsRefusedAtLoad) {

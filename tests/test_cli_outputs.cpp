@@ -19,14 +19,10 @@ namespace fs = std::filesystem;
 using test::Cli;
 using test::reeve;
 using test::Result;
+using test::slurp;
 
 const std::string kAtwood = std::string(REEVE_SCENES_DIR) + "/atwood.json";
 const std::string kMergeSplit = std::string(REEVE_SCENES_DIR) + "/merge_split.json";  // has events
-
-std::string slurp(const std::string& file) {
-  std::ifstream f(file);
-  return {std::istreambuf_iterator<char>(f), {}};
-}
 
 std::vector<std::string> listing(const fs::path& dir) {
   std::vector<std::string> names;
@@ -74,15 +70,30 @@ TEST_F(Cli, AFullDiskIsAnErrorNamingTheFile) {
 }
 
 TEST_F(Cli, ARunThatFailsLeavesNothingNewAndAReRunSucceeds) {
-  // The events fail (a full disk) after the CSV has had rows: neither the
-  // CSV nor a temporary file is left, so the corrected run is not refused.
+  // The events fail (a full disk) after the CSV has had rows and every PNG
+  // frame is drawn: neither the CSV nor a frame nor the frames' folder nor
+  // a temporary file is left, so the corrected run is not refused.
   const std::string csv = path("run.csv");
-  const Result failed = reeve("run " + kMergeSplit + " --csv " + csv + " --events /dev/full");
+  const Result failed = reeve("run " + kMergeSplit + " --csv " + csv + " --events /dev/full --png " +
+                              path("frames") + " --width 32 --height 24");
   EXPECT_EQ(failed.code, 1) << failed.err;
   EXPECT_TRUE(listing(dir_).empty()) << listing(dir_).front();
   const Result ok = reeve("run " + kMergeSplit + " --csv " + csv + " --events " + path("events.jsonl"));
   EXPECT_EQ(ok.code, 0) << ok.err;
   EXPECT_EQ(listing(dir_), (std::vector<std::string>{"events.jsonl", "run.csv"}));
+}
+
+TEST_F(Cli, ForceWithFewerFramesLeavesNoOlderFrameBehind) {
+  const std::string run = "run " + kAtwood + " --width 32 --height 24 --png " + path("frames");
+  ASSERT_EQ(reeve(run + " --frames 5").code, 0);
+  write("frames/notes.txt", "mine\n");
+  write("frames/frame_12.png", "not a frame of reeve's numbering\n");
+  const Result again = reeve(run + " --frames 2");
+  EXPECT_EQ(again.code, 3) << "frames 0 and 1 exist";
+  const Result forced = reeve(run + " --frames 2 --force");
+  ASSERT_EQ(forced.code, 0) << forced.err;
+  EXPECT_EQ(listing(fs::path(path("frames"))),
+            (std::vector<std::string>{"frame_00000.png", "frame_00001.png", "frame_12.png", "notes.txt"}));
 }
 
 TEST_F(Cli, OutputsThatClashAreRefusedEvenWithForce) {
@@ -132,7 +143,7 @@ TEST_F(Cli, BodyNamesWithCommasQuotesAndLineBreaksAreQuotedInTheCsvHeader) {
     for (const std::string& cell : row) EXPECT_NE(cell, "-0");
     ++rows;
   }
-  EXPECT_EQ(rows, 3);
+  EXPECT_EQ(rows, 1 + 3);
 }
 
 TEST_F(Cli, AnInterruptEndsTheFrameClosesEveryOutputAndExits128PlusTheSignal) {
@@ -146,7 +157,7 @@ TEST_F(Cli, AnInterruptEndsTheFrameClosesEveryOutputAndExits128PlusTheSignal) {
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     const std::string script =
-        "set -m; cd " + dir_.string() + " && { " REEVE_BINARY " run " REEVE_SCENES_DIR
+        "set -m; cd " + dir_.string() + " && { REEVE_TRAP_FP=1 " REEVE_BINARY " run " REEVE_SCENES_DIR
         "/merge_split.json --frames 10000000 --width 64 --height 48 --csv c.csv --events e.jsonl --video v.mp4"
         " >out.txt 2>err.txt & }; pid=$!; sleep 1.5; kill -" + std::string(signal) +
         " $pid; for i in $(seq 300); do kill -0 $pid 2>/dev/null || break; sleep 0.1; done;"
@@ -159,7 +170,7 @@ TEST_F(Cli, AnInterruptEndsTheFrameClosesEveryOutputAndExits128PlusTheSignal) {
     const int done = std::stoi(err.substr(at + 14));
     EXPECT_GT(done, 0);
     const std::string csv = slurp(path("c.csv"));
-    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), done + 1) << "a header and a row per frame";
+    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), done + 2) << "a header, t = 0 and a row per frame";
     EXPECT_EQ(csv.back(), '\n');
     EXPECT_TRUE(fs::exists(path("e.jsonl")));
     const std::string probe = "ffprobe -v error -count_frames -select_streams v:0 -show_entries "

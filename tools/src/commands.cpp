@@ -14,6 +14,7 @@
 
 #include "csv_writer.h"
 #include "event_log.h"
+#include "frame_folder.h"
 #include "interrupt.h"
 #include "output_file.h"
 #include "progress.h"
@@ -58,10 +59,15 @@ void refuseClashes(const RunOptions& o) {
     }
 }
 
-fs::path framePath(const fs::path& dir, int frame) {
-  char name[32];
-  std::snprintf(name, sizeof name, "frame_%05d.png", frame);
-  return dir / name;
+std::string bodyName(const World& world, BodyId id) {
+  return id == kWorldBody ? std::string("the world") : "'" + world.bodyDef(id).name + "'";
+}
+
+// "body 'load' velocity", "tension between 'wheel' and 'load'".
+std::string describe(const NonFiniteState& bad, const World& world) {
+  if (bad.quantity == NonFiniteState::Quantity::Tension)
+    return "the tension between " + bodyName(world, bad.body) + " and " + bodyName(world, bad.other);
+  return "body " + bodyName(world, bad.body) + " " + quantityName(bad.quantity);
 }
 
 // Checks every output before simulating, so nothing is half-written when
@@ -81,7 +87,7 @@ void checkOutputs(const RunOptions& o, int frames) {
   if (!o.png_dir.empty()) {
     if (fs::exists(o.png_dir) && !fs::is_directory(o.png_dir))
       throw std::runtime_error(o.png_dir.string() + ": exists and is not a folder");
-    for (int f = 0; f < frames; ++f) refuseOverwrite(framePath(o.png_dir, f), o.force);
+    for (int f = 0; f < frames; ++f) refuseOverwrite(o.png_dir / frameName(f), o.force);
   }
 }
 
@@ -131,7 +137,8 @@ int simulate(const RunOptions& o) {
     renderer = std::make_unique<Renderer>(o.width, o.height);
     camera = sceneCamera(scene, static_cast<double>(o.width) / o.height);
   }
-  if (!o.png_dir.empty()) fs::create_directories(o.png_dir);
+  std::unique_ptr<FrameFolder> pngs;
+  if (!o.png_dir.empty()) pngs = std::make_unique<FrameFolder>(o.png_dir, o.force);
   if (!o.video.empty()) {
     createParent(o.video);
     video_file.path = temporarySibling(o.video);
@@ -143,21 +150,19 @@ int simulate(const RunOptions& o) {
   const InterruptGuard interrupt;
   int done = 0;  // frames written
   ProgressBar progress(frames);
+  if (csv) csv->writeRow();  // t = 0: the scene as loaded
   for (int f = 0; f < frames && !interrupt.received(); ++f) {
     const auto t0 = std::chrono::steady_clock::now();
     scene.world->step(dt);
     physics_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (const auto bad = scene.world->firstNonFiniteBody())
-      throw std::runtime_error("the simulation became non-finite at t = " +
-                               std::to_string(scene.world->time()) + " s in body '" +
-                               scene.world->bodyDef(*bad).name +
-                               "'; no frame of it was written. Try more substeps or iterations");
+    if (const auto& bad = scene.world->firstNonFinite())
+      throw std::runtime_error(nonFiniteMessage(bad->time_s, describe(*bad, *scene.world)));
     if (csv) csv->writeRow();
     if (events) events->drain(*scene.cables);
     else scene.cables->takeEvents();  // nobody asked: do not let them pile up
     if (draw) {
       const Image image = renderer->render(*scene.world, *scene.cables, camera);
-      if (!o.png_dir.empty()) writePng(framePath(o.png_dir, f), image);
+      if (pngs) pngs->write(f, image);
       if (video) video->add(image);
     }
     progress.update(f + 1);
@@ -174,6 +179,7 @@ int simulate(const RunOptions& o) {
   }
   if (csv) csv->commit();
   if (events) events->commit();
+  if (pngs) pngs->commit();
 
   const int signal = interrupt.received();
   if (signal)
@@ -183,9 +189,8 @@ int simulate(const RunOptions& o) {
               done, scene.name.c_str(), done * dt, scene.world->settings().substeps,
               scene.world->settings().iterations, solverMethodName(scene.world->settings().solver),
               1e3 * physics_s / std::max(done, 1));
-  if (!o.png_dir.empty() && done > 0)
-    std::printf("  PNG frames: %s .. %s\n", framePath(o.png_dir, 0).c_str(),
-                framePath(o.png_dir, done - 1).filename().c_str());
+  if (pngs && done > 0)
+    std::printf("  PNG frames: %s .. %s\n", pngs->framePath(0).c_str(), frameName(done - 1).c_str());
   if (!o.video.empty()) std::printf("  video:      %s\n", o.video.c_str());
   if (!o.csv.empty()) std::printf("  CSV:        %s\n", o.csv.c_str());
   if (!o.events.empty()) std::printf("  events:     %s\n", o.events.c_str());

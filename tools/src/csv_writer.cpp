@@ -13,6 +13,13 @@ std::string csvField(const std::string& field) {
   return quoted + "\"";
 }
 
+std::string nonFiniteMessage(double time_s, const std::string& what) {
+  char t[32];
+  std::snprintf(t, sizeof t, "%.9g", time_s);
+  return std::string("the simulation became non-finite at t = ") + t + " s: " + what +
+         "; nothing of that frame was written. Try more substeps or iterations";
+}
+
 namespace {
 
 // Appends ",value" (or "value" first), refusing what is not finite; `what`
@@ -20,9 +27,7 @@ namespace {
 template <class What>
 void append(std::string& row, double value, double time_s, const What& what) {
   if (!std::isfinite(value))
-    throw std::runtime_error("the simulation became non-finite at t = " + std::to_string(time_s) + " s: " +
-                             what() + " is " + std::to_string(value) +
-                             "; no row of that frame was written. Try more substeps or iterations");
+    throw std::runtime_error(nonFiniteMessage(time_s, what() + " is " + std::to_string(value)));
   char text[32];
   std::snprintf(text, sizeof text, "%.10g", value == 0.0 ? 0.0 : value);  // never "-0"
   if (!row.empty()) row += ',';

@@ -9,7 +9,12 @@
 
 namespace reeve {
 
-/// Writes a header, then one row per frame: time_s; for each dynamic body
+/// "the simulation became non-finite at t = TIME s: WHAT; nothing of that
+/// frame was written. ...": the run's guard and the CSV's own check.
+std::string nonFiniteMessage(double time_s, const std::string& what);
+
+/// Writes a header, then a row per writeRow() (reeve run: t = 0, then one
+/// per frame): time_s; for each dynamic body
 /// B: B.x_m, B.y_m, B.z_m; for each cable C, each joint j (0-based):
 /// C.j.tension_N, C.j.rest_length_m, C.j.length_m (0 while the joint is
 /// merged away), then each link k: C.link<k>.stored_m. Header fields are

@@ -2,7 +2,11 @@
 // or segment one, or measure speed and accuracy (bench).
 #include <CLI/CLI.hpp>
 
+#include <fenv.h>
+
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <iostream>
 
 #include "bench_command.h"
@@ -12,6 +16,11 @@
 #include "reeve/scene/scene.h"
 
 int main(int argc, char** argv) {
+  // REEVE_TRAP_FP=1: an invalid operation, a division by zero or an overflow
+  // stops the program (SIGFPE) where it happens, as in the tests, which run
+  // every reeve so (README, "Hardening").
+  if (const char* trap = std::getenv("REEVE_TRAP_FP"); trap && std::strcmp(trap, "1") == 0)
+    feenableexcept(FE_INVALID | FE_DIVBYZERO | FE_OVERFLOW);
   CLI::App app{"Reeve: cable-driven machines simulated with XPBD cable joints (Müller et al. 2018)."};
   app.set_version_flag("--version", std::string("reeve ") + REEVE_VERSION);
   app.require_subcommand(1);

@@ -19,7 +19,7 @@ constexpr int kCentringPasses = 3;
 }  // namespace
 
 Camera frameScene(const World& world, const CableSystem& cables, double aspect) {
-  if (!(aspect > 0.0))
+  if (std::isnan(aspect) || aspect <= 0.0)  // a quiet test: `aspect > 0` on NaN raises "invalid"
     throw std::invalid_argument("frameScene: aspect ratio must be > 0, got " +
                                 std::to_string(aspect));
   const std::vector<Vec3> points = scenePoints(world, cables);

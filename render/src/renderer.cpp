@@ -9,6 +9,7 @@
 #include <GL/osmesa.h>
 
 #include "draw.h"
+#include "reeve/engine/fp_exceptions.h"
 #include "markers.h"
 #include "reeve/render/cable_path.h"
 #include "scene_points.h"
@@ -191,6 +192,45 @@ void drawMarkers(const ShapeMeshes& meshes, const CableSystem& cables, const Cam
   glEnable(GL_DEPTH_TEST);
 }
 
+// How far a body reaches across the view (m): the largest of its half
+// sizes seen from direction `view` (unit, world). A thin disc seen face on
+// shows its radius; a thin peg seen end on little more than its own.
+double visibleHalfSize(const Shape& shape, const BodyState& body, const Vec3& view) {
+  const auto across = [&](int axis, double half) { return half * (body.q * Vec3::Unit(axis)).cross(view).norm(); };
+  switch (shape.type) {
+    case Shape::Type::Box:
+      return std::max({across(0, shape.half_extents.x()), across(1, shape.half_extents.y()),
+                       across(2, shape.half_extents.z())});
+    case Shape::Type::Cylinder: return std::max(shape.radius, across(2, shape.half_length));
+    case Shape::Type::Sphere: return shape.radius;
+    case Shape::Type::Hull: return shape.hull->bounding_radius;
+  }
+  return 0.0;
+}
+
+// Bodies smaller than a link marker at their distance (a 1 cm peg, a 3 cm
+// spool in a 5 m scene) would vanish under their markers and cable: a ring
+// in the body's colour round each, facing the camera, over everything,
+// keeps them in sight. `pixel` (m) is a pixel's size at the target.
+void drawSmallBodyRings(const ShapeMeshes& meshes, const World& world, const Camera& camera, double pixel,
+                        double marker_radius) {
+  const Vec3 forward = (camera.target - camera.eye).normalized();
+  const double target_depth = (camera.target - camera.eye).norm();
+  glDisable(GL_DEPTH_TEST);
+  for (BodyId id = 0; id < world.bodyCount(); ++id) {
+    const Vec3& centre = world.body(id).x;
+    const double depth = (centre - camera.eye).dot(forward);
+    if (depth <= 0.0) continue;  // behind the camera
+    const double scale = depth / target_depth;  // marker_radius and pixel are sizes at the target
+    const Vec3 view = (camera.eye - centre).normalized();
+    const double size = visibleHalfSize(world.bodyDef(id).shape, world.body(id), view);
+    if (size >= marker_radius * scale) continue;
+    setColour(style::bodyColour(id, world.bodyDef(id).is_static));
+    drawRing(meshes, centre, view, size + (style::kSmallBodyRingScale * marker_radius + pixel) * scale);
+  }
+  glEnable(GL_DEPTH_TEST);
+}
+
 }  // namespace
 
 struct Renderer::Context {
@@ -200,6 +240,7 @@ struct Renderer::Context {
   ShapeMeshes meshes;
 
   ~Context() {
+    const FloatingPointExceptionsMasked mesa;  // Mesa raises them as a matter of course
     if (osmesa) OSMesaDestroyContext(osmesa);
   }
   void makeCurrent(int width, int height) {
@@ -214,6 +255,7 @@ Renderer::Renderer(int width, int height) : width_(width), height_(height) {
   if (width <= 0 || height <= 0)
     throw std::invalid_argument("Renderer: image size must be positive, got " +
                                 std::to_string(width) + "x" + std::to_string(height));
+  const FloatingPointExceptionsMasked mesa;  // Mesa raises them as a matter of course
   context_ = std::make_unique<Context>();
   Context& c = *context_;
   c.osmesa = OSMesaCreateContextExt(OSMESA_RGBA, 24, 8, 0, nullptr);
@@ -239,6 +281,7 @@ Renderer::Renderer(int width, int height) : width_(width), height_(height) {
 Renderer::~Renderer() = default;
 
 Image Renderer::render(const World& world, const CableSystem& cables, const Camera& camera) {
+  const FloatingPointExceptionsMasked mesa;  // Mesa raises them as a matter of course
   const int factor = context_->supersample;
   const int w = width_ * factor, h = height_ * factor;
   context_->makeCurrent(w, h);
@@ -285,6 +328,7 @@ Image Renderer::render(const World& world, const CableSystem& cables, const Came
   }
   drawSeeThrough(tubes, style::kCable);
   drawMarkers(meshes, cables, camera, style::kMarkerScale * cable_radius);
+  drawSmallBodyRings(meshes, world, camera, pixel, style::kMarkerScale * cable_radius);
 
   glFinish();
   return downsample(context_->buffer, width_, height_, factor);

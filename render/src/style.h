@@ -37,6 +37,9 @@ inline constexpr double kMarkerScale = 2.3;
 /// multiples of the marker radius.
 inline constexpr double kHybridRingRadius = 1.3;
 inline constexpr double kHybridRingTube = 0.32;
+/// A body smaller than a marker gets a ring in its colour round it, its
+/// radius the body's size plus this multiple of the marker radius.
+inline constexpr double kSmallBodyRingScale = 1.6;
 /// Section outline tube radius as a multiple of the cable radius.
 inline constexpr double kSectionOutlineScale = 0.45;
 /// Spacing of the turns of a spool's coil as a multiple of the cable radius

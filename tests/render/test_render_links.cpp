@@ -191,5 +191,28 @@ TEST(RenderLinks, SectionTheBodyDoesNotShowIsOutlined) {
   EXPECT_GT(plain.at(bottom)[2], 100);
 }
 
+TEST(RenderLinks, ABodySmallerThanAMarkerGetsARingInItsColourAndALargeOneDoesNot) {
+  // A 1 cm ball in a 2.5 m scene is about 3 pixels across: a ring round it
+  // in its warm grey (radius: its own, ~1.3 px, plus the marker's, 5.75 px,
+  // times 1.6, plus a pixel: ~11.5 px; its tube ~2.8 px thick) keeps it in
+  // sight.
+  test::Rig rig;
+  const Vec3 peg(0.0, 0.0, 0.0), box(1.5, -2.0, 0.0);
+  rig.addStatic(Shape::sphere(0.01), peg, "peg");
+  rig.addDynamic(Shape::box(Vec3(0.2, 0.2, 0.2)), 1.0, box);
+  const Frame f = shoot(rig);
+  const auto grey = [&](const Rgb& p) {
+    return distance(p, f.background()) > 40 && std::abs(p[0] - p[2]) < 40 && std::abs(p[0] - p[1]) < 40;
+  };
+  const double band = 2.0 * std::numbers::pi * 11.5 * 4.0;  // pixels between 9.5 and 13.5 px
+  EXPECT_GT(f.countAround(peg, 9.5, 13.5, grey), 0.6 * band);
+  EXPECT_EQ(f.countAround(peg, 4.0, 7.0, grey), 0) << "the ring is hollow";
+  // The box, 0.2 m half size, shows by itself: no blue ring round it.
+  const double half_px = (f.px(box + Vec3(0.2, 0.0, 0.0)) - f.px(box)).norm();
+  EXPECT_GT(half_px, 10.0);
+  EXPECT_GT(f.countAround(box, 0.0, half_px, bluish), 100);
+  EXPECT_EQ(f.countAround(box, 2.2 * half_px, 2.2 * half_px + 12.0, bluish), 0) << "past its corners";
+}
+
 }  // namespace
 }  // namespace reeve

@@ -169,6 +169,73 @@ TEST(Integration, NonFiniteStateIsReportedByBody) {
   world.step(1.0 / 60.0);
   ASSERT_TRUE(world.firstNonFiniteBody().has_value());
   EXPECT_EQ(*world.firstNonFiniteBody(), wild);
+  ASSERT_TRUE(world.firstNonFinite().has_value());
+  EXPECT_EQ(world.firstNonFinite()->body, wild);
+  EXPECT_EQ(world.firstNonFinite()->quantity, NonFiniteState::Quantity::Position);
+  feclearexcept(FE_ALL_EXCEPT);
+  feenableexcept(traps);
+}
+
+TEST(Integration, TheGuardNamesTheBodyWhereNonFiniteWasBornNotTheFirstItReached) {
+  // "calm" (index 0) hangs from "wild" (index 1) on a rod. wild overflows
+  // its position in the first substep's integration; the rod then spreads
+  // NaN to calm in the same substep, so that afterwards both are non-finite
+  // and an index-order scan names calm. The guard names wild.
+  const int traps = fedisableexcept(FE_ALL_EXCEPT);
+  World world;
+  world.settings().substeps = 4;
+  BodyDef def;
+  def.shape = Shape::sphere(0.1);
+  def.mass = 1.0;
+  def.name = "calm";
+  const BodyId calm = world.addBody(def);
+  def.name = "wild";
+  def.position = Vec3(std::numeric_limits<double>::max(), 1.0, 0);
+  def.linear_velocity = Vec3(std::numeric_limits<double>::max(), 0, 0);
+  const BodyId wild = world.addBody(def);
+  DistanceConstraint rod;
+  rod.a = calm;
+  rod.b = wild;
+  rod.unilateral = false;
+  world.addDistance(rod);
+  world.step(1.0 / 60.0);
+  ASSERT_EQ(world.firstNonFiniteBody(), calm) << "both are non-finite by the end of the frame";
+  ASSERT_TRUE(world.firstNonFinite().has_value());
+  EXPECT_EQ(world.firstNonFinite()->body, wild);
+  EXPECT_EQ(world.firstNonFinite()->quantity, NonFiniteState::Quantity::Position);
+  EXPECT_DOUBLE_EQ(world.firstNonFinite()->time_s, 1.0 / 240.0) << "the first substep";
+  feclearexcept(FE_ALL_EXCEPT);
+  feenableexcept(traps);
+}
+
+TEST(Integration, TheGuardNamesATensionThatOverflowsWhileTheBodiesStayFinite) {
+  // Two 1e150 kg bodies 1 m apart on a rod of rest length 0, one substep of
+  // 1e-80 s: the rod closes the gap (moves of 0.5 m, speeds of 5e79 m/s,
+  // all finite), but its tension m C / (2 h^2) = 5e309 N overflows.
+  const int traps = fedisableexcept(FE_ALL_EXCEPT);
+  World world;
+  world.settings().gravity = Vec3::Zero();
+  world.settings().substeps = 1;
+  BodyDef def;
+  def.shape = Shape::sphere(0.1);
+  def.mass = 1e150;
+  def.name = "left";
+  const BodyId left = world.addBody(def);
+  def.name = "right";
+  def.position = Vec3(1.0, 0, 0);
+  const BodyId right = world.addBody(def);
+  DistanceConstraint rod;
+  rod.a = left;
+  rod.b = right;
+  rod.unilateral = false;
+  world.addDistance(rod);
+  world.step(1e-80);
+  EXPECT_FALSE(world.firstNonFiniteBody().has_value());
+  ASSERT_TRUE(world.firstNonFinite().has_value());
+  EXPECT_EQ(world.firstNonFinite()->quantity, NonFiniteState::Quantity::Tension);
+  EXPECT_EQ(world.firstNonFinite()->body, left);
+  EXPECT_EQ(world.firstNonFinite()->other, right);
+  EXPECT_STREQ(quantityName(world.firstNonFinite()->quantity), "tension");
   feclearexcept(FE_ALL_EXCEPT);
   feenableexcept(traps);
 }

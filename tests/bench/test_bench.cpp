@@ -38,7 +38,7 @@ std::string slurp(const fs::path& p) {
 
 Result reeve(const test::TempDir& dir, const std::string& args) {
   const fs::path out = dir.path() / "stdout.txt", err = dir.path() / "stderr.txt";
-  const std::string cmd = std::string(REEVE_BINARY) + " " + args + " >" + out.string() + " 2>" + err.string();
+  const std::string cmd = std::string("REEVE_TRAP_FP=1 ") + REEVE_BINARY + " " + args + " >" + out.string() + " 2>" + err.string();
   const int status = std::system(cmd.c_str());
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
 }

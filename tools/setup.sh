@@ -16,6 +16,14 @@ packages=(
   ffmpeg                 # video (the program, piped to)
   python3-matplotlib     # reeve bench --plot (bench/plot.py)
 )
+# --sanitizers: what tools/sanitize.sh builds with (clang, its sanitizer and
+# libFuzzer runtimes, llvm-symbolizer for readable reports and suppressions).
+if [ "${1:-}" = "--sanitizers" ]; then
+  packages+=(clang libclang-rt-14-dev llvm)
+elif [ $# -gt 0 ]; then
+  echo "usage: bash tools/setup.sh [--sanitizers]" >&2
+  exit 64
+fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q '^install ok installed$' || missing+=("$p")

@@ -55,18 +55,18 @@ std::optional<std::string> CableSystem::invariantViolation() const {
   for (int c = 0; c < static_cast<int>(cables_.size()); ++c) {
     const Cable& cable = cables_[c];
     const double slack = 1e-9 * cable.total_length;
-    const std::string name = "cable '" + cable.name + "': ";
+    const auto name = [&cable] { return "cable '" + cable.name + "': "; };  // built only on a failure
     for (int j = 0; j < static_cast<int>(cable.joints.size()); ++j)
       if (cable.links[j].active && cable.joints[j].rest_length < -slack)
-        return name + "joint " + std::to_string(j) + " has a negative rest length (" +
+        return name() + "joint " + std::to_string(j) + " has a negative rest length (" +
                std::to_string(cable.joints[j].rest_length) + " m)";
     for (int k = 0; k < static_cast<int>(cable.links.size()); ++k)
       if (cable.links[k].active && cable.links[k].rolls() && cable.links[k].stored < -slack)
-        return name + "link " + std::to_string(k) + " stores a negative length of cable (" +
+        return name() + "link " + std::to_string(k) + " stores a negative length of cable (" +
                std::to_string(cable.links[k].stored) + " m)";
     const double total = totalLength(c);
     if (std::abs(total - cable.total_length) > slack)
-      return name + "the total length changed from " + std::to_string(cable.total_length) + " m to " +
+      return name() + "the total length changed from " + std::to_string(cable.total_length) + " m to " +
              std::to_string(total) + " m";
   }
   return std::nullopt;

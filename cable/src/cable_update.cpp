@@ -2,9 +2,8 @@
 // lengths, pinholes) and Alg. 2 (stored cable, hybrid links, merge, split).
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <numbers>
+#include <utility>
 
 #include "link_geometry.h"
 #include "links.h"
@@ -58,12 +57,16 @@ void CableSystem::update(double time_s, double h) {
     splitAtCrossedLinks(cable, c, time_s);
     syncRuns(cable);
   }
-#ifndef NDEBUG
-  if (const auto broken = invariantViolation()) {
-    std::fprintf(stderr, "reeve: cable bookkeeping broken at t = %g s: %s\n", time_s, broken->c_str());
-    std::abort();
+  if (breach_) return;  // the first one says what went wrong
+  if (auto broken = invariantViolation()) {
+    CableBreach b{time_s, std::move(*broken), -1, 0.0};
+    for (const BodyId body : rolling_bodies_)
+      if (b.fastest < 0 || std::abs(turn_[body]) > std::abs(b.fastest_turn)) {
+        b.fastest = body;
+        b.fastest_turn = turn_[body];
+      }
+    breach_ = std::move(b);
   }
-#endif
 }
 
 void CableSystem::updateJoint(Cable& cable, int j) {

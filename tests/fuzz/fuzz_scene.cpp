@@ -1,12 +1,13 @@
 // libFuzzer harness (issue 12): bytes to the scene loader; a scene that
 // loads is stepped a few frames. A crash, a sanitizer finding, an exception
-// other than SceneError, or a non-finite output number the World's guard
-// missed is a bug. tests/fuzz/README.md says how to run it.
+// other than SceneError, a non-finite output number the World's guard
+// missed, or a broken cable bookkeeping no diverged solve explains is a bug. tests/fuzz/README.md says how to run it.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <numbers>
 #include <optional>
 #include <string>
 
@@ -61,6 +62,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   for (int f = 0; f < frames; ++f) {
     scene->world->step(1.0 / scene->frame_rate_hz);
     if (scene->world->firstNonFinite()) return 0;  // `reeve run` stops here, naming it
+    if (const auto& breach = scene->cables->firstBreach()) {
+      // `reeve run` stops here too, blaming a diverged solve; with no wheel
+      // turning even half a turn in the substep that blame would be wrong.
+      if (std::abs(breach->fastest_turn) < std::numbers::pi) {
+        std::fprintf(stderr, "fuzz_scene: cable bookkeeping broke with no wheel turning fast: %s\n",
+                     breach->what.c_str());
+        std::abort();
+      }
+      return 0;
+    }
     checkOutputs(*scene);
   }
   return 0;

@@ -70,6 +70,21 @@ std::string describe(const NonFiniteState& bad, const World& world) {
   return "body " + bodyName(world, bad.body) + " " + quantityName(bad.quantity);
 }
 
+// Why a run stops at a broken cable bookkeeping, with what to try.
+std::string breachMessage(const CableBreach& breach, const World& world) {
+  char when[32], turn[32];
+  std::snprintf(when, sizeof when, "%.9g", breach.time_s);
+  std::snprintf(turn, sizeof turn, "%.3g", breach.fastest_turn);
+  std::string message = std::string("the cable bookkeeping broke at t = ") + when + " s: " + breach.what;
+  if (breach.fastest >= 0)
+    message += "; body " + bodyName(world, breach.fastest) + " turned " + turn + " rad in that substep";
+  return message +
+         ". The solve diverged: a span far past its rest length asks its wheels to turn further in one solve "
+         "than their body-fixed span ends can follow. Nothing of that frame was written. Check that the rest "
+         "lengths fit the bodies' poses (a span that starts stretched is pulled in by the first solve at any "
+         "substep count); if a fast motion stretched it, try more substeps";
+}
+
 // Checks every output before simulating, so nothing is half-written when
 // a later output turns out to be refused.
 void checkOutputs(const RunOptions& o, int frames) {
@@ -157,6 +172,8 @@ int simulate(const RunOptions& o) {
     physics_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (const auto& bad = scene.world->firstNonFinite())
       throw std::runtime_error(nonFiniteMessage(bad->time_s, describe(*bad, *scene.world)));
+    if (const auto& breach = scene.cables->firstBreach())
+      throw std::runtime_error(breachMessage(*breach, *scene.world));
     if (csv) csv->writeRow();
     if (events) events->drain(*scene.cables);
     else scene.cables->takeEvents();  // nobody asked: do not let them pile up

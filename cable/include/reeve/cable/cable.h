@@ -152,6 +152,14 @@ struct Cable {
   std::vector<CableJoint> joints;  // joints[j] leaves links[j]
 };
 
+/// A break of the cable bookkeeping's invariants (CableSystem::firstBreach).
+struct CableBreach {
+  double time_s = 0.0;       ///< the update's time stamp (s)
+  std::string what;          ///< invariantViolation()'s message
+  BodyId fastest = -1;       ///< the rolling body that turned furthest in that update
+  double fastest_turn = 0.0; ///< its turn in that update (rad, signed)
+};
+
 /// All cables of a World. Registers a substep hook on construction that
 /// runs the cable update before each position solve, so it must outlive
 /// the World's stepping and is neither copied nor moved.
@@ -205,9 +213,15 @@ class CableSystem {
   /// (a spool's cable running out and a link emptying are events that end
   /// there, Alg. 2), and each cable's total length what it was made with
   /// or set to (setRestLength). Rounding is allowed 1e-9 of the total.
-  /// Debug builds check it at the end of every update() and abort with
-  /// the message; tests call it.
   std::optional<std::string> invariantViolation() const;
+  /// The first update() after which invariantViolation() held something
+  /// (checked after every update, in every build), or nothing. Reachable
+  /// from a scene, not only from a bug: a direct solve that must turn a
+  /// wheel radians (a span stretched far past its rest length at one
+  /// substep a frame) swings the wheel's body-fixed span ends round the rim
+  /// and can diverge, turning wheels thousands of radians (DESIGN, open
+  /// problems). Runners stop there, as at World::firstNonFinite().
+  const std::optional<CableBreach>& firstBreach() const { return breach_; }
   /// Sets the rest length (m, >= 0) of joint j of cable c: a winch paying
   /// out or hauling in cable, or slack given after set-up.
   void setRestLength(int c, int j, double rest_length_m);
@@ -233,6 +247,7 @@ class CableSystem {
   std::vector<Quat> last_q_;            // per body: orientation at the last update
   std::vector<double> turn_;            // per body, rad (measureTurns)
   bool solve_turn_counted_ = false;     // the last update was by hand, after the solve
+  std::optional<CableBreach> breach_;   // firstBreach()
 };
 
 }  // namespace reeve

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "reeve/engine/fp_exceptions.h"
+
 namespace reeve {
 
 BodyState makeBodyState(const BodyDef& def) {
@@ -15,11 +17,16 @@ BodyState makeBodyState(const BodyDef& def) {
   if (def.is_static) return s;
   s.v = def.linear_velocity;
   s.omega = def.angular_velocity;
+  const FloatingPointExceptionsMasked overflow_is_tested;  // density x volume, the inertia
   const double m = def.mass > 0.0 ? def.mass : def.density * volume(def.shape);
-  if (!(m > 0.0) || !std::isfinite(m))
-    throw std::invalid_argument("body '" + def.name + "': a dynamic body needs a finite mass > 0 kg");
+  if (!isRepresentableMass(m))
+    throw std::invalid_argument("body '" + def.name + "': a dynamic body needs a mass between 1e-100 and 1e100 kg");
   s.inv_mass = 1.0 / m;
   s.inertia = inertiaTensor(def.shape, m);
+  const Vec3 moments = s.inertia.diagonal();
+  if (!isRepresentableMass(moments.minCoeff()) || !isRepresentableMass(moments.maxCoeff()))
+    throw std::invalid_argument("body '" + def.name +
+                                "': a dynamic body needs moments of inertia between 1e-100 and 1e100 kg m^2");
   s.inv_inertia = s.inertia.inverse();
   if (!(def.linear_damping >= 0.0) || !(def.angular_damping >= 0.0))
     throw std::invalid_argument("body '" + def.name + "': damping must be >= 0 per second");

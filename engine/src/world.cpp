@@ -174,11 +174,13 @@ void World::findContacts() {
 }
 
 void World::setMass(BodyId id, double mass) {
-  if (id == kWorldBody || id < 0 || id >= bodyCount() || mass_[id] == 0.0 || !(mass > 0.0) ||
-      !std::isfinite(mass))
-    throw std::invalid_argument("setMass: needs a dynamic body and a finite mass > 0 kg");
+  if (id == kWorldBody || id < 0 || id >= bodyCount() || mass_[id] == 0.0 || !isRepresentableMass(mass))
+    throw std::invalid_argument("setMass: needs a dynamic body and a mass between 1e-100 and 1e100 kg");
   BodyState& b = bodies_[id];
   const double scale = mass / mass_[id];
+  const Vec3 moments = b.inertia.diagonal() * scale;
+  if (!isRepresentableMass(moments.minCoeff()) || !isRepresentableMass(moments.maxCoeff()))
+    throw std::invalid_argument("setMass: the moments of inertia would leave 1e-100..1e100 kg m^2");
   mass_[id] = mass;
   b.inertia *= scale;
   b.inv_mass = 1.0 / mass;

@@ -1,5 +1,3 @@
-#include <limits>
-
 #include "build.h"
 #include "describe.h"
 #include "reeve/engine/fp_exceptions.h"
@@ -8,7 +6,6 @@ namespace reeve::scene_detail {
 namespace {
 
 constexpr const char* kWorldName = "world";
-constexpr double kHuge = std::numeric_limits<double>::max();
 
 // The "shape" object at `path` (schema-checked), and a hull's degenerate
 // points as a SceneError.
@@ -124,16 +121,16 @@ BodyNames addBodies(const nlohmann::json& bodies, World& world, const std::strin
       const FloatingPointExceptionsMasked overflow_is_tested;  // kept out of a trapping program's way
       const double volume_m3 = volume(def.shape);
       const double m = has_mass ? def.mass : def.density * volume_m3;
-      const auto representable = [](double x) { return x * x > 0.0 && x * x < kHuge; };
-      if (!representable(m))
+      if (!isRepresentableMass(m))
         fail(has_mass ? "mass_kg" : "density_kg_per_m3",
-             "a mass between 1e-154 and 1e154 kg (its square finite and non-zero in double precision)",
+             "a mass between 1e-100 and 1e100 kg (its cube finite and non-zero in double precision)",
              has_mass ? number(m) + " kg"
                       : number(def.density) + " kg/m^3 x " + number(volume_m3) + " m^3 = " + number(m) + " kg");
       const Mat3 inertia = inertiaTensor(def.shape, m);
       const Vec3 moments = inertia.diagonal();
-      if (!representable(moments.minCoeff()) || !representable(moments.maxCoeff()) || !inertia.inverse().allFinite())
-        fail("shape", "a size whose moments of inertia are between 1e-154 and 1e154 kg m^2",
+      if (!isRepresentableMass(moments.minCoeff()) || !isRepresentableMass(moments.maxCoeff()) ||
+          !inertia.inverse().allFinite())
+        fail("shape", "a size whose moments of inertia are between 1e-100 and 1e100 kg m^2",
              "moments " + number(moments.x()) + ", " + number(moments.y()) + ", " + number(moments.z()) +
                  " kg m^2 for " + number(m) + " kg");
     }

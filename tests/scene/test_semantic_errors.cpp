@@ -217,14 +217,14 @@ TEST(SemanticErrors, ABoxTooSmallForItsVolumeHasNoMass) {
      "mass_kg": 2)", R"("half_extents_m": [1e-200, 1e-200, 1e-200]},
      "density_kg_per_m3": 1000)"),
               "/bodies/1/density_kg_per_m3",
-              "a mass between 1e-154 and 1e154 kg (its square finite and non-zero in double precision)",
+              "a mass between 1e-100 and 1e100 kg (its cube finite and non-zero in double precision)",
               "1000 kg/m^3 x 0 m^3 = 0 kg");
 }
 
 TEST(SemanticErrors, ABoxTooSmallGivenAMassHasNoInertia) {
   // 2 kg x ((1e-200)^2 + (1e-200)^2) / 3 underflows to 0 about every axis.
   expectError(baseWith(R"("half_extents_m": [0.2, 0.2, 0.2]})", R"("half_extents_m": [1e-200, 1e-200, 1e-200]})"),
-              "/bodies/1/shape", "a size whose moments of inertia are between 1e-154 and 1e154 kg m^2",
+              "/bodies/1/shape", "a size whose moments of inertia are between 1e-100 and 1e100 kg m^2",
               "moments 0, 0, 0 kg m^2 for 2 kg");
 }
 
@@ -235,7 +235,7 @@ TEST(SemanticErrors, ADensityAndSizeWhoseMassSquareOverflows) {
      "mass_kg": 2)", R"("half_extents_m": [500, 500, 500]},
      "density_kg_per_m3": 1e150)"),
               "/bodies/1/density_kg_per_m3",
-              "a mass between 1e-154 and 1e154 kg (its square finite and non-zero in double precision)",
+              "a mass between 1e-100 and 1e100 kg (its cube finite and non-zero in double precision)",
               "1e+150 kg/m^3 x 1e+09 m^3 = 1e+159 kg");
 }
 

@@ -94,10 +94,20 @@ struct BodyState {
   bool moves() const { return inv_mass > 0.0 || isRotor(); }
 };
 
+/// Bounds on a dynamic body's mass (kg) and principal moments of inertia
+/// (kg m^2): products of three of them (the inertia's determinant, which
+/// its inverse and the gyroscopic step divide by) stay finite and normal
+/// in double precision. A 1e300 kg body once gave NaN orientations within
+/// a step; a 1e154 kg one an inverse inertia of 0 (its determinant
+/// overflowed).
+inline constexpr double kMinMass = 1e-100, kMaxMass = 1e100;
+inline bool isRepresentableMass(double m) { return m >= kMinMass && m <= kMaxMass; }
+
 /// Builds the solver state of `def`: mass from density unless given,
 /// inertia of the solid shape. Throws std::invalid_argument when a dynamic
-/// body's mass is not finite and positive, or its material is not valid
-/// (isValid in contact_material.h).
+/// body's mass or a principal moment of inertia is outside [kMinMass,
+/// kMaxMass] (or NaN), or its material is not valid (isValid in
+/// contact_material.h).
 BodyState makeBodyState(const BodyDef& def);
 
 }  // namespace reeve

@@ -113,8 +113,9 @@ class World {
   /// std::invalid_argument for unknown or identical bodies, a negative
   /// compliance or anything not finite.
   FixedId addFixed(const FixedDef& def);
-  /// Gives dynamic body `id` a new mass (kg, > 0), scaling its inertia with
-  /// it; throws std::invalid_argument otherwise.
+  /// Gives dynamic body `id` a new mass (kg), scaling its inertia with it;
+  /// throws std::invalid_argument unless the body is dynamic and the mass
+  /// and scaled moments lie in [kMinMass, kMaxMass] (body.h).
   void setMass(BodyId id, double mass);
   DistanceId addDistance(const DistanceConstraint& c);
   PathId addPath(PathConstraint path);

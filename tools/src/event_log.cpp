@@ -1,6 +1,12 @@
 #include "event_log.h"
 
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
 #include <nlohmann/json.hpp>
+
+#include "csv_writer.h"
 
 namespace reeve {
 
@@ -8,6 +14,10 @@ EventLog::EventLog(const std::filesystem::path& path, bool replace) : out_(path,
 
 void EventLog::drain(CableSystem& cables) {
   for (const CableEvent& e : cables.takeEvents()) {
+    // Finite by the scene limits (a sum of finite frame times); checked
+    // all the same, as every number Reeve writes is.
+    if (!std::isfinite(e.time_s))
+      throw std::runtime_error(nonFiniteMessage(e.time_s, "an event's time is " + std::to_string(e.time_s)));
     const nlohmann::json line = {{"time_s", e.time_s},
                                  {"cable", cables.cables()[e.cable].name},
                                  {"link", e.link},

@@ -1,7 +1,8 @@
 // libFuzzer harness (issue 12): bytes to the scene loader; a scene that
 // loads is stepped a few frames. A crash, a sanitizer finding, an exception
 // other than SceneError, a non-finite output number the World's guard
-// missed, or a broken cable bookkeeping no diverged solve explains is a bug. tests/fuzz/README.md says how to run it.
+// missed, or a broken cable bookkeeping that no diverged solve explains is
+// a bug. tests/fuzz/README.md says how to run it.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>

@@ -21,6 +21,7 @@
 #include "reeve/render/renderer.h"
 #include "reeve/render/video.h"
 #include "reeve/scene/scene.h"
+#include "reeve/scene/warnings.h"
 
 namespace reeve {
 namespace {
@@ -115,6 +116,12 @@ Camera sceneCamera(const Scene& scene, double aspect) {
   return Camera{scene.camera->eye, scene.camera->target, scene.camera->up, scene.camera->fov_y_deg};
 }
 
+// Warnings go to stderr and do not change the exit status.
+void printWarnings(const Scene& scene, const std::string& source) {
+  for (const SceneWarning& w : sceneWarnings(scene))
+    std::fprintf(stderr, "reeve: warning: %s: %s: %s\n", source.c_str(), w.json_path.c_str(), w.message.c_str());
+}
+
 int simulate(const RunOptions& o) {
   Scene scene = o.scene.empty() ? parseScene(std::string(defaultSceneJson()), "<built-in simple.json>")
                                 : loadScene(o.scene);
@@ -123,6 +130,7 @@ int simulate(const RunOptions& o) {
   if (!o.solver.empty()) scene.world->settings().solver = *solverMethodFromName(o.solver);
   const int frames = o.frames.value_or(scene.frameCount());
   checkOutputs(o, frames);
+  printWarnings(scene, o.scene.empty() ? "<built-in simple.json>" : o.scene);
 
   std::unique_ptr<CsvWriter> csv;
   if (!o.csv.empty()) {
@@ -238,7 +246,7 @@ int runCommand(const RunOptions& options) {
 
 int validateCommand(const std::string& scene) {
   try {
-    loadScene(scene);
+    printWarnings(loadScene(scene), scene);
     std::printf("%s: ok\n", scene.c_str());
     return 0;
   } catch (const SceneError& e) {

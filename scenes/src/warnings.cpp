@@ -1,0 +1,29 @@
+// What loads but will likely not run as its author meant (warnings.h).
+#include <algorithm>
+#include <cstdio>
+
+#include "reeve/scene/warnings.h"
+
+namespace reeve {
+
+std::vector<SceneWarning> sceneWarnings(const Scene& scene) {
+  std::vector<SceneWarning> warnings;
+  const CableSystem& cables = *scene.cables;
+  for (int c = 0; c < static_cast<int>(cables.cables().size()); ++c) {
+    const Cable& cable = cables.cables()[c];
+    for (int j = 0; j < static_cast<int>(cable.joints.size()); ++j) {
+      if (!cables.jointEnabled(c, j)) continue;
+      const double rest = cables.restLength(c, j), stretch = cables.length(c, j) - rest;
+      if (!(stretch > std::max(kStartStretchWarning * rest, kStartStretchWarningMin_m))) continue;
+      char text[256];
+      std::snprintf(text, sizeof text,
+                    "cable '%s' span %d starts %.3g m longer than its rest length of %.3g m: the first solve "
+                    "pulls it in at once, and the direct solver may diverge doing so",
+                    cable.name.c_str(), j, stretch, rest);
+      warnings.push_back({"/cables/" + std::to_string(c) + "/rest_length_m/" + std::to_string(j), text});
+    }
+  }
+  return warnings;
+}
+
+}  // namespace reeve

@@ -232,6 +232,21 @@ TEST_F(Cli, ADivergedSolveThatBreaksTheCableBookkeepingStopsTheRun) {
   }
 }
 
+TEST_F(Cli, ASpoolThatRunsOutOfCableStopsTheRunSayingSo) {
+  // The fuzzer's second finding: gear_1_to_4 with the small hub's rope
+  // given no stored cable. The weight pays 1e-5 m out of it in the first
+  // substeps: not a diverged solve (the hub turned 4.5e-5 rad), and the
+  // run must not say it was; a plain rolling end cannot pay out what it
+  // does not hold, a hybrid one would tie the cable there.
+  const std::string scene = std::string(REEVE_FUZZ_REGRESSIONS_DIR) + "/gear_spool_runs_out.json";
+  const Result r = reeve("run " + scene + " --frames 30");
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_NE(r.err.find("cable 'rope_small': link 0 stores a negative length of cable"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("Its rolling end ran out of cable"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("make it a \"hybrid\" link"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("diverged"), std::string::npos) << r.err;
+}
+
 TEST_F(Cli, AStoneFlungFasterThanADoubleCanSquareIsRefusedAtLoad) {
   // 1e308 m/s: its kinetic energy overflows. It once ran and stopped on
   // the non-finite guard (tested in test_correction.cpp); now it never

@@ -119,6 +119,8 @@ TEST(Invariants, ANegativeRestLengthOrStoredCableIsReported) {
   EXPECT_EQ(spool.firstBreach()->what, *stored);
   EXPECT_EQ(spool.firstBreach()->time_s, 0.25);
   EXPECT_EQ(spool.firstBreach()->fastest, drum);
+  EXPECT_TRUE(spool.firstBreach()->spool_ran_out) << "a rolling end paid out what it did not store";
+  EXPECT_EQ(spool.firstBreach()->cable, 0);
   EXPECT_NEAR(spool.firstBreach()->fastest_turn, 0.5, 1e-12);
   rotateExactly(world2.body(drum).q, Vec3(0.0, 0.0, 0.5));
   spool.update(0.5);

@@ -58,12 +58,12 @@ void CableSystem::update(double time_s, double h) {
     syncRuns(cable);
   }
   if (breach_) return;  // the first one says what went wrong
-  if (auto broken = invariantViolation()) {
-    CableBreach b{time_s, std::move(*broken), -1, 0.0};
+  if (auto b = findBreach()) {
+    b->time_s = time_s;
     for (const BodyId body : rolling_bodies_)
-      if (b.fastest < 0 || std::abs(turn_[body]) > std::abs(b.fastest_turn)) {
-        b.fastest = body;
-        b.fastest_turn = turn_[body];
+      if (b->fastest < 0 || std::abs(turn_[body]) > std::abs(b->fastest_turn)) {
+        b->fastest = body;
+        b->fastest_turn = turn_[body];
       }
     breach_ = std::move(b);
   }

@@ -64,9 +64,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     scene->world->step(1.0 / scene->frame_rate_hz);
     if (scene->world->firstNonFinite()) return 0;  // `reeve run` stops here, naming it
     if (const auto& breach = scene->cables->firstBreach()) {
-      // `reeve run` stops here too, blaming a diverged solve; with no wheel
-      // turning even half a turn in the substep that blame would be wrong.
-      if (std::abs(breach->fastest_turn) < std::numbers::pi) {
+      // `reeve run` stops here too, blaming a spool that ran out or else a
+      // diverged solve; with no wheel turning even half a turn in the
+      // substep the second blame would be wrong.
+      if (!breach->spool_ran_out && std::abs(breach->fastest_turn) < std::numbers::pi) {
         std::fprintf(stderr, "fuzz_scene: cable bookkeeping broke with no wheel turning fast: %s\n",
                      breach->what.c_str());
         std::abort();

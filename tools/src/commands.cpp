@@ -77,6 +77,9 @@ std::string breachMessage(const CableBreach& breach, const World& world) {
   std::snprintf(when, sizeof when, "%.9g", breach.time_s);
   std::snprintf(turn, sizeof turn, "%.3g", breach.fastest_turn);
   std::string message = std::string("the cable bookkeeping broke at t = ") + when + " s: " + breach.what;
+  if (breach.spool_ran_out)
+    return message + ". Its rolling end ran out of cable: it holds only the stored_m it was given. Give it "
+                     "more, or make it a \"hybrid\" link, which ties the cable where it runs out";
   if (breach.fastest >= 0)
     message += "; body " + bodyName(world, breach.fastest) + " turned " + turn + " rad in that substep";
   return message +

@@ -154,10 +154,15 @@ struct Cable {
 
 /// A break of the cable bookkeeping's invariants (CableSystem::firstBreach).
 struct CableBreach {
-  double time_s = 0.0;       ///< the update's time stamp (s)
-  std::string what;          ///< invariantViolation()'s message
-  BodyId fastest = -1;       ///< the rolling body that turned furthest in that update
-  double fastest_turn = 0.0; ///< its turn in that update (rad, signed)
+  double time_s = 0.0;        ///< the update's time stamp (s)
+  std::string what;           ///< invariantViolation()'s message
+  int cable = -1;             ///< the cable whose bookkeeping broke
+  /// Its rolling end link (of an open cable) paid out more cable than it
+  /// stored: the scene's spool ran out, not the solver (a hybrid link
+  /// would have tied the cable there, Alg. 2 l. 12-13).
+  bool spool_ran_out = false;
+  BodyId fastest = -1;        ///< the rolling body that turned furthest in that update
+  double fastest_turn = 0.0;  ///< its turn in that update (rad, signed)
 };
 
 /// All cables of a World. Registers a substep hook on construction that
@@ -235,6 +240,9 @@ class CableSystem {
   void mergeEmptyLinks(Cable& cable, int c, double time_s);
   void splitAtCrossedLinks(Cable& cable, int c, double time_s);
   void syncRuns(Cable& cable);
+  /// invariantViolation() with the cable and whether a spool ran out; time
+  /// and turns are left to update().
+  std::optional<CableBreach> findBreach() const;
   /// Current length (m) and world end points of joint j's straight span.
   double spanLength(const Cable& cable, int j) const;
   Vec3 startPointOf(const Cable& cable, int j) const;

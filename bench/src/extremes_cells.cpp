@@ -187,8 +187,8 @@ CellResult runCell(const Condition& c, const CellBudget& b) {
         r.finite = false;
         break;
       }
-      if (const auto broken = s.cables->invariantViolation()) {
-        r.bookkeeping = *broken;
+      if (const auto& broken = s.cables->firstBreach()) {  // checked after every substep's update
+        r.bookkeeping = broken->what;
         break;
       }
       r.peak_stretch = std::max(r.peak_stretch, machines::maxStretch(*s.cables, 0));

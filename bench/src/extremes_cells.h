@@ -46,14 +46,14 @@ struct CellResult {
   double tension_error = std::numeric_limits<double>::quiet_NaN();  ///< last frame, worst span
   double speed_error = std::numeric_limits<double>::quiet_NaN();    ///< jerks: either box, after the snap
   double axle_offset = 0.0;    ///< m, largest hinge anchor gap
-  std::string bookkeeping;     ///< CableSystem::invariantViolation() after a frame; "" when kept
+  std::string bookkeeping;     ///< CableSystem::firstBreach()'s message; "" when kept
   std::string cause;           ///< why unstable; "" when stable
   bool stable() const { return cause.empty(); }
 };
 
 /// Runs `c` at `b` for 1 s (Atwood), 0.5 s (Simple) or, for a jerk, until
 /// 0.2 s after the slack is taken up. Stable: finished, finite, the cable
-/// bookkeeping's invariants kept after every frame, peak stretch at most
+/// bookkeeping's invariants kept after every substep, peak stretch at most
 /// the limit, energy growth at most 1 %.
 CellResult runCell(const Condition& c, const CellBudget& b);
 

@@ -419,15 +419,16 @@ void World::integrate(double h) {
       b.x_prev = b.x;
       b.q_prev = b.q;
       const Vec3 u = b.q * b.rotor_axis;
-      b.omega = u * u.dot(b.omega);
+      b.omega = u * u.dot(b.omega + h * b.applyInvInertia(b.applied_torque));
       rotateExactly(b.q, h * b.omega);
       b.q_pred = b.q;
       continue;
     }
     b.x_prev = b.x;
-    b.v += h * g;
+    b.v += h * (g + b.inv_mass * b.applied_force);
     b.x += h * b.v;
     b.q_prev = b.q;
+    b.omega += h * b.applyInvInertia(b.applied_torque);
     b.omega = b.q * gyroscopicStep(b.inertia, b.q.conjugate() * b.omega, h);
     rotateExactly(b.q, h * b.omega);
     b.q_pred = b.q;

@@ -64,6 +64,11 @@ struct BodyState {
   Mat3 inertia = Mat3::Zero();
   double linear_damping = 0.0;      // 1/s
   double angular_damping = 0.0;     // 1/s
+  // A force (N, through the centre of mass) and a torque (N m) applied
+  // every substep until changed, world: a user's or controller's push. A
+  // rotor takes the torque about its axle only; static bodies ignore both.
+  Vec3 applied_force = Vec3::Zero();
+  Vec3 applied_torque = Vec3::Zero();
   // Body-local unit axle of a rotor; zero for every other body.
   Vec3 rotor_axis = Vec3::Zero();
   // What this substep's solve did to the body, world: the impulse (kg m)

@@ -54,6 +54,26 @@ void expectClosed(const json& node, const std::string& where) {
   }
 }
 
+// Editors complete and check keys from the schema a scene names: each
+// shipped scene names the file beside it, and the schema has an absolute id.
+TEST(SceneSchema, HasAnIdAndEveryShippedSceneNamesIt) {
+  const std::string id = schemaFile().at("$id").get<std::string>();
+  EXPECT_EQ(id.rfind("https://", 0), 0u) << id;
+  EXPECT_EQ(id.substr(id.rfind('/') + 1), "scene.schema.json");
+  int count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(kScenesDir)) {
+    const std::filesystem::path& p = entry.path();
+    if (p.extension() != ".json" || p.filename() == "scene.schema.json") continue;
+    const nlohmann::ordered_json scene = nlohmann::ordered_json::parse(readFile(p));
+    ASSERT_FALSE(scene.empty()) << p;
+    EXPECT_EQ(scene.begin().key(), "$schema") << p << ": editors read it first";
+    EXPECT_EQ(scene.value("$schema", ""), "scene.schema.json") << p;
+    EXPECT_TRUE(std::filesystem::is_regular_file(p.parent_path() / scene.value("$schema", ""))) << p;
+    ++count;
+  }
+  EXPECT_GE(count, 17);
+}
+
 TEST(SceneSchema, EveryObjectIsClosedAndListsItsRequiredKeys) {
   const json schema = schemaFile();
   EXPECT_EQ(schema.at("$schema"), "http://json-schema.org/draft-07/schema#");

@@ -51,6 +51,22 @@ TEST(SchemaErrors, UnknownFieldNameIsEscapedInThePointer) {
               "\"a/b~c\"");
 }
 
+// "$schema" is for editors: any string is accepted and changes nothing;
+// another kind of value is an error like any other.
+TEST(SchemaErrors, SchemaKeyIsAStringForEditorsAndOtherwiseIgnored) {
+  const Scene plain = parseScene(kBase, "test.json");
+  const Scene named = parseScene(baseWith(R"("name": "base",)", R"("$schema": "elsewhere/any.json", "name": "base",)"),
+                                 "test.json");
+  ASSERT_EQ(named.world->bodyCount(), plain.world->bodyCount());
+  for (BodyId b = 0; b < plain.world->bodyCount(); ++b) {
+    EXPECT_EQ(named.world->body(b).x, plain.world->body(b).x);
+    EXPECT_EQ(named.world->body(b).inv_mass, plain.world->body(b).inv_mass);
+  }
+  EXPECT_EQ(named.cables->restLength(0, 0), plain.cables->restLength(0, 0));
+  expectError(baseWith(R"("name": "base",)", R"("$schema": 7, "name": "base",)"), "/$schema", "a string",
+              "7");
+}
+
 TEST(SchemaErrors, WrongType) {
   expectError(baseWith(R"("solver": {})", R"("solver": {"substeps": "ten"})"), "/solver/substeps",
               "an integer", "a string (\"ten\")");

@@ -105,6 +105,7 @@ nlohmann::ordered_json hilbertSceneJson(const HilbertSpec& spec) {
   const std::string name = "hilbert" + std::to_string(spec.level) + (spec.slack_m > 0.0 ? "_loose" : "");
   const double speed = spec.motor_speed_rad_per_s * spec.radius_m;
   json doc;
+  doc["$schema"] = "scene.schema.json";  // for editors, beside the shipped scenes
   doc["name"] = name;
   std::string description =
       "Paper Fig. 18 / Fig. 1 right, written by `reeve generate hilbert --level " + std::to_string(spec.level) +

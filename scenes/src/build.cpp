@@ -86,7 +86,7 @@ Scene buildScene(const nlohmann::json& document, const std::string& source) {
   if (const auto hinges = document.find("hinges"); hinges != document.end())
     addHinges(*hinges, names, *scene.world, source);
   if (const auto joints = document.find("joints"); joints != document.end())
-    addJoints(*joints, names, *scene.world, source);
+    scene.joint_kinds = addJoints(*joints, names, *scene.world, source);
   if (const auto cables = document.find("cables"); cables != document.end())
     addCables(*cables, names, *scene.cables, source);
   if (const auto camera = document.find("camera"); camera != document.end())

@@ -46,9 +46,10 @@ void addHinges(const nlohmann::json& hinges, const BodyNames& names, World& worl
 /// between known bodies, two different ones; non-zero axes, limits with
 /// lower <= upper, angles in [-pi, pi] (a swing limit in [0, pi]), an
 /// axis for a spherical joint's limits, and a position drive's
-/// damping_N_s_per_m only with stiffness_N_per_m.
-void addJoints(const nlohmann::json& joints, const BodyNames& names, World& world,
-               const std::string& source);
+/// damping_N_s_per_m only with stiffness_N_per_m. Returns their kinds in
+/// order (Scene::joint_kinds).
+std::vector<JointKind> addJoints(const nlohmann::json& joints, const BodyNames& names, World& world,
+                                 const std::string& source);
 
 /// The angle limit {"lower_rad", "upper_rad"} at `pointer` (build_joints.cpp):
 /// both in [-pi, pi], lower <= upper.

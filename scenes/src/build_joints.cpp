@@ -176,16 +176,25 @@ HingeDrive hingeDrive(const json& drive, const std::string& pointer, const std::
   return result;
 }
 
-void addJoints(const json& joints, const BodyNames& names, World& world,
-               const std::string& source) {
+std::vector<JointKind> addJoints(const json& joints, const BodyNames& names, World& world,
+                                 const std::string& source) {
+  std::vector<JointKind> kinds;
   for (std::size_t i = 0; i < joints.size(); ++i) {
     const json& j = joints[i];
     const std::string path = "/joints/" + std::to_string(i);
     const std::string type = j.at("type").get<std::string>();
-    if (type == "prismatic") addPrismatic(j, path, names, world, source);
-    else if (type == "spherical") addSpherical(j, path, names, world, source);
-    else addFixed(j, path, names, world, source);  // the schema allows no other type
+    if (type == "prismatic") {
+      addPrismatic(j, path, names, world, source);
+      kinds.push_back(JointKind::Prismatic);
+    } else if (type == "spherical") {
+      addSpherical(j, path, names, world, source);
+      kinds.push_back(JointKind::Spherical);
+    } else {  // the schema allows no other type
+      addFixed(j, path, names, world, source);
+      kinds.push_back(JointKind::Fixed);
+    }
   }
+  return kinds;
 }
 
 }  // namespace reeve::scene_detail

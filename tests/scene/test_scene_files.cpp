@@ -2,6 +2,8 @@
 #include <cmath>
 #include <numbers>
 
+#include <nlohmann/json.hpp>
+
 #include "scene_test_util.h"
 
 namespace reeve::test {
@@ -177,6 +179,31 @@ TEST(SceneFiles, SceneStaysUsableAfterAMove) {
   for (int f = 0; f < 10; ++f) s.world->step(1.0 / s.frame_rate_hz);
   EXPECT_GT(s.world->time(), 0.0);
   EXPECT_NEAR(s.cables->totalLength(0), total, 1e-9 * total);
+}
+
+// Scene::joint_kinds maps each "joints" entry to World's joints of its kind.
+TEST(SceneFiles, JointKindsFollowTheJointsArray) {
+  const Scene s = loadScene(kScenesDir / "joints.json");
+  const nlohmann::json doc = nlohmann::json::parse(readFile(kScenesDir / "joints.json"));
+  ASSERT_EQ(s.joint_kinds.size(), doc.at("joints").size());
+  int prismatic = 0, spherical = 0, fixed = 0;
+  for (std::size_t k = 0; k < s.joint_kinds.size(); ++k) {
+    const std::string type = doc["joints"][k].at("type").get<std::string>();
+    const JointKind kind = s.joint_kinds[k];
+    EXPECT_EQ(kind, type == "prismatic" ? JointKind::Prismatic
+                    : type == "spherical" ? JointKind::Spherical
+                                          : JointKind::Fixed) << k;
+    // The k-th of its kind joins the bodies the entry names.
+    const BodyId a = *s.world->findBody(doc["joints"][k].at("body").get<std::string>());
+    const BodyId joined = kind == JointKind::Prismatic   ? s.world->prismatic(prismatic++).a
+                          : kind == JointKind::Spherical ? s.world->spherical(spherical++).a
+                                                         : s.world->fixedJoint(fixed++).a;
+    EXPECT_EQ(joined, a) << k;
+  }
+  EXPECT_EQ(prismatic, static_cast<int>(s.world->prismatics().size()));
+  EXPECT_EQ(spherical, static_cast<int>(s.world->sphericals().size()));
+  EXPECT_EQ(fixed, static_cast<int>(s.world->fixedJoints().size()));
+  EXPECT_TRUE(loadScene(kScenesDir / "atwood.json").joint_kinds.empty());
 }
 
 }  // namespace

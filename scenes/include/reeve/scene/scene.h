@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "reeve/cable/cable.h"
 #include "reeve/engine/world.h"
@@ -28,6 +29,9 @@ struct CameraDef {
   double fov_y_deg = 40.0;
 };
 
+/// The kind of an entry of a scene's "joints" array.
+enum class JointKind { Prismatic, Spherical, Fixed };
+
 /// A loaded scene, ready to step: `world->step(1.0 / frame_rate_hz)` once
 /// per frame for `frameCount()` frames. `cables` is built on `*world` and
 /// has registered a substep hook in it, so keep the two together (do not
@@ -41,6 +45,10 @@ struct Scene {
   std::unique_ptr<World> world;
   std::unique_ptr<CableSystem> cables;
   std::optional<CameraDef> camera;
+  /// The kind of each entry of "joints", in order: the k-th entry of a
+  /// kind is World's k-th joint of it (prismatic(), spherical(),
+  /// fixedJoint()). Hinges ("hinges") are World's hinges in order.
+  std::vector<JointKind> joint_kinds;
 
   /// Number of frames to simulate: round(duration_s * frame_rate_hz).
   int frameCount() const;

@@ -1,123 +1,18 @@
 #include "commands.h"
 
 #include <algorithm>
-#include <chrono>
 #include <csignal>
-#include <cmath>
 #include <cstdio>
 #include <iostream>
-#include <memory>
-#include <stdexcept>
 #include <string>
-#include <utility>
-#include <vector>
 
-#include "csv_writer.h"
-#include "event_log.h"
 #include "frame_folder.h"
-#include "interrupt.h"
-#include "output_file.h"
-#include "progress.h"
-#include "reeve/render/renderer.h"
-#include "reeve/render/video.h"
 #include "reeve/scene/scene.h"
 #include "reeve/scene/warnings.h"
+#include "run_scene.h"
 
 namespace reeve {
 namespace {
-
-namespace fs = std::filesystem;
-
-struct WouldOverwrite : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-// Two outputs on one file, or an output on the scene being run: refused
-// even with --force (exit 64).
-struct OutputClash : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-void refuseOverwrite(const fs::path& path, bool force) {
-  if (!force && fs::exists(path) && !isStream(path))
-    throw WouldOverwrite(path.string() + ": exists; pass --force to overwrite it");
-}
-
-void refuseClashes(const RunOptions& o) {
-  std::vector<std::pair<std::string, fs::path>> files;
-  if (!o.scene.empty()) files.push_back({"the scene", o.scene});
-  for (const auto& [option, path] : {std::pair{"--csv", o.csv}, {"--events", o.events}, {"--video", o.video}})
-    if (!path.empty()) files.push_back({option, path});
-  for (std::size_t i = 0; i < files.size(); ++i)
-    for (std::size_t j = i + 1; j < files.size(); ++j) {
-      std::error_code ec_i, ec_j, ec;
-      const fs::path a = fs::weakly_canonical(files[i].second, ec_i), b = fs::weakly_canonical(files[j].second, ec_j);
-      const bool same = (!ec_i && !ec_j && a == b) || fs::equivalent(files[i].second, files[j].second, ec);
-      if (same && !isStream(files[j].second))
-        throw OutputClash(files[j].first + " " + files[j].second.string() + " is the same file as " +
-                          files[i].first + (i == 0 && !o.scene.empty() ? "" : " " + files[i].second.string()) +
-                          "; give each output its own file (--force does not change this)");
-    }
-}
-
-std::string bodyName(const World& world, BodyId id) {
-  return id == kWorldBody ? std::string("the world") : "'" + world.bodyDef(id).name + "'";
-}
-
-// "body 'load' velocity", "tension between 'wheel' and 'load'".
-std::string describe(const NonFiniteState& bad, const World& world) {
-  if (bad.quantity == NonFiniteState::Quantity::Tension)
-    return "the tension between " + bodyName(world, bad.body) + " and " + bodyName(world, bad.other);
-  return "body " + bodyName(world, bad.body) + " " + quantityName(bad.quantity);
-}
-
-// Why a run stops at a broken cable bookkeeping, with what to try.
-std::string breachMessage(const CableBreach& breach, const World& world) {
-  char when[32], turn[32];
-  std::snprintf(when, sizeof when, "%.9g", breach.time_s);
-  std::snprintf(turn, sizeof turn, "%.3g", breach.fastest_turn);
-  std::string message = std::string("the cable bookkeeping broke at t = ") + when + " s: " + breach.what;
-  if (breach.spool_ran_out)
-    return message + ". Its rolling end ran out of cable: it holds only the stored_m it was given. Give it "
-                     "more, or make it a \"hybrid\" link, which ties the cable where it runs out";
-  if (breach.fastest >= 0)
-    message += "; body " + bodyName(world, breach.fastest) + " turned " + turn + " rad in that substep";
-  return message +
-         ". The solve diverged: a span far past its rest length asks its wheels to turn further in one solve "
-         "than their body-fixed span ends can follow. Nothing of that frame was written. Check that the rest "
-         "lengths fit the bodies' poses (a span that starts stretched is pulled in by the first solve at any "
-         "substep count); if a fast motion stretched it, try more substeps";
-}
-
-// Checks every output before simulating, so nothing is half-written when
-// a later output turns out to be refused.
-void checkOutputs(const RunOptions& o, int frames) {
-  refuseClashes(o);
-  if (!o.csv.empty()) refuseOverwrite(o.csv, o.force);
-  if (!o.events.empty()) refuseOverwrite(o.events, o.force);
-  if (!o.video.empty()) {
-    if (o.video.extension() != ".mp4")
-      throw std::runtime_error(o.video.string() + ": expected a file name ending in .mp4");
-    if (o.width % 2 != 0 || o.height % 2 != 0)
-      throw std::runtime_error("--video needs an even --width and --height (H.264 yuv420p), got " +
-                               std::to_string(o.width) + "x" + std::to_string(o.height));
-    refuseOverwrite(o.video, o.force);
-  }
-  if (!o.png_dir.empty()) {
-    if (fs::exists(o.png_dir) && !fs::is_directory(o.png_dir))
-      throw std::runtime_error(o.png_dir.string() + ": exists and is not a folder");
-    for (int f = 0; f < frames; ++f) refuseOverwrite(o.png_dir / frameName(f), o.force);
-  }
-}
-
-void createParent(const fs::path& file) {
-  if (file.has_parent_path()) fs::create_directories(file.parent_path());
-}
-
-Camera sceneCamera(const Scene& scene, double aspect) {
-  if (!scene.camera) return frameScene(*scene.world, *scene.cables, aspect);
-  return Camera{scene.camera->eye, scene.camera->target, scene.camera->up, scene.camera->fov_y_deg};
-}
 
 // Warnings go to stderr and do not change the exit status.
 void printWarnings(const Scene& scene, const std::string& source) {
@@ -132,99 +27,27 @@ int simulate(const RunOptions& o) {
   if (o.iterations) scene.world->settings().iterations = *o.iterations;
   if (!o.solver.empty()) scene.world->settings().solver = *solverMethodFromName(o.solver);
   const int frames = o.frames.value_or(scene.frameCount());
-  checkOutputs(o, frames);
+  const RunOutputs outputs{o.png_dir, o.video, o.csv, o.events, o.width, o.height, o.force, o.scene};
+  checkRunOutputs(outputs, frames);  // before the warnings: a refused output is the one message
   printWarnings(scene, o.scene.empty() ? "<built-in simple.json>" : o.scene);
-
-  std::unique_ptr<CsvWriter> csv;
-  if (!o.csv.empty()) {
-    createParent(o.csv);
-    csv = std::make_unique<CsvWriter>(o.csv, o.force, *scene.cables);
-  }
-  std::unique_ptr<EventLog> events;
-  if (!o.events.empty()) {
-    createParent(o.events);
-    events = std::make_unique<EventLog>(o.events, o.force);
-  }
-  const bool draw = !o.png_dir.empty() || !o.video.empty();
-  std::unique_ptr<Renderer> renderer;
-  // ffmpeg writes a temporary file beside the video (an absolute name, so
-  // "file:x.mp4" is a file, not a protocol), moved into place at the end;
-  // removed if the run fails (after ffmpeg has been waited for).
-  struct RemoveUnlessMoved {
-    fs::path path;
-    ~RemoveUnlessMoved() {
-      std::error_code ec;
-      if (!path.empty()) fs::remove(path, ec);
-    }
-  } video_file;
-  std::unique_ptr<VideoWriter> video;
-  Camera camera;
-  if (draw) {
-    renderer = std::make_unique<Renderer>(o.width, o.height);
-    camera = sceneCamera(scene, static_cast<double>(o.width) / o.height);
-  }
-  std::unique_ptr<FrameFolder> pngs;
-  if (!o.png_dir.empty()) pngs = std::make_unique<FrameFolder>(o.png_dir, o.force);
-  if (!o.video.empty()) {
-    createParent(o.video);
-    video_file.path = temporarySibling(o.video);
-    video = std::make_unique<VideoWriter>(video_file.path, o.width, o.height, scene.frame_rate_hz);
-  }
-
+  const RunResult r = runScene(scene, frames, outputs);
+  const int done = r.frames_done;
   const double dt = 1.0 / scene.frame_rate_hz;
-  double physics_s = 0.0;
-  const InterruptGuard interrupt;
-  int done = 0;  // frames written
-  ProgressBar progress(frames);
-  if (csv) csv->writeRow();  // t = 0: the scene as loaded
-  for (int f = 0; f < frames && !interrupt.received(); ++f) {
-    const auto t0 = std::chrono::steady_clock::now();
-    scene.world->step(dt);
-    physics_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (const auto& bad = scene.world->firstNonFinite())
-      throw std::runtime_error(nonFiniteMessage(bad->time_s, describe(*bad, *scene.world)));
-    if (const auto& breach = scene.cables->firstBreach())
-      throw std::runtime_error(breachMessage(*breach, *scene.world));
-    if (csv) csv->writeRow();
-    if (events) events->drain(*scene.cables);
-    else scene.cables->takeEvents();  // nobody asked: do not let them pile up
-    if (draw) {
-      const Image image = renderer->render(*scene.world, *scene.cables, camera);
-      if (pngs) pngs->write(f, image);
-      if (video) video->add(image);
-    }
-    progress.update(f + 1);
-    done = f + 1;
-  }
-  // Every output complete before any is moved into place (on an interrupt
-  // too: they hold the frames done, each whole).
-  if (video) video->finish();
-  if (csv) csv->close();
-  if (events) events->close();
-  if (video) {
-    moveIntoPlace(video_file.path, o.video, o.force);
-    video_file.path.clear();
-  }
-  if (csv) csv->commit();
-  if (events) events->commit();
-  if (pngs) pngs->commit();
-
-  const int signal = interrupt.received();
-  if (signal)
+  if (r.signal)
     std::fprintf(stderr, "reeve: %s: stopped after %d of %d frames; the outputs hold those %d frames\n",
-                 signal == SIGINT ? "interrupted (SIGINT)" : "terminated (SIGTERM)", done, frames, done);
+                 r.signal == SIGINT ? "interrupted (SIGINT)" : "terminated (SIGTERM)", done, frames, done);
   std::printf("reeve: simulated %d frames of '%s' (%.3f s, %d substeps x %d iterations, %s) in %.3f ms/frame of physics\n",
               done, scene.name.c_str(), done * dt, scene.world->settings().substeps,
               scene.world->settings().iterations, solverMethodName(scene.world->settings().solver),
-              1e3 * physics_s / std::max(done, 1));
-  if (pngs && done > 0)
-    std::printf("  PNG frames: %s .. %s\n", pngs->framePath(0).c_str(), frameName(done - 1).c_str());
+              1e3 * r.physics_s / std::max(done, 1));
+  if (!o.png_dir.empty() && done > 0)
+    std::printf("  PNG frames: %s .. %s\n", (o.png_dir / frameName(0)).c_str(), frameName(done - 1).c_str());
   if (!o.video.empty()) std::printf("  video:      %s\n", o.video.c_str());
   if (!o.csv.empty()) std::printf("  CSV:        %s\n", o.csv.c_str());
   if (!o.events.empty()) std::printf("  events:     %s\n", o.events.c_str());
   if (o.png_dir.empty() && o.video.empty() && o.csv.empty() && o.events.empty())
     std::printf("  (no output requested: add --png DIR, --video FILE.mp4, --csv FILE or --events FILE)\n");
-  return signal ? 128 + signal : 0;  // the shells' convention: 130 for SIGINT, 143 for SIGTERM
+  return r.signal ? 128 + r.signal : 0;  // the shells' convention: 130 for SIGINT, 143 for SIGTERM
 }
 
 }  // namespace

@@ -1,0 +1,70 @@
+// The run job shared by `reeve run` and the Python module's reeve.run():
+// step a loaded scene frame by frame and write its outputs, each whole or
+// not at all.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "reeve/render/camera.h"
+#include "reeve/scene/scene.h"
+
+namespace reeve {
+
+/// An output exists and overwriting was not asked for (`reeve run` exit 3).
+struct WouldOverwrite : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// Two outputs on one file, or an output on the scene file being run:
+/// refused even with force (`reeve run` exit 64).
+struct OutputClash : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// What a run writes (none: it only steps). `scene_file` is the file the
+/// scene came from, if any, which no output may replace.
+struct RunOutputs {
+  std::filesystem::path png_dir, video, csv, events;
+  int width = 1280, height = 720;  ///< pixels, of the PNG frames and the video (even for a video)
+  bool force = false;              ///< replace outputs that exist
+  std::filesystem::path scene_file;
+};
+
+/// How a run went.
+struct RunResult {
+  int frames_done = 0;      ///< whole frames stepped and written
+  int signal = 0;           ///< SIGINT or SIGTERM that stopped it after a whole frame, else 0
+  double physics_s = 0.0;   ///< wall time spent in World::step (s)
+};
+
+/// Checks every output before a run, so that nothing is half-written when a
+/// later one turns out to be refused: no two on one file nor on the scene
+/// file, none that exists unless `force`, a video name ending in .mp4 with
+/// an even width and height, a PNG folder that is a folder. Throws
+/// OutputClash, WouldOverwrite or std::runtime_error.
+void checkRunOutputs(const RunOutputs& outputs, int frames);
+
+/// Why stepping must stop after the last step, as `reeve run` says it: a
+/// non-finite state (World::firstNonFinite) or a broken cable bookkeeping
+/// (CableSystem::firstBreach), with what to try; nothing while neither.
+std::optional<std::string> stopReason(const Scene& scene);
+
+/// The camera a run draws through: the scene's, or one framing every body
+/// and cable (frameScene) for images of aspect width / height.
+Camera sceneCamera(const Scene& scene, double aspect);
+
+/// Steps `scene` by `frames` frames of 1 / frame_rate_hz, writing after
+/// each the CSV row (CsvWriter; a row for the state before the first
+/// frame too), the cable events, the PNG frame (frame_00000.png, ...) and
+/// the video frame (MP4, H.264, through the ffmpeg program). Every output
+/// is checked before the first step (checkRunOutputs) and appears only whole, at the end (on
+/// SIGINT or SIGTERM too, holding the frames done). Throws WouldOverwrite,
+/// OutputClash, std::runtime_error for a bad output name, a failed write,
+/// a non-finite state or a broken cable bookkeeping (World::firstNonFinite,
+/// CableSystem::firstBreach), leaving no output behind.
+RunResult runScene(Scene& scene, int frames, const RunOutputs& outputs);
+
+}  // namespace reeve

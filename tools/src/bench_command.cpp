@@ -1,7 +1,9 @@
 #include "bench_command.h"
 
 #include <cstdio>
+#include <filesystem>
 #include <memory>
+#include <system_error>
 #include <stdexcept>
 
 #include "commands.h"
@@ -21,6 +23,18 @@ CLI::Option* addSolvers(CLI::App* cmd, std::vector<std::string>& solvers) {
   return cmd->add_option("--solver", solvers, "Solvers to run (default: direct gauss-seidel)")
       ->check(CLI::IsMember({"direct", "gauss-seidel"}))
       ->delimiter(',');
+}
+
+// The shipped scenes: beside an installed program (PREFIX/bin/reeve ->
+// PREFIX/share/reeve/scenes), else in the source tree it was built from.
+std::string shippedScenesDir() {
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const std::filesystem::path installed = exe.parent_path().parent_path() / "share" / "reeve" / "scenes";
+    if (std::filesystem::is_directory(installed, ec)) return installed.string();
+  }
+  return REEVE_SCENES_DIR;
 }
 
 // Runs a sub-command, turning its errors into exit codes and one line.
@@ -51,7 +65,7 @@ std::function<int()> addBenchCommand(CLI::App& app, CLI::App*& bench_cmd) {
   bench_cmd->footer(
       "Prints the CPU, compiler, build type, date and threads with every result; never passes or fails on a "
       "time. Absolute times depend on the machine (the paper's: a 3.5 GHz Core i7).");
-  const std::string scenes = REEVE_SCENES_DIR;
+  const std::string scenes = shippedScenesDir();
 
   auto table1 = std::make_shared<bench::Table1Options>();
   table1->scenes_dir = scenes;

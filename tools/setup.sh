@@ -14,7 +14,11 @@ packages=(
   libpng-dev             # PNG frames
   libgtest-dev           # tests
   ffmpeg                 # video (the program, piped to)
-  python3-matplotlib     # reeve bench --plot (bench/plot.py)
+  python3-matplotlib     # reeve bench --plot (bench/plot.py), examples/
+  pybind11-dev python3-dev  # the Python module (python/)
+  python3-numpy          # its arrays
+  python3-pytest         # its tests
+  python3-distributed    # reeve.sweep (Dask)
 )
 # --sanitizers: what tools/sanitize.sh builds with (clang, its sanitizer and
 # libFuzzer runtimes, llvm-symbolizer for readable reports and suppressions).

@@ -1,0 +1,218 @@
+// reeve.Scene, reeve.Settings, loading, stepping, rendering and runs.
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <Python.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <csignal>
+#include <optional>
+#include <stdexcept>
+
+#include "py_scene.h"
+#include "run_scene.h"
+
+namespace py = pybind11;
+
+namespace reeve::python {
+namespace {
+
+std::unique_ptr<PyScene> fromFile(const std::filesystem::path& path) {
+  return std::make_unique<PyScene>(PyScene{loadScene(path), path.string(), nullptr});
+}
+
+std::unique_ptr<PyScene> fromText(const std::string& text, const std::string& source) {
+  return std::make_unique<PyScene>(PyScene{parseScene(text, source), source, nullptr});
+}
+
+// The bounds the scene schema puts on the solver settings.
+void checkRange(const char* name, double value, double lo, double hi, bool lo_open) {
+  if (!std::isfinite(value) || value > hi || (lo_open ? value <= lo : value < lo))
+    throw py::value_error(std::string(name) + ": expected a number " + (lo_open ? "> " : ">= ") +
+                          py::str(py::float_(lo)).cast<std::string>() + " and <= " +
+                          py::str(py::float_(hi)).cast<std::string>() + ", got " +
+                          py::str(py::float_(value)).cast<std::string>());
+}
+
+void step(PyScene& s, int frames) {
+  if (frames < 0) throw py::value_error("frames: expected a count >= 0, got " + std::to_string(frames));
+  const double dt = 1.0 / s.scene.frame_rate_hz;
+  for (int f = 0; f < frames; ++f) {
+    {
+      py::gil_scoped_release release;  // other Python threads (a Dask worker's) run meanwhile
+      s.scene.world->step(dt);
+    }
+    if (const auto why = stopReason(s.scene)) throwSimulationError("reeve: " + *why);
+    if (PyErr_CheckSignals() != 0) throw py::error_already_set();  // Ctrl-C between frames
+  }
+  s.scene.cables->takeEvents();  // not kept: nothing in Python reads them yet
+}
+
+py::array_t<std::uint8_t> render(PyScene& s, int width, int height) {
+  if (width <= 0 || height <= 0)
+    throw py::value_error("render: expected a positive width and height, got " + std::to_string(width) + "x" +
+                          std::to_string(height));
+  Image image;
+  {
+    py::gil_scoped_release release;
+    if (!s.renderer || s.renderer->width() != width || s.renderer->height() != height)
+      s.renderer = std::make_unique<Renderer>(width, height);
+    image = s.renderer->render(*s.scene.world, *s.scene.cables,
+                               sceneCamera(s.scene, static_cast<double>(width) / height));
+  }
+  py::array_t<std::uint8_t> out({image.height, image.width, 3});
+  std::copy(image.rgb.begin(), image.rgb.end(), out.mutable_data());
+  return out;
+}
+
+py::dict run(PyScene& s, std::optional<int> frames, std::optional<std::filesystem::path> csv,
+             std::optional<std::filesystem::path> png_dir, std::optional<std::filesystem::path> video,
+             std::optional<std::filesystem::path> events, int width, int height, bool force) {
+  const int n = frames.value_or(s.scene.frameCount());
+  if (n < 0) throw py::value_error("frames: expected a count >= 0, got " + std::to_string(n));
+  RunOutputs outputs;
+  outputs.csv = csv.value_or("");
+  outputs.png_dir = png_dir.value_or("");
+  outputs.video = video.value_or("");
+  outputs.events = events.value_or("");
+  outputs.width = width;
+  outputs.height = height;
+  outputs.force = force;
+  if (std::filesystem::exists(s.source)) outputs.scene_file = s.source;
+  RunResult r;
+  try {
+    py::gil_scoped_release release;
+    r = runScene(s.scene, n, outputs);
+  } catch (const WouldOverwrite& e) {
+    PyErr_SetString(PyExc_FileExistsError, e.what());
+    throw py::error_already_set();
+  } catch (const OutputClash& e) {
+    throw py::value_error(e.what());
+  } catch (const std::invalid_argument& e) {
+    throw py::value_error(e.what());
+  } catch (const std::runtime_error& e) {
+    throwSimulationError(std::string("reeve: ") + e.what());
+  }
+  // Stopped after a whole frame, the outputs holding the frames done, as
+  // `reeve run` leaves them; then as Python would have: KeyboardInterrupt,
+  // or SIGTERM again, now to the interpreter's own handler.
+  if (r.signal == SIGINT) {
+    PyErr_SetNone(PyExc_KeyboardInterrupt);
+    throw py::error_already_set();
+  }
+  if (r.signal == SIGTERM) std::raise(SIGTERM);
+  py::dict result;
+  result["frames"] = r.frames_done;
+  result["physics_ms_per_frame"] = 1e3 * r.physics_s / std::max(r.frames_done, 1);
+  return result;
+}
+
+}  // namespace
+
+void bindScene(py::module_& m) {
+  m.def("_load_file", &fromFile, py::arg("path"));
+  m.def("_load_text", &fromText, py::arg("text"), py::arg("source"));
+  m.def("default_scene_json", [] { return std::string(defaultSceneJson()); },
+        "The text of scenes/simple.json (paper Fig. 12, left), the command line's default scene.");
+  m.def("scene_schema_json", [] { return std::string(sceneSchemaJson()); },
+        "The text of scene.schema.json (JSON Schema draft-07), which every scene is checked against.");
+
+  py::class_<SettingsView>(m, "Settings",
+                   "The solver settings of a Scene, read and written in place; writes take effect at the next "
+                   "step. Ranges as in the scene schema (ValueError outside them).")
+      .def_property(
+          "substeps", [](const SettingsView& v) { return v.world().settings().substeps; },
+          [](SettingsView& v, int n) {
+            checkRange("substeps", n, 1, 100000, false);
+            v.world().settings().substeps = n;
+          },
+          "Substeps per frame, 1..100000 (int).")
+      .def_property(
+          "iterations", [](const SettingsView& v) { return v.world().settings().iterations; },
+          [](SettingsView& v, int n) {
+            checkRange("iterations", n, 1, 1000, false);
+            v.world().settings().iterations = n;
+          },
+          "Solver iterations per substep, 1..1000 (int).")
+      .def_property(
+          "frame_rate_hz", [](const SettingsView& v) { return v.scene().frame_rate_hz; },
+          [](SettingsView& v, double hz) {
+            checkRange("frame_rate_hz", hz, 0.0, 1e6, true);
+            v.scene().frame_rate_hz = hz;
+          },
+          "Frames per simulated second, Hz: step() advances 1 / frame_rate_hz s per frame.")
+      .def_property(
+          "method", [](const SettingsView& v) { return std::string(solverMethodName(v.world().settings().solver)); },
+          [](SettingsView& v, const std::string& name) {
+            const auto kind = solverMethodFromName(name);
+            if (!kind) throw py::value_error("method: expected \"direct\" or \"gauss-seidel\", got \"" + name + "\"");
+            v.world().settings().solver = *kind;
+          },
+          "The solver: \"direct\" (every joint and cable solved together) or \"gauss-seidel\".")
+      .def_property(
+          "gravity_m_per_s2",
+          [](const SettingsView& v) {
+            const Vec3 g = v.world().settings().gravity;
+            return std::array<double, 3>{g.x(), g.y(), g.z()};
+          },
+          [](SettingsView& v, const std::array<double, 3>& g) {
+            for (const double c : g)
+              if (!std::isfinite(c)) throw py::value_error("gravity_m_per_s2: expected 3 finite numbers");
+            v.world().settings().gravity = Vec3(g[0], g[1], g[2]);
+          },
+          "Gravity (m/s^2, world), 3 numbers.")
+      .def("__repr__", [](const SettingsView& v) {
+        const SolverSettings& s = v.world().settings();
+        return "Settings(substeps=" + std::to_string(s.substeps) + ", iterations=" + std::to_string(s.iterations) +
+               ", frame_rate_hz=" + py::repr(py::float_(v.scene().frame_rate_hz)).cast<std::string>() +
+               ", method='" + solverMethodName(s.solver) + "')";
+      });
+
+  py::class_<PyScene>(m, "Scene",
+                      "A loaded scene: bodies, joints and cables (Mueller et al., Cable Joints, SCA 2018) ready to "
+                      "step. Make one with reeve.load(). Its views (settings, bodies, cables, hinges, joints) "
+                      "read and write this scene; the arrays they return are copies (float64, SI units in the "
+                      "names), taken when asked for.")
+      .def_property_readonly("name", [](const PyScene& s) { return s.scene.name; }, "The scene's name (str).")
+      .def_property_readonly("description", [](const PyScene& s) { return s.scene.description; })
+      .def_property_readonly("source", [](const PyScene& s) { return s.source; },
+                             "The file it was loaded from, or \"<text>\" / \"<dict>\".")
+      .def_property_readonly("duration_s", [](const PyScene& s) { return s.scene.duration_s; },
+                             "The scene's duration_s (s): what run() simulates by default.")
+      .def_property_readonly("frame_count", [](const PyScene& s) { return s.scene.frameCount(); },
+                             "round(duration_s x frame_rate_hz) (int).")
+      .def_property_readonly("time_s", [](const PyScene& s) { return s.scene.world->time(); },
+                             "Simulated time so far (s).")
+      .def_property_readonly("settings", [](py::object self) { return SettingsView{{self.cast<PyScene*>(), self}}; },
+                             "The solver settings (reeve.Settings), writable.")
+      .def("step", &step, py::arg("frames") = 1,
+           "Advances `frames` frames of 1 / settings.frame_rate_hz s (each of settings.substeps substeps). "
+           "Raises reeve.SimulationError, as `reeve run` stops, when the state becomes non-finite or the cable "
+           "bookkeeping breaks; KeyboardInterrupt between frames on Ctrl-C.")
+      .def("render", &render, py::arg("width") = 1280, py::arg("height") = 720,
+           "The current poses drawn as `reeve run --png` draws them (off-screen OpenGL, OSMesa): a numpy uint8 "
+           "array of shape (height, width, 3), RGB, top row first. The camera is the scene's, or one that "
+           "frames every body. ValueError for a size <= 0.")
+      .def_property_readonly("bodies", [](py::object self) { return BodiesView{{self.cast<PyScene*>(), self}}; },
+                             "The rigid bodies (reeve.Bodies), in the scene's order.")
+      .def_property_readonly("cables", [](py::object self) { return CablesView{{self.cast<PyScene*>(), self}}; },
+                             "The cables (reeve.Cables): cables[\"name\"] or cables[index].")
+      .def_property_readonly("hinges", [](py::object self) { return HingesView{{self.cast<PyScene*>(), self}}; },
+                             "The hinges (reeve.Hinges), in the order of the scene's \"hinges\".")
+      .def_property_readonly("joints", [](py::object self) { return JointsView{{self.cast<PyScene*>(), self}}; },
+                             "The prismatic, spherical and fixed joints (reeve.Joints), in the order of the "
+                             "scene's \"joints\".")
+      .def("_run", &run, py::arg("frames"), py::arg("csv"), py::arg("png_dir"), py::arg("video"),
+           py::arg("events"), py::arg("width"), py::arg("height"), py::arg("force"))
+      .def("__repr__", [](const PyScene& s) {
+        return "<reeve.Scene '" + s.scene.name + "' from " + s.source + ", t = " +
+               py::repr(py::float_(s.scene.world->time())).cast<std::string>() + " s, " +
+               std::to_string(s.scene.world->bodyCount()) + " bodies, " +
+               std::to_string(s.scene.cables->cables().size()) + " cables>";
+      });
+}
+
+}  // namespace reeve::python

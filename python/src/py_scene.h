@@ -1,0 +1,50 @@
+// The Python module's C++ side (_reeve): a loaded scene and the views of its
+// state that share it. Doc strings are in the bind*() functions.
+#pragma once
+
+#include <pybind11/pybind11.h>
+
+#include <memory>
+#include <string>
+
+#include "reeve/render/renderer.h"
+#include "reeve/scene/scene.h"
+
+namespace reeve::python {
+
+/// A scene loaded from Python, with the renderer its render() reuses.
+struct PyScene {
+  Scene scene;
+  std::string source;                  ///< file name, "<text>" or "<dict>": for messages
+  std::unique_ptr<Renderer> renderer;  ///< made by the first render(), remade for another size
+};
+
+/// The views (Settings, Bodies, Cables, Cable, Hinges, Joints) hold a
+/// reference to the Python Scene, so it lives as long as any of them, and
+/// read it on every access.
+struct View {
+  PyScene* owner;
+  pybind11::object keep;  ///< the Python Scene object
+  Scene& scene() const { return owner->scene; }
+  World& world() const { return *owner->scene.world; }
+};
+
+struct SettingsView : View {};
+struct BodiesView : View {};
+struct CablesView : View {};
+struct CableView : View {
+  int index;  ///< CableSystem's cable index
+};
+struct HingesView : View {};
+struct JointsView : View {};
+
+void bindErrors(pybind11::module_& m);
+void bindScene(pybind11::module_& m);
+void bindBodies(pybind11::module_& m);
+void bindCables(pybind11::module_& m);
+void bindJoints(pybind11::module_& m);
+
+/// Raises reeve.SimulationError (a RuntimeError) with `message`.
+[[noreturn]] void throwSimulationError(const std::string& message);
+
+}  // namespace reeve::python

@@ -1,0 +1,60 @@
+"""Scene.render and reeve.run: the command line's images and files."""
+import filecmp
+import os
+import pathlib
+import subprocess
+
+import numpy as np
+import pytest
+
+import reeve
+
+
+def test_render_returns_an_image_of_the_scene(scenes):
+    scene = reeve.load(scenes / "atwood.json")
+    image = scene.render(320, 240)
+    assert image.shape == (240, 320, 3) and image.dtype == np.uint8
+    # Not blank: a background, shaded bodies and a dark cable.
+    colours = np.unique(image.reshape(-1, 3), axis=0)
+    assert len(colours) > 50
+    assert image.min() < 60 and image.max() > 180
+    # It follows the state: the boxes move, the picture changes.
+    scene.step(30)
+    assert np.count_nonzero(np.any(scene.render(320, 240) != image, axis=2)) > 100
+    with pytest.raises(ValueError, match="positive width and height"):
+        scene.render(0, 240)
+
+
+def test_run_writes_what_reeve_run_writes(scenes, tmp_path):
+    scene = reeve.load(scenes / "atwood.json")
+    result = reeve.run(scene, frames=20, csv=tmp_path / "py.csv", events=tmp_path / "py_events.csv")
+    assert result["frames"] == 20 and result["physics_ms_per_frame"] > 0.0
+    assert scene.time_s == pytest.approx(20 / 60, rel=1e-12)
+    cli = subprocess.run([os.environ["REEVE_BINARY"], "run", str(scenes / "atwood.json"), "--frames", "20",
+                          "--csv", str(tmp_path / "cli.csv")], capture_output=True, text=True)
+    assert cli.returncode == 0, cli.stderr
+    assert filecmp.cmp(tmp_path / "py.csv", tmp_path / "cli.csv", shallow=False)
+    with pytest.raises(FileExistsError, match="exists"):
+        reeve.run(reeve.load(scenes / "atwood.json"), frames=1, csv=tmp_path / "py.csv")
+    with pytest.raises(ValueError, match="same file"):
+        reeve.run(reeve.load(scenes / "atwood.json"), frames=1, csv=tmp_path / "a.csv", events=tmp_path / "a.csv")
+
+
+def test_run_writes_png_frames(scenes, tmp_path):
+    scene = reeve.load(scenes / "atwood.json")
+    reeve.run(scene, frames=2, png_dir=tmp_path / "frames", width=160, height=120)
+    assert sorted(p.name for p in (tmp_path / "frames").iterdir()) == ["frame_00000.png", "frame_00001.png"]
+
+
+REGRESSIONS = pathlib.Path(__file__).resolve().parents[2] / "tests" / "fuzz" / "regressions"
+
+
+def test_a_run_that_breaks_raises_simulation_error(tmp_path):
+    # gear_1_to_4.json with a hub's rope given no cable to pay out: the
+    # spool runs out, and the run stops as `reeve run` does, leaving no CSV.
+    gear = REGRESSIONS / "gear_spool_runs_out.json"
+    with pytest.raises(reeve.SimulationError, match="ran out of cable"):
+        reeve.run(reeve.load(gear), frames=60, csv=tmp_path / "broken.csv")
+    assert not (tmp_path / "broken.csv").exists()
+    with pytest.raises(reeve.SimulationError, match="ran out of cable"):
+        reeve.load(gear).step(60)

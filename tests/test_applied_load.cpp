@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "reeve/cable/cable.h"
+#include "atwood_machine.h"
 
 namespace reeve {
 namespace {
@@ -36,51 +36,10 @@ TEST(AppliedLoad, AFreeBodyAcceleratesAtForceOverMassAndTorqueOverInertia) {
   EXPECT_LT((world.body(ball).v - v).norm(), 1e-9);
 }
 
-// An Atwood machine (1 kg and 2 kg over a hinged 2 kg solid wheel of
+// The Atwood machine (1 kg and 2 kg over a hinged 2 kg solid wheel of
 // radius 0.2 m) with a push F down on the light box and a torque tau on
 // the wheel against the heavy side:
 //   a = ((m2 - m1) g - F - tau / r) / (m1 + m2 + M / 2), heavy side down.
-struct PushedAtwood {
-  double m1 = 1.0, m2 = 2.0, M = 2.0, r = 0.2, g = 10.0;
-  World world;
-  CableSystem cables{world};
-  BodyId light, heavy, wheel;
-  explicit PushedAtwood(SolverKind solver) {
-    world.settings().gravity = Vec3(0, -g, 0);
-    world.settings().solver = solver;
-    world.settings().substeps = 20;
-    world.settings().iterations = 2;
-    BodyDef w;
-    w.shape = Shape::cylinder(r, 0.05);
-    w.mass = M;
-    wheel = world.addBody(w);
-    world.addHinge({wheel, kWorldBody, Vec3::Zero(), Vec3::UnitZ(), 0.0});
-    BodyDef box;
-    box.shape = Shape::box(Vec3(0.1, 0.1, 0.1));
-    box.mass = m1;
-    box.position = Vec3(-r, -3.0, 0.0);
-    light = world.addBody(box);
-    box.mass = m2;
-    box.position = Vec3(r, -3.0, 0.0);
-    heavy = world.addBody(box);
-    CableDef def;
-    def.links = {LinkDef::attachment(light, Vec3(0, 0.1, 0)), LinkDef::rolling(wheel, -1),
-                 LinkDef::attachment(heavy, Vec3(0, 0.1, 0))};
-    cables.addCable(def);
-  }
-  double acceleration(double push_N, double torque_N_m) const {
-    return ((m2 - m1) * g - push_N - torque_N_m / r) / (m1 + m2 + 0.5 * M);
-  }
-  // The heavy box's acceleration (m/s^2, down) over `seconds` from rest.
-  double run(double push_N, double torque_N_m, double seconds) {
-    world.body(light).applied_force = Vec3(0.0, -push_N, 0.0);
-    world.body(wheel).applied_torque = Vec3(0.0, 0.0, torque_N_m);  // counter-clockwise
-    const int frames = static_cast<int>(seconds * 60.0 + 0.5);
-    for (int f = 0; f < frames; ++f) world.step(1.0 / 60.0);
-    return -world.body(heavy).v.y() / world.time();
-  }
-};
-
 TEST(AppliedLoad, APushAndAWheelTorqueThroughACableMeetTheAtwoodClosedForm) {
   for (const SolverKind solver : {SolverKind::Direct, SolverKind::GaussSeidel}) {
     SCOPED_TRACE(solver == SolverKind::Direct ? "direct (the wheel is a rotor)" : "gauss-seidel");
@@ -93,13 +52,18 @@ TEST(AppliedLoad, APushAndAWheelTorqueThroughACableMeetTheAtwoodClosedForm) {
         {1000.0, 0.0, 0.1},  // a kilonewton push: a = -247.5
     };
     for (const Case& c : cases) {
-      PushedAtwood a(solver);
-      const double expected = a.acceleration(c.push_N, c.torque_N_m);
-      const double got = a.run(c.push_N, c.torque_N_m, c.seconds);
+      Atwood a(1.0, 2.0, 20, 2);
+      a.world.settings().solver = solver;
+      a.world.body(a.box1).applied_force = Vec3(0.0, -c.push_N, 0.0);
+      a.world.body(a.wheel).applied_torque = Vec3(0.0, 0.0, c.torque_N_m);  // counter-clockwise
+      const int frames = static_cast<int>(c.seconds * 60.0 + 0.5);
+      for (int f = 0; f < frames; ++f) a.world.step(1.0 / 60.0);
+      const double got = -a.world.body(a.box2).v.y() / a.world.time();
+      const double expected = ((a.m2 - a.m1) * a.g - c.push_N - c.torque_N_m / a.r) / (a.m1 + a.m2 + 0.5 * a.M);
       EXPECT_NEAR(got, expected, 0.01 * std::max(std::abs(expected), 1.0)) << c.push_N << " N, " << c.torque_N_m << " N m";
       if (expected == 0.0) {
-        EXPECT_NEAR(a.cables.tension(0, 0), a.m2 * a.g, 0.01 * a.m2 * a.g);
-        EXPECT_NEAR(a.cables.tension(0, 1), a.m2 * a.g, 0.01 * a.m2 * a.g);
+        EXPECT_NEAR(a.cables.tension(a.cable, 0), a.m2 * a.g, 0.01 * a.m2 * a.g);
+        EXPECT_NEAR(a.cables.tension(a.cable, 1), a.m2 * a.g, 0.01 * a.m2 * a.g);
       }
     }
   }

@@ -2,42 +2,10 @@
 // a = (m2 - m1) g / (m1 + m2 + I / r^2), T1 = m1 (g + a), T2 = m2 (g - a).
 #include <gtest/gtest.h>
 
-#include "reeve/cable/cable.h"
+#include "atwood_machine.h"
 
 namespace reeve {
 namespace {
-
-struct Atwood {
-  double m1, m2, M = 2.0, r = 0.2, g = 10.0;
-  World world;
-  CableSystem cables{world};
-  BodyId box1, box2, wheel;
-  int cable;
-  Atwood(double m1_, double m2_, int substeps, int iterations) : m1(m1_), m2(m2_) {
-    world.settings().gravity = Vec3(0, -g, 0);
-    world.settings().substeps = substeps;
-    world.settings().iterations = iterations;
-    BodyDef w;
-    w.shape = Shape::cylinder(r, 0.05);
-    w.mass = M;
-    wheel = world.addBody(w);
-    world.addHinge({wheel, kWorldBody, Vec3::Zero(), Vec3::UnitZ(), 0.0});
-    BodyDef box;
-    box.shape = Shape::box(Vec3(0.1, 0.1, 0.1));
-    box.mass = m1;
-    box.position = Vec3(-r, -3.0, 0.0);
-    box1 = world.addBody(box);
-    box.mass = m2;
-    box.position = Vec3(r, -3.0, 0.0);
-    box2 = world.addBody(box);
-    CableDef def;
-    def.links = {LinkDef::attachment(box1, Vec3(0, 0.1, 0)),
-                 LinkDef::rolling(wheel, -1),  // over the top: clockwise
-                 LinkDef::attachment(box2, Vec3(0, 0.1, 0))};
-    cable = cables.addCable(def);
-  }
-  double acceleration() const { return (m2 - m1) * g / (m1 + m2 + 0.5 * M * r * r / (r * r)); }
-};
 
 void expectAnalytic(double m1, double m2, int substeps, int iterations) {
   Atwood a(m1, m2, substeps, iterations);

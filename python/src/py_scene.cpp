@@ -175,7 +175,8 @@ void bindScene(py::module_& m) {
                       "A loaded scene: bodies, joints and cables (Mueller et al., Cable Joints, SCA 2018) ready to "
                       "step. Make one with reeve.load(). Its views (settings, bodies, cables, hinges, joints) "
                       "read and write this scene; the arrays they return are copies (float64, SI units in the "
-                      "names), taken when asked for.")
+                      "names), taken when asked for. step(), render() and run() let other Python threads run "
+                      "meanwhile, but use one Scene from one thread at a time.")
       .def_property_readonly("name", [](const PyScene& s) { return s.scene.name; }, "The scene's name (str).")
       .def_property_readonly("description", [](const PyScene& s) { return s.scene.description; })
       .def_property_readonly("source", [](const PyScene& s) { return s.source; },

@@ -22,7 +22,7 @@ TEST(AppliedLoad, AFreeBodyAcceleratesAtForceOverMassAndTorqueOverInertia) {
   world.body(ball).applied_torque = Vec3(0.0, 0.0, 0.5);
   for (int f = 0; f < 60; ++f) world.step(1.0 / 60.0);
   const double t = world.time();
-  const double inertia = 0.4 * 2.0 * 0.5 * 0.5;  // solid sphere
+  const double inertia = 0.4 * 2.0 * 0.5 * 0.5;        // solid sphere
   EXPECT_NEAR(world.body(ball).v.x(), 1.5 * t, 1e-9);  // velocities come from positions: rounding
   EXPECT_NEAR(world.body(ball).v.z(), -0.5 * t, 1e-9);
   EXPECT_NEAR(world.body(ball).omega.z(), 0.5 / inertia * t, 1e-9);
@@ -60,7 +60,8 @@ TEST(AppliedLoad, APushAndAWheelTorqueThroughACableMeetTheAtwoodClosedForm) {
       for (int f = 0; f < frames; ++f) a.world.step(1.0 / 60.0);
       const double got = -a.world.body(a.box2).v.y() / a.world.time();
       const double expected = ((a.m2 - a.m1) * a.g - c.push_N - c.torque_N_m / a.r) / (a.m1 + a.m2 + 0.5 * a.M);
-      EXPECT_NEAR(got, expected, 0.01 * std::max(std::abs(expected), 1.0)) << c.push_N << " N, " << c.torque_N_m << " N m";
+      EXPECT_NEAR(got, expected, 0.01 * std::max(std::abs(expected), 1.0))
+          << c.push_N << " N, " << c.torque_N_m << " N m";
       if (expected == 0.0) {
         EXPECT_NEAR(a.cables.tension(a.cable, 0), a.m2 * a.g, 0.01 * a.m2 * a.g);
         EXPECT_NEAR(a.cables.tension(a.cable, 1), a.m2 * a.g, 0.01 * a.m2 * a.g);

@@ -40,7 +40,8 @@ def sweep(scene, parameters, measure, client=None, workers=None):
     parameters = list(parameters)
     own = None
     if client is None:
-        own = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None)
+        own = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                           dashboard_address=":0")  # a free port: sweeps may run side by side
         client = Client(own)
     elif isinstance(client, str):
         client = Client(client)

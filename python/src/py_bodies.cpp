@@ -25,7 +25,8 @@ BodyId bodyOf(const View& v, const BodyKey& key) {
   if (const int* i = std::get_if<int>(&key)) {
     const int k = *i < 0 ? *i + n : *i;
     if (k < 0 || k >= n)
-      throw py::index_error("body index " + std::to_string(*i) + " out of range for " + std::to_string(n) + " bodies");
+      throw py::index_error("body index " + std::to_string(*i) + " out of range for " + std::to_string(n) +
+                            " bodies");
     return k;
   }
   const std::string& name = std::get<std::string>(key);
@@ -77,8 +78,9 @@ void bindBodies(py::module_& m) {
             return names;
           },
           "Names (list of str, n).")
-      .def("index", [](const BodiesView& v, const std::string& name) { return bodyOf(v, name); }, py::arg("name"),
-           "The position of the body called `name`; KeyError if there is none.")
+      .def(
+          "index", [](const BodiesView& v, const std::string& name) { return bodyOf(v, name); }, py::arg("name"),
+          "The position of the body called `name`; KeyError if there is none.")
       .def_property_readonly(
           "positions_m", [](const BodiesView& v) { return rows3(v, [](const BodyState& b, BodyId) { return b.x; }); },
           "Centres of mass (m), shape (n, 3).")
@@ -154,7 +156,8 @@ void bindBodies(py::module_& m) {
       .def(
           "set_linear_velocity",
           [](BodiesView& v, const BodyKey& body, const std::array<double, 3>& vel) {
-            v.world().body(movingBody(v, body, "linear_velocity_m_per_s")).v = finite3(vel, "linear_velocity_m_per_s");
+            v.world().body(movingBody(v, body, "linear_velocity_m_per_s")).v =
+                finite3(vel, "linear_velocity_m_per_s");
           },
           py::arg("body"), py::arg("velocity_m_per_s"),
           "Sets the velocity of a body's centre of mass (m/s, world). ValueError for a static body.")
@@ -177,12 +180,14 @@ void bindBodies(py::module_& m) {
       .def(
           "set_applied_torque",
           [](BodiesView& v, const BodyKey& body, const std::array<double, 3>& t) {
-            v.world().body(movingBody(v, body, "applied_torque_N_m")).applied_torque = finite3(t, "applied_torque_N_m");
+            v.world().body(movingBody(v, body, "applied_torque_N_m")).applied_torque =
+                finite3(t, "applied_torque_N_m");
           },
           py::arg("body"), py::arg("torque_N_m"),
           "Applies a torque (N m, world) in every substep until set again. A hinged wheel the direct solver "
           "turns about a fixed axle takes the part along the axle. ValueError for a static body.")
-      .def("__repr__", [](const BodiesView& v) { return "<reeve.Bodies: " + std::to_string(v.world().bodyCount()) + ">"; });
+      .def("__repr__",
+           [](const BodiesView& v) { return "<reeve.Bodies: " + std::to_string(v.world().bodyCount()) + ">"; });
 }
 
 }  // namespace reeve::python

@@ -31,7 +31,8 @@ CableView cableOf(const CablesView& v, const std::variant<int, std::string>& key
   if (const int* i = std::get_if<int>(&key)) {
     const int k = *i < 0 ? *i + n : *i;
     if (k < 0 || k >= n)
-      throw py::index_error("cable index " + std::to_string(*i) + " out of range for " + std::to_string(n) + " cables");
+      throw py::index_error("cable index " + std::to_string(*i) + " out of range for " + std::to_string(n) +
+                            " cables");
     return CableView{{v.owner, v.keep}, k};
   }
   const std::string& name = std::get<std::string>(key);
@@ -40,7 +41,9 @@ CableView cableOf(const CablesView& v, const std::variant<int, std::string>& key
   throw py::key_error("no cable named '" + name + "' in scene '" + v.scene().name + "'");
 }
 
-const Cable& cable(const CableView& v) { return v.scene().cables->cables()[v.index]; }
+const Cable& cable(const CableView& v) {
+  return v.scene().cables->cables()[v.index];
+}
 
 // One number per joint of the cable, shape (joints,).
 template <class Get>
@@ -60,17 +63,26 @@ void bindCables(py::module_& m) {
       "each link and the next a cable joint, a unilateral distance constraint (paper sec. 3). Arrays are "
       "copies (float64) of the state now.")
       .def_property_readonly("name", [](const CableView& v) { return cable(v).name; })
-      .def_property_readonly("closed", [](const CableView& v) { return cable(v).closed; },
-                             "Whether the cable is a closed loop (a belt).")
       .def_property_readonly(
-          "tensions_N", [](const CableView& v) { return perJoint(v, [](const CableSystem& c, int i, int j) { return c.tension(i, j); }); },
+          "closed", [](const CableView& v) { return cable(v).closed; },
+          "Whether the cable is a closed loop (a belt).")
+      .def_property_readonly(
+          "tensions_N",
+          [](const CableView& v) {
+            return perJoint(v, [](const CableSystem& c, int i, int j) { return c.tension(i, j); });
+          },
           "Tension of each joint (N) over the last substep, shape (joints,); 0 while slack or merged away.")
       .def_property_readonly(
           "rest_lengths_m",
-          [](const CableView& v) { return perJoint(v, [](const CableSystem& c, int i, int j) { return c.restLength(i, j); }); },
+          [](const CableView& v) {
+            return perJoint(v, [](const CableSystem& c, int i, int j) { return c.restLength(i, j); });
+          },
           "Rest length of each joint (m), shape (joints,): the cable between its two tangent points.")
       .def_property_readonly(
-          "lengths_m", [](const CableView& v) { return perJoint(v, [](const CableSystem& c, int i, int j) { return c.length(i, j); }); },
+          "lengths_m",
+          [](const CableView& v) {
+            return perJoint(v, [](const CableSystem& c, int i, int j) { return c.length(i, j); });
+          },
           "Current straight length of each joint's span (m), shape (joints,); longer than the rest length by "
           "the stretch.")
       .def_property_readonly(
@@ -108,14 +120,16 @@ void bindCables(py::module_& m) {
             return names;
           },
           "The body of each link (list of str).")
-      .def_property_readonly("total_length_m", [](const CableView& v) { return v.scene().cables->totalLength(v.index); },
-                             "Rest lengths plus stored cable (m): conserved while the cable runs over its links.")
+      .def_property_readonly(
+          "total_length_m", [](const CableView& v) { return v.scene().cables->totalLength(v.index); },
+          "Rest lengths plus stored cable (m): conserved while the cable runs over its links.")
       .def(
           "set_rest_length",
           [](CableView& v, int joint, double rest_length_m) {
             const int n = static_cast<int>(cable(v).joints.size());
             if (joint < 0 || joint >= n)
-              throw py::index_error("joint " + std::to_string(joint) + " out of range for " + std::to_string(n) + " joints");
+              throw py::index_error("joint " + std::to_string(joint) + " out of range for " + std::to_string(n) +
+                                    " joints");
             if (!std::isfinite(rest_length_m) || rest_length_m < 0.0)
               throw py::value_error("rest_length_m: expected a finite number >= 0, got " +
                                     py::repr(py::float_(rest_length_m)).cast<std::string>());

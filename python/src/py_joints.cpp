@@ -27,7 +27,8 @@ int checkedIndex(int k, int n, const char* what) {
 
 double finiteTarget(double target) {
   if (!std::isfinite(target))
-    throw py::value_error("target: expected a finite number, got " + py::repr(py::float_(target)).cast<std::string>());
+    throw py::value_error("target: expected a finite number, got " +
+                          py::repr(py::float_(target)).cast<std::string>());
   return target;
 }
 
@@ -102,7 +103,8 @@ void bindJoints(py::module_& m) {
           "bodies",
           [](const HingesView& v) {
             std::vector<std::pair<std::string, std::string>> pairs;
-            for (const HingeJoint& h : v.world().hinges()) pairs.push_back({bodyName(v.world(), h.a), bodyName(v.world(), h.b)});
+            for (const HingeJoint& h : v.world().hinges())
+              pairs.push_back({bodyName(v.world(), h.a), bodyName(v.world(), h.b)});
             return pairs;
           },
           "(body, other) names of each hinge (list of tuples; \"world\" for the world).")
@@ -115,10 +117,12 @@ void bindJoints(py::module_& m) {
             return out;
           },
           "Angle of body relative to other (rad, in (-pi, pi]), 0 when loaded, shape (n,).")
-      .def_property_readonly("forces_N", [](const HingesView& v) { return wrenches(hingeWrenches(v.world())).first; },
-                             "Force each hinge exerted on its body (N, world), shape (n, 3).")
-      .def_property_readonly("torques_N_m", [](const HingesView& v) { return wrenches(hingeWrenches(v.world())).second; },
-                             "Torque each hinge exerted on its body about its centre (N m, world), shape (n, 3).")
+      .def_property_readonly(
+          "forces_N", [](const HingesView& v) { return wrenches(hingeWrenches(v.world())).first; },
+          "Force each hinge exerted on its body (N, world), shape (n, 3).")
+      .def_property_readonly(
+          "torques_N_m", [](const HingesView& v) { return wrenches(hingeWrenches(v.world())).second; },
+          "Torque each hinge exerted on its body about its centre (N m, world), shape (n, 3).")
       .def_property_readonly(
           "drive_torques_N_m",
           [](const HingesView& v) {
@@ -127,7 +131,8 @@ void bindJoints(py::module_& m) {
             for (int i = 0; i < n; ++i) out.mutable_at(i) = v.world().hingeDriveTorque(i);
             return out;
           },
-          "Torque each hinge's drive (motor, servo or spring) exerted about its axis (N m), shape (n,); 0 without one.")
+          "Torque each hinge's drive (motor, servo or spring) exerted about its axis (N m), shape (n,); 0 without "
+          "one.")
       .def_property_readonly(
           "drive_targets",
           [](const HingesView& v) {
@@ -139,7 +144,8 @@ void bindJoints(py::module_& m) {
             }
             return out;
           },
-          "Each drive's target, rad/s (velocity drive) or rad (angle drive or spring), shape (n,); NaN without a drive.")
+          "Each drive's target, rad/s (velocity drive) or rad (angle drive or spring), shape (n,); NaN without a "
+          "drive.")
       .def(
           "set_drive_target",
           [](HingesView& v, int hinge, double target) {
@@ -152,7 +158,8 @@ void bindJoints(py::module_& m) {
           py::arg("hinge"), py::arg("target"),
           "Sets hinge `hinge`'s drive target from the next step on: rad/s for a velocity drive, rad for an angle "
           "drive or spring. ValueError if it has no drive.")
-      .def("__repr__", [](const HingesView& v) { return "<reeve.Hinges: " + std::to_string(v.world().hinges().size()) + ">"; });
+      .def("__repr__",
+           [](const HingesView& v) { return "<reeve.Hinges: " + std::to_string(v.world().hinges().size()) + ">"; });
 
   py::class_<JointsView>(
       m, "Joints",
@@ -178,10 +185,12 @@ void bindJoints(py::module_& m) {
             return pairs;
           },
           "(body, other) names of each joint (list of tuples; \"world\" for the world).")
-      .def_property_readonly("forces_N", [](const JointsView& v) { return wrenches(jointWrenches(v.scene())).first; },
-                             "Force each joint exerted on its body (N, world), shape (n, 3).")
-      .def_property_readonly("torques_N_m", [](const JointsView& v) { return wrenches(jointWrenches(v.scene())).second; },
-                             "Torque each joint exerted on its body about its centre (N m, world), shape (n, 3).")
+      .def_property_readonly(
+          "forces_N", [](const JointsView& v) { return wrenches(jointWrenches(v.scene())).first; },
+          "Force each joint exerted on its body (N, world), shape (n, 3).")
+      .def_property_readonly(
+          "torques_N_m", [](const JointsView& v) { return wrenches(jointWrenches(v.scene())).second; },
+          "Torque each joint exerted on its body about its centre (N m, world), shape (n, 3).")
       .def(
           "set_drive_target",
           [](JointsView& v, int joint, double target) {
@@ -198,7 +207,9 @@ void bindJoints(py::module_& m) {
           py::arg("joint"), py::arg("target"),
           "Sets prismatic joint `joint`'s drive target from the next step on: m/s for a velocity drive, m for a "
           "position drive or spring. ValueError for another joint type or no drive.")
-      .def("__repr__", [](const JointsView& v) { return "<reeve.Joints: " + std::to_string(v.scene().joint_kinds.size()) + ">"; });
+      .def("__repr__", [](const JointsView& v) {
+        return "<reeve.Joints: " + std::to_string(v.scene().joint_kinds.size()) + ">";
+      });
 }
 
 }  // namespace reeve::python

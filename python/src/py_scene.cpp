@@ -1,9 +1,10 @@
 // reeve.Scene, reeve.Settings, loading, stepping, rendering and runs.
+#include "py_scene.h"
+
+#include <Python.h>
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
-
-#include <Python.h>
 
 #include <algorithm>
 #include <array>
@@ -12,7 +13,6 @@
 #include <optional>
 #include <stdexcept>
 
-#include "py_scene.h"
 #include "run_scene.h"
 
 namespace py = pybind11;
@@ -32,8 +32,8 @@ std::unique_ptr<PyScene> fromText(const std::string& text, const std::string& so
 void checkRange(const char* name, double value, double lo, double hi, bool lo_open) {
   if (!std::isfinite(value) || value > hi || (lo_open ? value <= lo : value < lo))
     throw py::value_error(std::string(name) + ": expected a number " + (lo_open ? "> " : ">= ") +
-                          py::str(py::float_(lo)).cast<std::string>() + " and <= " +
-                          py::str(py::float_(hi)).cast<std::string>() + ", got " +
+                          py::str(py::float_(lo)).cast<std::string>() +
+                          " and <= " + py::str(py::float_(hi)).cast<std::string>() + ", got " +
                           py::str(py::float_(value)).cast<std::string>());
 }
 
@@ -115,14 +115,17 @@ py::dict run(PyScene& s, std::optional<int> frames, std::optional<std::filesyste
 void bindScene(py::module_& m) {
   m.def("_load_file", &fromFile, py::arg("path"));
   m.def("_load_text", &fromText, py::arg("text"), py::arg("source"));
-  m.def("default_scene_json", [] { return std::string(defaultSceneJson()); },
-        "The text of scenes/simple.json (paper Fig. 12, left), the command line's default scene.");
-  m.def("scene_schema_json", [] { return std::string(sceneSchemaJson()); },
-        "The text of scene.schema.json (JSON Schema draft-07), which every scene is checked against.");
+  m.def(
+      "default_scene_json", [] { return std::string(defaultSceneJson()); },
+      "The text of scenes/simple.json (paper Fig. 12, left), the command line's default scene.");
+  m.def(
+      "scene_schema_json", [] { return std::string(sceneSchemaJson()); },
+      "The text of scene.schema.json (JSON Schema draft-07), which every scene is checked against.");
 
-  py::class_<SettingsView>(m, "Settings",
-                   "The solver settings of a Scene, read and written in place; writes take effect at the next "
-                   "step. Ranges as in the scene schema (ValueError outside them).")
+  py::class_<SettingsView>(
+      m, "Settings",
+      "The solver settings of a Scene, read and written in place; writes take effect at the next "
+      "step. Ranges as in the scene schema (ValueError outside them).")
       .def_property(
           "substeps", [](const SettingsView& v) { return v.world().settings().substeps; },
           [](SettingsView& v, int n) {
@@ -133,10 +136,10 @@ void bindScene(py::module_& m) {
       .def_property(
           "iterations", [](const SettingsView& v) { return v.world().settings().iterations; },
           [](SettingsView& v, int n) {
-            checkRange("iterations", n, 1, 1000, false);
+            checkRange("iterations", n, 1, 100000, false);
             v.world().settings().iterations = n;
           },
-          "Solver iterations per substep, 1..1000 (int).")
+          "Solver iterations per substep, 1..100000 (int).")
       .def_property(
           "frame_rate_hz", [](const SettingsView& v) { return v.scene().frame_rate_hz; },
           [](SettingsView& v, double hz) {
@@ -167,8 +170,8 @@ void bindScene(py::module_& m) {
       .def("__repr__", [](const SettingsView& v) {
         const SolverSettings& s = v.world().settings();
         return "Settings(substeps=" + std::to_string(s.substeps) + ", iterations=" + std::to_string(s.iterations) +
-               ", frame_rate_hz=" + py::repr(py::float_(v.scene().frame_rate_hz)).cast<std::string>() +
-               ", method='" + solverMethodName(s.solver) + "')";
+               ", frame_rate_hz=" + py::repr(py::float_(v.scene().frame_rate_hz)).cast<std::string>() + ", method='" +
+               solverMethodName(s.solver) + "')";
       });
 
   py::class_<PyScene>(m, "Scene",
@@ -177,18 +180,26 @@ void bindScene(py::module_& m) {
                       "read and write this scene; the arrays they return are copies (float64, SI units in the "
                       "names), taken when asked for. step(), render() and run() let other Python threads run "
                       "meanwhile, but use one Scene from one thread at a time.")
-      .def_property_readonly("name", [](const PyScene& s) { return s.scene.name; }, "The scene's name (str).")
+      .def_property_readonly(
+          "name", [](const PyScene& s) { return s.scene.name; }, "The scene's name (str).")
       .def_property_readonly("description", [](const PyScene& s) { return s.scene.description; })
-      .def_property_readonly("source", [](const PyScene& s) { return s.source; },
-                             "The file it was loaded from, or \"<text>\" / \"<dict>\".")
-      .def_property_readonly("duration_s", [](const PyScene& s) { return s.scene.duration_s; },
-                             "The scene's duration_s (s): what run() simulates by default.")
-      .def_property_readonly("frame_count", [](const PyScene& s) { return s.scene.frameCount(); },
-                             "round(duration_s x frame_rate_hz) (int).")
-      .def_property_readonly("time_s", [](const PyScene& s) { return s.scene.world->time(); },
-                             "Simulated time so far (s).")
-      .def_property_readonly("settings", [](py::object self) { return SettingsView{{self.cast<PyScene*>(), self}}; },
-                             "The solver settings (reeve.Settings), writable.")
+      .def_property_readonly(
+          "source", [](const PyScene& s) { return s.source; },
+          "The file it was loaded from, or \"<text>\" / \"<dict>\".")
+      .def_property_readonly(
+          "duration_s", [](const PyScene& s) { return s.scene.duration_s; },
+          "The scene's duration_s (s): what run() simulates by default.")
+      .def_property_readonly(
+          "frame_count", [](const PyScene& s) { return s.scene.frameCount(); },
+          "round(duration_s x frame_rate_hz) (int).")
+      .def_property_readonly(
+          "time_s", [](const PyScene& s) { return s.scene.world->time(); }, "Simulated time so far (s).")
+      .def_property_readonly(
+          "settings",
+          [](py::object self) {
+            return SettingsView{{self.cast<PyScene*>(), self}};
+          },
+          "The solver settings (reeve.Settings), writable.")
       .def("step", &step, py::arg("frames") = 1,
            "Advances `frames` frames of 1 / settings.frame_rate_hz s (each of settings.substeps substeps). "
            "Raises reeve.SimulationError, as `reeve run` stops, when the state becomes non-finite or the cable "
@@ -197,20 +208,36 @@ void bindScene(py::module_& m) {
            "The current poses drawn as `reeve run --png` draws them (off-screen OpenGL, OSMesa): a numpy uint8 "
            "array of shape (height, width, 3), RGB, top row first. The camera is the scene's, or one that "
            "frames every body. ValueError for a size <= 0.")
-      .def_property_readonly("bodies", [](py::object self) { return BodiesView{{self.cast<PyScene*>(), self}}; },
-                             "The rigid bodies (reeve.Bodies), in the scene's order.")
-      .def_property_readonly("cables", [](py::object self) { return CablesView{{self.cast<PyScene*>(), self}}; },
-                             "The cables (reeve.Cables): cables[\"name\"] or cables[index].")
-      .def_property_readonly("hinges", [](py::object self) { return HingesView{{self.cast<PyScene*>(), self}}; },
-                             "The hinges (reeve.Hinges), in the order of the scene's \"hinges\".")
-      .def_property_readonly("joints", [](py::object self) { return JointsView{{self.cast<PyScene*>(), self}}; },
-                             "The prismatic, spherical and fixed joints (reeve.Joints), in the order of the "
-                             "scene's \"joints\".")
-      .def("_run", &run, py::arg("frames"), py::arg("csv"), py::arg("png_dir"), py::arg("video"),
-           py::arg("events"), py::arg("width"), py::arg("height"), py::arg("force"))
+      .def_property_readonly(
+          "bodies",
+          [](py::object self) {
+            return BodiesView{{self.cast<PyScene*>(), self}};
+          },
+          "The rigid bodies (reeve.Bodies), in the scene's order.")
+      .def_property_readonly(
+          "cables",
+          [](py::object self) {
+            return CablesView{{self.cast<PyScene*>(), self}};
+          },
+          "The cables (reeve.Cables): cables[\"name\"] or cables[index].")
+      .def_property_readonly(
+          "hinges",
+          [](py::object self) {
+            return HingesView{{self.cast<PyScene*>(), self}};
+          },
+          "The hinges (reeve.Hinges), in the order of the scene's \"hinges\".")
+      .def_property_readonly(
+          "joints",
+          [](py::object self) {
+            return JointsView{{self.cast<PyScene*>(), self}};
+          },
+          "The prismatic, spherical and fixed joints (reeve.Joints), in the order of the "
+          "scene's \"joints\".")
+      .def("_run", &run, py::arg("frames"), py::arg("csv"), py::arg("png_dir"), py::arg("video"), py::arg("events"),
+           py::arg("width"), py::arg("height"), py::arg("force"))
       .def("__repr__", [](const PyScene& s) {
-        return "<reeve.Scene '" + s.scene.name + "' from " + s.source + ", t = " +
-               py::repr(py::float_(s.scene.world->time())).cast<std::string>() + " s, " +
+        return "<reeve.Scene '" + s.scene.name + "' from " + s.source +
+               ", t = " + py::repr(py::float_(s.scene.world->time())).cast<std::string>() + " s, " +
                std::to_string(s.scene.world->bodyCount()) + " bodies, " +
                std::to_string(s.scene.cables->cables().size()) + " cables>";
       });

@@ -67,9 +67,9 @@ def test_a_velocity_set_between_steps_is_a_ballistic_start():
 
 
 def test_spin_torque_and_position_set_between_steps():
-    scene = reeve.load({"name": "top", "solver": {"gravity_m_per_s2": [0, 0, 0]},
-                        "bodies": [{"name": "disc", "shape": {"type": "cylinder", "radius_m": 0.5, "half_length_m": 0.1},
-                                    "mass_kg": 4.0, "position_m": [0, 0, 0]}]})
+    disc = {"name": "disc", "shape": {"type": "cylinder", "radius_m": 0.5, "half_length_m": 0.1},
+            "mass_kg": 4.0, "position_m": [0, 0, 0]}
+    scene = reeve.load({"name": "top", "solver": {"gravity_m_per_s2": [0, 0, 0]}, "bodies": [disc]})
     inertia = 0.5 * 4.0 * 0.5**2  # about the cylinder's axis (local z)
     scene.bodies.set_applied_torque(0, [0.0, 0.0, 1.0])
     scene.step(60)
@@ -107,7 +107,8 @@ def test_settings_are_writable_within_the_schema_ranges(scenes):
             scene.settings.method) == (40, 1, 120.0, "gauss-seidel")
     scene.step(12)
     assert scene.time_s == pytest.approx(0.1, rel=1e-12)
-    for name, bad in [("substeps", 0), ("iterations", 0), ("frame_rate_hz", 0.0), ("method", "jacobi")]:
+    for name, bad in [("substeps", 0), ("substeps", 100001), ("iterations", 0), ("iterations", 100001),
+                      ("frame_rate_hz", 0.0), ("frame_rate_hz", 2e6), ("method", "jacobi")]:
         with pytest.raises(ValueError, match=name):
             setattr(scene.settings, name, bad)
 

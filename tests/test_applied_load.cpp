@@ -41,8 +41,13 @@ TEST(AppliedLoad, AFreeBodyAcceleratesAtForceOverMassAndTorqueOverInertia) {
 // the wheel against the heavy side:
 //   a = ((m2 - m1) g - F - tau / r) / (m1 + m2 + M / 2), heavy side down.
 TEST(AppliedLoad, APushAndAWheelTorqueThroughACableMeetTheAtwoodClosedForm) {
-  for (const SolverKind solver : {SolverKind::Direct, SolverKind::GaussSeidel}) {
+  struct Budget {
+    int substeps, iterations;
+  };
+  for (const SolverKind solver : {SolverKind::Direct, SolverKind::GaussSeidel})
+  for (const Budget budget : {Budget{20, 2}, Budget{1, 10}}) {  // substeps, or the paper's one step a frame
     SCOPED_TRACE(solver == SolverKind::Direct ? "direct (the wheel is a rotor)" : "gauss-seidel");
+    SCOPED_TRACE(std::to_string(budget.substeps) + " x " + std::to_string(budget.iterations));
     struct Case {
       double push_N, torque_N_m, seconds;
     } cases[] = {
@@ -52,7 +57,11 @@ TEST(AppliedLoad, APushAndAWheelTorqueThroughACableMeetTheAtwoodClosedForm) {
         {1000.0, 0.0, 0.1},  // a kilonewton push: a = -247.5
     };
     for (const Case& c : cases) {
-      Atwood a(1.0, 2.0, 20, 2);
+      // Gauss-Seidel at one step a frame: the kilonewton push turns the wheel
+      // 2 rad in a step by 0.1 s, and the rest lengths lag (2.9 % off, with
+      // 10 or 40 iterations alike); substeps are the cure (the 20 x 2 budget).
+      if (solver == SolverKind::GaussSeidel && budget.substeps == 1 && c.push_N > 100.0) continue;
+      Atwood a(1.0, 2.0, budget.substeps, budget.iterations);
       a.world.settings().solver = solver;
       a.world.body(a.box1).applied_force = Vec3(0.0, -c.push_N, 0.0);
       a.world.body(a.wheel).applied_torque = Vec3(0.0, 0.0, c.torque_N_m);  // counter-clockwise

@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
-#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -66,7 +65,6 @@ TEST_P(EveryShippedScene, InvariantsHoldAfterEverySubstep) {
     ASSERT_FALSE(s.world->firstNonFiniteBody()) << "frame " << f;
   }
   EXPECT_FALSE(s.cables->firstBreach()) << s.cables->firstBreach()->what;
-  EXPECT_EQ(s.cables->invariantViolation(), std::nullopt);
 }
 
 INSTANTIATE_TEST_SUITE_P(Invariants, EveryShippedScene, testing::ValuesIn(cases()),

@@ -1,7 +1,6 @@
 // reeve.Scene, reeve.Settings, loading, stepping, rendering and runs.
 #include "py_scene.h"
 
-#include <Python.h>
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>

@@ -27,8 +27,6 @@ constexpr double kDropTolerance = 1e-13;
 constexpr double kRoundingPivot = 1e-15;
 // Active-set passes per iteration; almost always one or two are enough.
 constexpr int kMaxPasses = 8;
-// Points of a path (a cable's run through pinholes); as path_constraint.cpp.
-constexpr std::size_t kMaxPathPoints = 64;
 
 // The number of rows of a joint with `bilateral` locked rows and the
 // given drive and limits (JointRowSet's layout).
@@ -71,7 +69,7 @@ void DirectSolver::describe(World& world, std::vector<int>& sig) const {
   }
   for (int i = 0; i < world.pathCount(); ++i) {
     const PathConstraint& p = world.path(i);
-    if (!p.enabled) continue;
+    if (!p.enabled || !p.weights.empty()) continue;  // weighted paths: World::solvePositions
     const std::size_t head = sig.size();
     sig.insert(sig.end(), {static_cast<int>(Source::Path), i, 1});
     for (const PathPoint& point : p.points)
@@ -301,9 +299,13 @@ void DirectSolver::evaluateRun(const World& world, int r, const PathPoint* point
   // A run through pinholes: a body holding several points gets the sum of
   // their gradients.
   const Row& row = rows_[r];
-  assert(count <= kMaxPathPoints);
-  std::array<Vec3, kMaxPathPoints> arm, pos;
-  std::array<int, kMaxPathPoints> entry;
+  if (run_.arm.size() < count) {  // grown to the longest path, then kept
+    run_.arm.resize(count);
+    run_.pos.resize(count);
+    run_.entry.resize(count);
+  }
+  std::vector<Vec3>&arm = run_.arm, &pos = run_.pos;
+  std::vector<int>& entry = run_.entry;
   for (std::size_t i = 0; i < count; ++i) {
     const BodyId id = points[i].body;
     const int slot = id == kWorldBody ? -1 : body_index_[id];

@@ -89,7 +89,9 @@ class DirectSolver {
   bool converged(double tolerance) const;
   void evaluatePath(const World& world, int row);
   /// The length (in C_) and gradients of a two-point path, and of a longer
-  /// one (a run through pinholes).
+  /// one (a run through pinholes or sliding wraps). Weighted paths (cable
+  /// friction) are not rows: their forces are not along their length's
+  /// gradient, which the symmetric system assumes (World::solvePositions).
   void evaluateSpan(const World& world, int row, const PathPoint& p0, const PathPoint& p1);
   void evaluateRun(const World& world, int row, const PathPoint* points, std::size_t count);
   /// World arm (m) of a path point on the body with index `slot` in
@@ -110,6 +112,10 @@ class DirectSolver {
   void bodyMotion();
 
   std::vector<int> signature_, scratch_;
+  struct RunScratch {  // evaluateRun's, per point of the path
+    std::vector<Vec3> arm, pos;
+    std::vector<int> entry;
+  } run_;
   std::vector<Row> rows_;
   std::vector<Entry> entries_;
   std::vector<Pair> pairs_;

@@ -444,20 +444,28 @@ void World::solvePositions(double h) {
   for (DistanceConstraint& c : distances_) c.lambda = 0.0;
   for (PathConstraint& p : paths_) p.lambda = 0.0;
   for (BodyState& b : bodies_) b.impulse = b.angular_impulse = b.solve_turn = Vec3::Zero();
+  const BodyTable table{bodies_.data(), &world_frame_};
   if (settings_.solver == SolverKind::Direct) {
+    // Weighted paths (cable friction) pull along J_f, not along their
+    // length's gradient J_c: a non-symmetric row the LDL^T solve cannot
+    // take. They are swept after each direct iteration, as contacts are.
+    bool weighted = false;
+    for (const PathConstraint& p : paths_) weighted |= p.enabled && !p.weights.empty();
     direct_->prepare(*this, h);
     for (int it = 0; it < settings_.iterations; ++it) {
       const bool moved = direct_->iterate(*this, h);
-      if (!moved && manifolds_.empty()) break;  // converged: the rest would do nothing
+      if (!moved && manifolds_.empty() && !weighted) break;  // converged: the rest would do nothing
       ++last_iterations_;
       for (ContactManifold& m : manifolds_) {
         const Contact& c = contacts_[m.first];
         solveContactPositions(m, contacts_.data(), body(c.a), body(c.b));
       }
+      if (weighted)
+        for (PathConstraint& p : paths_)
+          if (!p.weights.empty()) solvePathConstraint(p, table, p.compliance * inv_h2);
     }
     return;
   }
-  const BodyTable table{bodies_.data(), &world_frame_};
   last_iterations_ += settings_.iterations;
   for (int it = 0; it < settings_.iterations; ++it) {
     // Joints first (all types), then distances and paths (cables).

@@ -3,7 +3,9 @@
 // pinholes is one such constraint, so the tension is the same in every
 // span, as a frictionless pinhole demands (a two-point path is a plain
 // cable span). The generalization of Box2D's pulley joint to any number
-// of points and bodies.
+// of points and bodies. Segment weights put friction between segments: a
+// cable slipping over a wheel or through a hole with friction keeps the
+// capstan ratio T_tight / T_slack = exp(mu theta) between the two sides.
 #pragma once
 
 #include <vector>
@@ -20,8 +22,19 @@ struct PathPoint {
 
 /// At least two points; `rest_length` (m), `compliance` (m/N) of the whole
 /// path. Disabled paths are skipped and exert nothing.
+///
+/// `weights`: empty (every segment pulls with the same tension: a
+/// frictionless path) or one value > 0 per segment (points - 1): segment i
+/// pulls with tension w_i T, T = -lambda / h^2 being the tension of a
+/// weight-1 segment. The length constraint stays unweighted, sum L_i <=
+/// rest_length; only the forces are weighted (gradient of the length J_c,
+/// force direction J_f = sum w_i grad L_i), so the path is not a
+/// conservative constraint when the weights differ: it dissipates, as the
+/// friction it stands for does. `compliance` is the stretch of the whole
+/// path per unit T: sum_i w_i c_i for segment compliances c_i.
 struct PathConstraint {
   std::vector<PathPoint> points;
+  std::vector<double> weights;
   double rest_length = 0.0;
   double compliance = 0.0;
   bool enabled = true;
@@ -38,9 +51,11 @@ struct BodyTable {
 
 /// One Gauss-Seidel visit. C = sum_i |p_{i+1} - p_i| - rest_length; the
 /// gradient at point i is u_{i-1} - u_i, u_i the unit direction of segment
-/// i. A body holding several points gets the sum of their gradients, and
-/// its generalized inverse mass is g^T M^-1 g over all of them (SCA 2020
-/// eq. 2-4 for a general gradient). lambda is kept <= 0 (pull only).
+/// i (weighted w_{i-1} u_{i-1} - w_i u_i for the force). A body holding
+/// several points gets the sum of their gradients, and the generalized
+/// inverse mass is J_c M^-1 J_f^T over all of them (SCA 2020 eq. 2-4 for a
+/// general gradient; J_c = J_f without weights). lambda is kept <= 0 (pull
+/// only).
 void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double alpha_tilde);
 
 }  // namespace reeve

@@ -227,8 +227,9 @@ class World {
   int pathCount() const { return static_cast<int>(paths_.size()); }
   PathConstraint& path(PathId id) { return paths_[id]; }
   const PathConstraint& path(PathId id) const { return paths_[id]; }
-  /// Tension (N) of a path over the last substep, the same in all its
-  /// segments: -lambda/h^2; 0 when disabled.
+  /// Tension (N) of a path over the last substep, -lambda/h^2: that of
+  /// every segment, or of a weight-1 segment of a weighted path (segment i
+  /// pulls with weights[i] times it); 0 when disabled.
   double pathTension(PathId id) const;
   /// Current length (m) of a path: the sum of its segments.
   double pathLength(PathId id) const;

@@ -80,6 +80,9 @@ int CableSystem::addCable(const CableDef& def) {
     if (!ld.active && (end || ld.type != LinkType::Rolling))
       fail(at + "only interior rolling links can start inactive");
     if (ld.stored && !(*ld.stored >= 0.0)) fail(at + "stored cable must be >= 0");
+    if (ld.mu && (end || (ld.type != LinkType::Rolling && ld.type != LinkType::Pinhole)))
+      fail(at + "friction (mu) is for interior rolling links and pinholes, where the cable can slide");
+    if (ld.mu && !(*ld.mu >= 0.0 && std::isfinite(*ld.mu))) fail(at + "mu must be finite and >= 0");
     Link link;
     link.body = ld.body;
     link.type = ld.type;
@@ -87,6 +90,9 @@ int CableSystem::addCable(const CableDef& def) {
     link.point = ld.point;
     link.plane_offset = ld.plane_offset;
     link.active = ld.active;
+    if (ld.mu) link.mu = *ld.mu;
+    else if (ld.type == LinkType::Pinhole) link.mu = 0.0;  // a pinhole is frictionless unless told
+    link.slipping = link.mu == 0.0;
     if (ld.type == LinkType::Rolling || ld.type == LinkType::Hybrid) {
       if (hasSection(ld.section)) {
         link.section = ld.section;
@@ -138,7 +144,7 @@ int CableSystem::addCable(const CableDef& def) {
   cable.compliance_per_m = total > 0.0 ? def.compliance / total : 0.0;
   for (CableJoint& joint : cable.joints) {
     PathConstraint path;
-    path.points.resize(2);  // filled by syncRuns()
+    path.points.resize(2);  // filled by buildRuns()
     joint.path = world_.addPath(std::move(path));
   }
   syncRuns(cable);

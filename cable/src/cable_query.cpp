@@ -18,7 +18,8 @@ bool CableSystem::jointEnabled(int c, int j) const { return cables_[c].links[j].
 
 double CableSystem::tension(int c, int j) const {
   const Cable& cable = cables_[c];
-  return jointEnabled(c, j) ? world_.pathTension(cable.joints[cable.joints[j].run].path) : 0.0;
+  const CableJoint& joint = cable.joints[j];
+  return jointEnabled(c, j) ? world_.pathTension(cable.joints[joint.run].path) * joint.weight : 0.0;
 }
 
 double CableSystem::restLength(int c, int j) const {

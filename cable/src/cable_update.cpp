@@ -1,5 +1,6 @@
 // The per-substep cable update: paper Alg. 1 (tangent points, rest
-// lengths, pinholes) and Alg. 2 (stored cable, hybrid links, merge, split).
+// lengths) and Alg. 2 (stored cable, hybrid links, merge, split); runs
+// through pinholes and sliding wraps are in cable_runs.cpp.
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -51,11 +52,15 @@ void CableSystem::update(double time_s, double h) {
   measureTurns(h);
   for (int c = 0; c < static_cast<int>(cables_.size()); ++c) {
     Cable& cable = cables_[c];
+    // Runs' rest lengths as the last solve left them, before this
+    // substep's turns pay cable in and out.
+    settleRuns(cable, h);
     for (int j = 0; j < static_cast<int>(cable.joints.size()); ++j) updateJoint(cable, j);
     switchHybrids(cable, c, time_s);
     mergeEmptyLinks(cable, c, time_s);
     splitAtCrossedLinks(cable, c, time_s);
-    syncRuns(cable);
+    if (h > 0.0) switchSlips(cable, h);
+    buildRuns(cable);
   }
   if (breach_) return;  // the first one says what went wrong
   if (auto b = findBreach()) {
@@ -180,6 +185,8 @@ void CableSystem::mergeEmptyLinks(Cable& cable, int c, double time_s) {
     in.rest_length += out.rest_length + link.stored;
     link.stored = 0.0;
     link.active = false;
+    link.slipping = link.mu == 0.0;  // a friction link starts sticking when it is split in again
+    link.slip_speed = 0.0;
     events_.push_back({CableEvent::Kind::Merge, time_s, c, k, link.orientation});
   }
 }
@@ -233,44 +240,6 @@ void CableSystem::splitAtCrossedLinks(Cable& cable, int c, double time_s) {
       events_.push_back({CableEvent::Kind::Split, time_s, c, k, mid.orientation});
       break;  // the new spans are checked again next substep
     }
-  }
-}
-
-void CableSystem::syncRuns(Cable& cable) {
-  // Spans joined through pinholes are one path constraint (equal tension,
-  // paper sec. 3.3). Their rest lengths are shared out in proportion to
-  // their lengths, equal strain as Alg. 1 l. 8-16 intends.
-  for (CableJoint& joint : cable.joints) world_.path(joint.path).enabled = false;
-  const int joints = static_cast<int>(cable.joints.size());
-  for (int j = 0; j < joints; ++j) {
-    if (!cable.links[j].active || cable.links[j].type == LinkType::Pinhole) continue;
-    PathConstraint& path = world_.path(cable.joints[j].path);
-    path.points.clear();
-    path.points.push_back({cable.links[j].body, cable.joints[j].local_a});
-    double rest = 0.0, length = 0.0;
-    bool through_pinhole = false;
-    for (int k = j;; k = cable.joints[k].to) {
-      CableJoint& span = cable.joints[k];
-      span.run = j;
-      rest += span.rest_length;
-      length += spanLength(cable, k);
-      const Link& to = cable.links[span.to];
-      if (to.type != LinkType::Pinhole) {
-        path.points.push_back({to.body, span.local_b});
-        break;
-      }
-      path.points.push_back({to.body, to.point});
-      through_pinhole = true;
-    }
-    if (through_pinhole && length > 0.0) {
-      for (int k = j;; k = cable.joints[k].to) {
-        cable.joints[k].rest_length = rest * spanLength(cable, k) / length;
-        if (cable.links[cable.joints[k].to].type != LinkType::Pinhole) break;
-      }
-    }
-    path.rest_length = rest;
-    path.compliance = cable.compliance_per_m * rest;
-    path.enabled = true;
   }
 }
 

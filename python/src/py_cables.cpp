@@ -104,6 +104,27 @@ void bindCables(py::module_& m) {
           },
           "Cable stored on each link (m), shape (links,): wound on a rolling or hybrid end, 0 elsewhere.")
       .def_property_readonly(
+          "slip_speeds_m_per_s",
+          [](const CableView& v) {
+            const auto& links = cable(v).links;
+            py::array_t<double> out(static_cast<py::ssize_t>(links.size()));
+            for (std::size_t k = 0; k < links.size(); ++k) out.mutable_at(k) = links[k].slip_speed;
+            return out;
+          },
+          "Slip speed of each link (m/s), shape (links,): cable sliding forward (towards the next link) over "
+          "the body or through the hole, measured as the last substep started, over the one before it; 0 "
+          "where it sticks, rolls or is tied.")
+      .def_property_readonly(
+          "slipping",
+          [](const CableView& v) {
+            const auto& links = cable(v).links;
+            py::array_t<bool> out(static_cast<py::ssize_t>(links.size()));
+            for (std::size_t k = 0; k < links.size(); ++k) out.mutable_at(k) = links[k].slides();
+            return out;
+          },
+          "Whether the cable slides over or through each link now, shape (links,): frictionless pinholes "
+          "and wraps always, friction links (mu) while their capstan bound is exceeded.")
+      .def_property_readonly(
           "link_types",
           [](const CableView& v) {
             std::vector<std::string> types;

@@ -140,3 +140,25 @@ def test_drive_targets_set_between_steps_drive_hinges_and_slides(scenes):
         joints.set_drive_target(1, 0.0)
     with pytest.raises(IndexError):
         hinges.set_drive_target(2, 0.0)
+
+
+def test_slip_speeds_and_slipping_follow_the_cable_over_a_frictionless_drum(scenes):
+    # capstan.json's ideal pulley: 1 kg and 1.2 kg over a drum with mu 0, so
+    # the cable slides over it at the boxes' speed, forward (towards the
+    # heavy box, link 2); the bollard's rope sticks.
+    scene = reeve.load(scenes / "capstan.json")
+    scene.step(30)
+    ideal = scene.cables["ideal_rope"]
+    slip = ideal.slip_speeds_m_per_s
+    assert slip.shape == (3,) and slip.dtype == np.float64
+    heavy = scene.bodies.names.index("ideal_heavy")
+    speed = -scene.bodies.linear_velocities_m_per_s[heavy][1]
+    assert speed == pytest.approx(9.81 * 0.2 / 2.2 * scene.time_s, rel=1e-3)
+    # Measured as each substep starts, over the one before it.
+    h = 1.0 / (scene.settings.frame_rate_hz * scene.settings.substeps)
+    assert slip[1] == pytest.approx(9.81 * 0.2 / 2.2 * (scene.time_s - h), rel=1e-3)
+    assert slip[0] == 0.0 and slip[2] == 0.0
+    assert list(ideal.slipping) == [False, True, False]
+    bollard = scene.cables["bollard_rope"]
+    assert list(bollard.slipping) == [False, False, False]
+    assert bollard.slip_speeds_m_per_s[1] == 0.0

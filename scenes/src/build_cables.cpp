@@ -45,6 +45,7 @@ LinkDef linkOf(const nlohmann::json& link, const std::string& path, const BodyNa
   def.body = names.find(link.at("body"), path + "/body", source, false);
   def.type = linkTypeOf(link.at("type"));
   const Vec3 origin = hullOrigin(world.bodyDef(def.body).shape);
+  if (const auto mu = link.find("mu"); mu != link.end()) def.mu = mu->get<double>();
   if (def.type == LinkType::Attachment || def.type == LinkType::Pinhole) {
     def.point = vec3(link.at("point_m")) - origin;
     return def;
@@ -90,6 +91,12 @@ void checkLinkPlace(const nlohmann::json& link, const LinkDef& def, std::size_t 
                                           "interior link (hybrid links are only the first or "
                                           "last link of an open cable)"),
                      literal(link.at("type")));
+  if (def.mu && end)
+    throw SceneError(source, path + "/mu",
+                     "no mu on the " + which +
+                         " link of an open cable (the cable is fixed to its end; friction acts where "
+                         "it can slide: interior rolling links and pinholes)",
+                     literal(link.at("mu")));
   if (!def.active && end)
     throw SceneError(source, path + "/active",
                      "true for the " + which +

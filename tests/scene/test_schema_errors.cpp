@@ -34,7 +34,7 @@ TEST(SchemaErrors, PointOnARollingLinkIsUnknown) {
   expectError(baseWith(R"("orientation": "cw"})", R"("orientation": "cw", "point_m": [0, 0, 0]})"),
               "/cables/0/links/1/point_m",
               "no property \"point_m\" (allowed: body, type, orientation, stored_m, section, "
-              "plane_offset_m, active)",
+              "plane_offset_m, active, mu)",
               "\"point_m\"");
 }
 
@@ -182,7 +182,7 @@ TEST(SchemaErrors, OrientationOnAPinholeIsUnknown) {
                        R"({"body": "wheel", "type": "pinhole", "point_m": [0, 1, 0],
                            "orientation": "cw"})"),
               "/cables/0/links/1/orientation",
-              "no property \"orientation\" (allowed: body, type, point_m)", "\"orientation\"");
+              "no property \"orientation\" (allowed: body, type, point_m, mu)", "\"orientation\"");
 }
 
 TEST(SchemaErrors, ActiveOnAHybridLinkIsUnknown) {

@@ -127,6 +127,21 @@ TEST(SemanticErrors, InactiveEndLink) {
               "false");
 }
 
+TEST(SemanticErrors, FrictionOnAnEndLink) {
+  // The cable is fixed to its ends; it can slide only over interior links.
+  expectError(baseWith(R"({"body": "ball", "type": "attachment", "point_m": [0, 0.2, 0]})",
+                       R"({"body": "ball", "type": "rolling", "orientation": "cw", "mu": 0.3})"),
+              "/cables/0/links/2/mu", "no mu on the last link of an open cable", "0.3");
+}
+
+TEST(SemanticErrors, NegativeMuAndMuOnAnAttachmentAreRefusedByTheSchema) {
+  expectError(baseWith(R"("orientation": "cw"})", R"("orientation": "cw", "mu": -0.1})"),
+              "/cables/0/links/1/mu", "a number >= 0", "-0.1");
+  expectError(baseWith(R"({"body": "ball", "type": "attachment", "point_m": [0, 0.2, 0]})",
+                       R"({"body": "ball", "type": "attachment", "point_m": [0, 0.2, 0], "mu": 0.3})"),
+              "/cables/0/links/2/mu", "no property \"mu\"", "\"mu\"");
+}
+
 TEST(SemanticErrors, StoredCableOnAnInactiveLink) {
   expectError(baseWith(R"("orientation": "cw"})",
                        R"("orientation": "cw", "active": false, "stored_m": 0.5})"),

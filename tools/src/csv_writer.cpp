@@ -34,6 +34,9 @@ void append(std::string& row, double value, double time_s, const What& what) {
   row += text;
 }
 
+// Links the cable can slide over or through get a slip speed column.
+bool canSlip(const Link& link) { return link.type == LinkType::Pinhole || std::isfinite(link.mu); }
+
 }  // namespace
 
 CsvWriter::CsvWriter(const std::filesystem::path& path, bool replace, const CableSystem& cables)
@@ -55,6 +58,8 @@ CsvWriter::CsvWriter(const std::filesystem::path& path, bool replace, const Cabl
       for (const char* column : {".tension_N", ".rest_length_m", ".length_m"}) add(p + column);
     }
     for (size_t k = 0; k < c.links.size(); ++k) add(c.name + ".link" + std::to_string(k) + ".stored_m");
+    for (size_t k = 0; k < c.links.size(); ++k)
+      if (canSlip(c.links[k])) add(c.name + ".link" + std::to_string(k) + ".slip_m_per_s");
   }
   out_.write(header + "\n");
 }
@@ -83,6 +88,10 @@ void CsvWriter::writeRow() {
     for (std::size_t k = 0; k < cable.links.size(); ++k)
       append(row, cable.links[k].stored, t,
              [&] { return "cable '" + cable.name + "' link " + std::to_string(k) + " stored cable"; });
+    for (std::size_t k = 0; k < cable.links.size(); ++k)
+      if (canSlip(cable.links[k]))
+        append(row, cable.links[k].slip_speed, t,
+               [&] { return "cable '" + cable.name + "' link " + std::to_string(k) + " slip speed"; });
   }
   out_.write(row + "\n");
 }

@@ -4,6 +4,7 @@
 // open cables and closed ones (belts).
 #pragma once
 
+#include <limits>
 #include <optional>
 #include <string>
 #include <utility>
@@ -35,6 +36,15 @@ enum class LinkType {
 ///   is a rolling or hybrid end link with stored cable.
 /// - `active` false: an interior rolling link the cable does not touch yet;
 ///   it is split in when a span crosses its section (paper sec. 4.2).
+/// - `mu`: friction coefficient between cable and body, on interior rolling
+///   links and pinholes (beyond the paper). Unset: a rolling link never
+///   slips (the paper's rolling), a pinhole is frictionless. While the
+///   tensions on the two sides stay within the capstan bound T_tight /
+///   T_slack <= exp(mu theta) (theta the wrap angle: stored cable / radius
+///   on a circle, the turn of the cable at a pinhole) the cable sticks;
+///   beyond it, it slides with the ratio on the bound until the slip stops.
+///   0: always slides with equal tensions (an ideal frictionless pulley of
+///   finite radius, the wrapped arc counted in the length).
 struct LinkDef {
   BodyId body = 0;
   LinkType type = LinkType::Attachment;
@@ -44,6 +54,7 @@ struct LinkDef {
   double plane_offset = 0.0;
   std::optional<double> stored;
   bool active = true;
+  std::optional<double> mu;
 
   /// A tie point `point` (m, body-local) on `body`.
   static LinkDef attachment(BodyId body, const Vec3& point) {
@@ -105,21 +116,38 @@ struct Link {
   double stored = 0.0;  // m
   bool active = true;
   bool attached = false;
+  /// Friction coefficient (LinkDef::mu); infinite: never slips.
+  double mu = std::numeric_limits<double>::infinity();
+  /// The cable slides here in this substep: one path with its neighbours'
+  /// spans (always for mu = 0; by the capstan bound for mu > 0).
+  bool slipping = false;
+  /// +1: sliding forward (towards the next link), the tension higher ahead;
+  /// -1 backward. Sets the capstan ratio's sense while slipping.
+  int slip_sense = 0;
+  /// Cable that slid forward over the body's surface (or through the hole)
+  /// per second (m/s) in the substep before the last update; 0 while it
+  /// sticks.
+  double slip_speed = 0.0;
+  double slip_speed_before = 0.0;  ///< in the substep before (m/s)
 
   /// True when the cable wraps the body's section here (rolling, or a
   /// hybrid that still has cable).
   bool rolls() const {
     return type == LinkType::Rolling || (type == LinkType::Hybrid && !attached);
   }
+  /// True when the cable passes this link within one path (a pinhole or
+  /// rolling link it slides over) rather than being held by it.
+  bool slides() const { return active && slipping; }
 };
 
 /// The span leaving link j and arriving at the next active link `to`, with
 /// body-local anchors (tangent points on rolling links, tie points
 /// otherwise) and the cable it holds (rest length). Spans joined through
 /// pinholes form a run that the World solves as one path constraint, so
-/// they share one tension; `path` is this span's path when it starts a run,
-/// `run` the joint whose path carries it. Disabled while link j is
-/// inactive.
+/// they share one tension (times `weight`, the capstan ratio of friction
+/// links slipping between it and the run's tightest span, which has 1);
+/// `path` is this span's path when it starts a run, `run` the joint whose
+/// path carries it. Disabled while link j is inactive.
 struct CableJoint {
   int to = 0;
   Vec3 local_a = Vec3::Zero();
@@ -127,6 +155,7 @@ struct CableJoint {
   double rest_length = 0.0;  // m
   PathId path = 0;
   int run = 0;
+  double weight = 1.0;
 };
 
 /// A link switch, merge or split (paper Alg. 2), for logs.
@@ -207,6 +236,11 @@ class CableSystem {
   double length(int c, int j) const;
   /// Whether joint j of cable c currently exists (its link is active).
   bool jointEnabled(int c, int j) const;
+  /// Slip speed (m/s) of link k of cable c: cable sliding forward (towards
+  /// link k + 1) over the body or through the hole, measured as the last
+  /// substep started, over the one before it (the update runs before the
+  /// solve); 0 where it sticks or rolls.
+  double slipSpeed(int c, int k) const { return cables_[c].links[k].slip_speed; }
   /// World positions (m) of the tangent points of joint j of cable c;
   /// meaningless while the joint is disabled (see jointEnabled()).
   Vec3 startPoint(int c, int j) const;
@@ -239,7 +273,19 @@ class CableSystem {
   void switchHybrids(Cable& cable, int c, double time_s);
   void mergeEmptyLinks(Cable& cable, int c, double time_s);
   void splitAtCrossedLinks(Cable& cable, int c, double time_s);
+  /// Runs (spans joined through sliding links), each substep: share out
+  /// each run's rest length as the last solve left it and measure the slip
+  /// of each sliding link over the last `h` s (settleRuns, before the
+  /// substep's turns are paid out), switch friction links between sticking
+  /// and slipping (switchSlips), and rebuild the runs' path constraints
+  /// (buildRuns). syncRuns: the first and last, between steps.
   void syncRuns(Cable& cable);
+  void settleRuns(Cable& cable, double h);
+  void switchSlips(Cable& cable, double h);
+  void buildRuns(Cable& cable);
+  /// Wrap angle (rad) of the cable at active link k: around a rolling
+  /// link's section, through a pinhole.
+  double wrapAngle(const Cable& cable, int k) const;
   /// invariantViolation() with the cable and whether a spool ran out; time
   /// and turns are left to update().
   std::optional<CableBreach> findBreach() const;

@@ -1,0 +1,223 @@
+// Runs: spans joined through links the cable slides over or through
+// (frictionless pinholes, paper Alg. 1 l. 8-16; sliding wraps and friction
+// links that slip, beyond the paper) are solved as one path constraint.
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "link_geometry.h"
+#include "links.h"
+#include "reeve/cable/cable.h"
+
+namespace reeve {
+namespace {
+
+// Calls f(j, loop) for the first span j of every run: each active link
+// that holds the cable starts one; a closed cable that slides over every
+// link is one loop, started at its first active link.
+template <class F>
+void forEachRun(const Cable& cable, F f) {
+  const int joints = static_cast<int>(cable.joints.size());
+  bool held = false;
+  for (int j = 0; j < joints; ++j)
+    if (cable.links[j].active && !cable.links[j].slides()) {
+      held = true;
+      f(j, false);
+    }
+  if (held || !cable.closed) return;
+  for (int j = 0; j < joints; ++j)
+    if (cable.links[j].active) return f(j, true);
+}
+
+// Whether span k's far link ends the run started at j.
+bool endsRun(const Cable& cable, int j, bool loop, int k) {
+  const int to = cable.joints[k].to;
+  return loop ? to == j : !cable.links[to].slides();
+}
+
+// Calls visit(k) for the spans of the run started at j, in cable order.
+template <class Visit>
+void walkRun(const Cable& cable, int j, bool loop, Visit visit) {
+  for (int k = j;; k = cable.joints[k].to) {
+    visit(k);
+    if (endsRun(cable, j, loop, k)) return;
+  }
+}
+
+bool hasFriction(const Link& link) { return link.mu > 0.0 && std::isfinite(link.mu); }
+
+// World point of a body-local anchor as the last solve left it (before
+// this substep's integration), or now if `now`. A tangent point on a
+// rolling link was just found anew for the turned body: at the old centre
+// with the new turn it is where the old tangent point was (exactly for a
+// circle, which a turn about its centre leaves in place).
+Vec3 pointAt(const BodyState& body, const Link& link, const Vec3& local, bool now) {
+  if (now) return body.toWorld(local);
+  return body.x_prev + (link.rolls() ? body.q : body.q_prev) * local;
+}
+
+}  // namespace
+
+void CableSystem::syncRuns(Cable& cable) {
+  settleRuns(cable, 0.0);
+  buildRuns(cable);
+}
+
+void CableSystem::settleRuns(Cable& cable, double h) {
+  // A run's rest length is shared out in proportion to its spans' lengths:
+  // equal strain, as Alg. 1 l. 8-16 intends, where the tension is the same
+  // throughout; with friction, where span k pulls with T_k, in proportion
+  // to L_k / (1 + c T_k), c the compliance per metre. The cable that moves
+  // forward past a sliding link here, less what the body's turn carried
+  // (the last update paid that out as if the cable stuck), is its slip over
+  // the last substep. Lengths are those the last solve left
+  // (the poses before this substep's integration, when h > 0): a friction
+  // link that sticks from now on keeps its spans as they were, not as the
+  // integration's prediction would share them.
+  const auto spanLengthSolved = [&](int k) {
+    const CableJoint& span = cable.joints[k];
+    const BodyState& a = world_.body(cable.links[k].body);
+    const BodyState& b = world_.body(cable.links[span.to].body);
+    const Link& from = cable.links[k];
+    const Link& to = cable.links[span.to];
+    return (pointAt(b, to, span.local_b, h == 0.0) - pointAt(a, from, span.local_a, h == 0.0)).norm();
+  };
+  forEachRun(cable, [&](int j, bool loop) {
+    double rest = 0.0, length = 0.0, weighed = 0.0;
+    bool weighted = false;
+    int spans = 0;
+    walkRun(cable, j, loop, [&](int k) {
+      rest += cable.joints[k].rest_length;
+      length += spanLengthSolved(k);
+      weighted |= cable.joints[k].weight != 1.0;
+      ++spans;
+    });
+    if (spans == 1 || !(length > 0.0)) return;
+    weighted &= cable.compliance_per_m > 0.0;
+    const double tension = h > 0.0 ? -world_.path(cable.joints[j].path).lambda / (h * h) : 0.0;
+    const auto share = [&](int k) {
+      return spanLengthSolved(k) / (1.0 + cable.compliance_per_m * tension * cable.joints[k].weight);
+    };
+    if (weighted) walkRun(cable, j, loop, [&](int k) { weighed += share(k); });
+    double before = 0.0, after = 0.0;  // rest lengths up to here, before and after sharing
+    walkRun(cable, j, loop, [&](int k) {
+      CableJoint& span = cable.joints[k];
+      before += span.rest_length;
+      span.rest_length = weighted ? rest * share(k) / weighed : rest * spanLengthSolved(k) / length;
+      after += span.rest_length;
+      if (h > 0.0 && !endsRun(cable, j, loop, k)) cable.links[span.to].slip_speed = (before - after) / h;
+    });
+  });
+}
+
+void CableSystem::switchSlips(Cable& cable, double h) {
+  // Coulomb friction along the wrap (the capstan equation): a sticking link
+  // slips once the tension on one side exceeds exp(mu theta) times the
+  // other's; a slipping one sticks again once its slip stops or turns.
+  const int n = static_cast<int>(cable.links.size());
+  for (int k = 0; k < n; ++k) {
+    Link& link = cable.links[k];
+    if (!link.active || !hasFriction(link)) continue;
+    if (link.slipping) {
+      // Sticks when the slip stopped, or will have by the next update at
+      // its present deceleration (a substep's lag is a substep of friction
+      // pushing the wrong way).
+      const double next = 2.0 * link.slip_speed - link.slip_speed_before;
+      link.slip_speed_before = link.slip_speed;
+      if (link.slip_sense * link.slip_speed > 0.0 && link.slip_sense * next > 0.0) continue;
+      link.slipping = false;
+      continue;
+    }
+    link.slip_speed = link.slip_speed_before = 0.0;
+    // The last solve's tensions: its lambdas over this substep's h (the
+    // World's lastSubstep() is not set until its first step ends).
+    const int p = previousActive(cable, k);
+    const auto tension = [&](int j) {
+      return -world_.path(cable.joints[cable.joints[j].run].path).lambda / (h * h) * cable.joints[j].weight;
+    };
+    const double in = tension(p), out = tension(k);
+    const double bound = std::exp(link.mu * wrapAngle(cable, k));
+    if (out > bound * in) link.slip_sense = 1;
+    else if (in > bound * out) link.slip_sense = -1;
+    else continue;
+    link.slipping = true;
+  }
+}
+
+void CableSystem::buildRuns(Cable& cable) {
+  // Each run is one path: its points are the first span's start, each
+  // pinhole, each sliding wrap's arrival and departure tangent points (the
+  // chord between them is fixed on the body, so the path's rest length
+  // counts it instead of the wrapped arc, which is stored cable) and the
+  // last span's end. A slipping friction link multiplies the tension of
+  // the spans after it by exp(+-mu theta): the path's weights.
+  for (CableJoint& joint : cable.joints) world_.path(joint.path).enabled = false;
+  forEachRun(cable, [&](int j, bool loop) {
+    PathConstraint& path = world_.path(cable.joints[j].path);
+    path.points.clear();
+    path.weights.clear();
+    path.points.push_back({cable.links[j].body, cable.joints[j].local_a});
+    double rest = 0.0, chords = 0.0, w = 1.0, heaviest = 1.0;
+    walkRun(cable, j, loop, [&](int k) {
+      CableJoint& span = cable.joints[k];
+      const Link& to = cable.links[span.to];
+      span.run = j;
+      span.weight = w;
+      rest += span.rest_length;
+      path.weights.push_back(w);
+      const bool last = endsRun(cable, j, loop, k);
+      if (to.type == LinkType::Pinhole && !last) {
+        path.points.push_back({to.body, to.point});
+      } else {
+        path.points.push_back({to.body, span.local_b});
+        if (to.rolls() && (!last || loop)) {  // the chord to the departure tangent point
+          const Vec3& departure = cable.joints[span.to].local_a;
+          chords += (departure - span.local_b).norm();
+          path.weights.push_back(w);
+          path.points.push_back({to.body, departure});
+        }
+      }
+      if (!last && hasFriction(to)) w *= std::exp(to.slip_sense * to.mu * wrapAngle(cable, span.to));
+      heaviest = std::max(heaviest, w);
+    });
+    double stretch = rest;  // sum of weight x rest length: the compliance's
+    if (heaviest != 1.0 || std::any_of(path.weights.begin(), path.weights.end(), [](double x) { return x != 1.0; })) {
+      stretch = 0.0;
+      for (double& x : path.weights) x /= heaviest;
+      walkRun(cable, j, loop, [&](int k) {
+        cable.joints[k].weight /= heaviest;
+        stretch += cable.joints[k].weight * cable.joints[k].rest_length;
+      });
+    } else {
+      path.weights.clear();
+    }
+    path.rest_length = rest + chords;
+    path.compliance = cable.compliance_per_m * stretch;
+    path.enabled = true;
+  });
+}
+
+double CableSystem::wrapAngle(const Cable& cable, int k) const {
+  const Link& link = cable.links[k];
+  const int p = previousActive(cable, k);
+  if (link.type == LinkType::Pinhole) {  // the angle between the arriving and the leaving span
+    const Vec3 u_in = endPointOf(cable, p) - startPointOf(cable, p);
+    const Vec3 u_out = endPointOf(cable, k) - startPointOf(cable, k);
+    const double norms = u_in.norm() * u_out.norm();
+    return norms > 0.0 ? std::acos(std::clamp(u_in.dot(u_out) / norms, -1.0, 1.0)) : 0.0;
+  }
+  if (link.section.kind == Section::Kind::Circle) return link.stored / link.section.radius;
+  // A polygon: the turn from the arriving span's direction to the leaving
+  // one's, in the link's sense, plus the whole turns its stored cable
+  // holds beyond the geometric wrap.
+  const BodyState& body = world_.body(link.body);
+  const Vec2 d_in = toPlane(body, endPointOf(cable, p)) - toPlane(body, startPointOf(cable, p));
+  const Vec2 d_out = toPlane(body, endPointOf(cable, k)) - toPlane(body, startPointOf(cable, k));
+  double turn = link.orientation * std::atan2(d_in.x() * d_out.y() - d_in.y() * d_out.x(), d_in.dot(d_out));
+  if (turn < 0.0) turn += 2.0 * std::numbers::pi;
+  const double arc = sectionWrappedArc(link.section, planePoint(cable.joints[p].local_b),
+                                       planePoint(cable.joints[k].local_a), link.orientation);
+  return turn + 2.0 * std::numbers::pi * std::round((link.stored - arc) / link.section.perimeter());
+}
+
+}  // namespace reeve

@@ -1,0 +1,357 @@
+// Friction between cable and body (LinkDef::mu, beyond the paper):
+// frictionless wraps are ideal pulleys of finite radius, friction links
+// hold the capstan ratio exp(mu theta) while slipping and stick within it,
+// and a driven wheel transmits exactly until the wrap slips. Cable length
+// is conserved through it all (the bookkeeping's invariants hold).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "reeve/cable/cable.h"
+
+namespace reeve {
+namespace {
+
+constexpr double kG = 9.81, kPi = std::numbers::pi;
+
+struct Budget {
+  SolverKind solver;
+  int substeps, iterations;
+  std::string name() const {
+    return std::string(solver == SolverKind::Direct ? "direct " : "gauss-seidel ") + std::to_string(substeps) +
+           " x " + std::to_string(iterations);
+  }
+};
+const Budget kBudgets[] = {{SolverKind::Direct, 20, 1}, {SolverKind::Direct, 1, 10},
+                           {SolverKind::GaussSeidel, 20, 1}, {SolverKind::GaussSeidel, 1, 10}};
+
+struct Machine {
+  World world;
+  CableSystem cables{world};
+  int cable = 0;
+  double total = 0.0;
+  explicit Machine(const Budget& b) {
+    world.settings().gravity = Vec3(0.0, -kG, 0.0);
+    world.settings().solver = b.solver;
+    world.settings().substeps = b.substeps;
+    world.settings().iterations = b.iterations;
+  }
+  BodyId box(double mass, const Vec3& at) {
+    BodyDef def;
+    def.shape = Shape::box(Vec3::Constant(0.05));
+    def.mass = mass;
+    def.position = at;
+    return world.addBody(def);
+  }
+  BodyId drum(double r, const Vec3& at) {
+    BodyDef def;
+    def.shape = Shape::cylinder(r, 0.05);
+    def.is_static = true;
+    def.position = at;
+    return world.addBody(def);
+  }
+  void run(double seconds) {
+    const int frames = static_cast<int>(std::lround(seconds * 60.0));
+    for (int f = 0; f < frames; ++f) world.step(1.0 / 60.0);
+  }
+  // The bookkeeping held after every substep and the length is what it was.
+  void expectLengthKept() const {
+    EXPECT_FALSE(cables.firstBreach().has_value()) << cables.firstBreach()->what;
+    EXPECT_NEAR(cables.totalLength(cable), total, 1e-9 * total);
+  }
+};
+
+LinkDef wrap(BodyId body, int orientation, double mu) {
+  LinkDef d = LinkDef::rolling(body, orientation);
+  d.mu = mu;
+  return d;
+}
+
+// Boxes of m1 (left) and m2 (right) kg on a cable over K static drums of
+// radius r set along a half circle of radius 1 m (K = 1: one drum at the
+// origin), each wrapped over the top with friction mu.
+void overDrums(Machine& m, int K, double r, double m1, double m2, double mu, BodyId& left, BodyId& right) {
+  const double half_width = K == 1 ? r : 1.0 + r;
+  left = m.box(m1, Vec3(-half_width, -2.0, 0.0));
+  right = m.box(m2, Vec3(half_width, -2.0, 0.0));
+  CableDef def;
+  def.links.push_back(LinkDef::attachment(left, Vec3(0.0, 0.05, 0.0)));
+  for (int i = 0; i < K; ++i) {
+    const double phi = K == 1 ? 0.0 : kPi - i * kPi / (K - 1);
+    const Vec3 at = K == 1 ? Vec3::Zero() : Vec3(std::cos(phi), std::sin(phi), 0.0);
+    def.links.push_back(wrap(m.drum(r, at), -1, mu));
+  }
+  def.links.push_back(LinkDef::attachment(right, Vec3(0.0, 0.05, 0.0)));
+  m.cable = m.cables.addCable(def);
+  m.total = m.cables.totalLength(m.cable);
+}
+
+TEST(FrictionlessWrap, AnAtwoodMachineOverOneOr32StaticDrumsMeetsTheMasslessPulleyClosedForm) {
+  struct Case {
+    double m1, m2;
+  } cases[] = {{1.0, 2.0}, {1.0, 1.0}, {1e-3, 3e-3}, {100.0, 300.0}};  // 3 kN on the heavy side
+  for (const int K : {1, 32})
+    for (const Budget& b : kBudgets)
+      for (const Case& c : cases) {
+        SCOPED_TRACE(std::to_string(K) + " drums, " + b.name() + ", m1 " + std::to_string(c.m1) + " m2 " +
+                     std::to_string(c.m2));
+        Machine m(b);
+        BodyId left, right;
+        overDrums(m, K, K == 1 ? 0.2 : 0.03, c.m1, c.m2, 0.0, left, right);
+        m.run(0.5);
+        const double a = kG * (c.m2 - c.m1) / (c.m1 + c.m2), T = 2.0 * c.m1 * c.m2 * kG / (c.m1 + c.m2);
+        const double t = m.world.time();
+        EXPECT_NEAR(m.world.body(right).v.y(), -a * t, 1e-3 * a * t + 1e-9);
+        EXPECT_NEAR(m.world.body(left).v.y(), a * t, 1e-3 * a * t + 1e-9);
+        for (int j = 0; j <= K; ++j) EXPECT_NEAR(m.cables.tension(m.cable, j), T, 1e-3 * T) << "span " << j;
+        m.expectLengthKept();
+      }
+}
+
+TEST(FrictionlessWrap, AWheelUnderAFrictionlessCableIsNotTurnedWhateverItsMass) {
+  // A hinged wheel with mu = 0 at wheel-to-load mass ratios of 1e-6 and
+  // 1e6: the cable slides over it, so no torque, and the loads move as
+  // over a massless pulley.
+  for (const double M : {1e-6, 1e6})
+    for (const Budget& b : {kBudgets[0], kBudgets[1]}) {
+      SCOPED_TRACE(b.name() + ", wheel " + std::to_string(M) + " kg");
+      Machine m(b);
+      BodyDef w;
+      w.shape = Shape::cylinder(0.2, 0.05);
+      w.mass = M;
+      const BodyId wheel = m.world.addBody(w);
+      m.world.addHinge({wheel, kWorldBody, Vec3::Zero(), Vec3::UnitZ(), 0.0});
+      const BodyId left = m.box(1.0, Vec3(-0.2, -2.0, 0.0)), right = m.box(2.0, Vec3(0.2, -2.0, 0.0));
+      CableDef def;
+      def.links = {LinkDef::attachment(left, Vec3(0.0, 0.05, 0.0)), wrap(wheel, -1, 0.0),
+                   LinkDef::attachment(right, Vec3(0.0, 0.05, 0.0))};
+      m.cable = m.cables.addCable(def);
+      m.total = m.cables.totalLength(m.cable);
+      m.run(0.5);
+      const double a = kG / 3.0, t = m.world.time();
+      EXPECT_NEAR(m.world.body(right).v.y(), -a * t, 1e-3 * a * t);
+      EXPECT_LT(std::abs(m.world.body(wheel).omega.z()), 1e-6);
+      EXPECT_LT(m.world.body(wheel).x.norm(), 1e-6);
+      m.expectLengthKept();
+    }
+}
+
+// Capstan Atwood machine over one static drum of radius 0.2 m wrapped by
+// theta = pi (1 + 2 n): counterweight M on the left, load m on the right.
+// Within exp(-mu theta) <= m / M <= exp(mu theta) the cable sticks and
+// nothing moves; beyond, the heavier side falls with the ratio on the
+// bound, a = g (m / k - M) / (m / k + M) for k = exp(mu theta).
+TEST(Capstan, HangingLoadsHoldWithinTheBoundAndSlideBeyondItWithTheCapstanAcceleration) {
+  constexpr double mu = 0.3, r = 0.2, M = 1.0;
+  for (const int n : {0, 1})
+    for (const Budget& b : kBudgets)
+      for (const double ratio : {0.97, 1.03, -0.97, -1.03}) {  // of the bound; negative: the light side
+        const double theta = kPi * (1 + 2 * n), k = std::exp(mu * theta);
+        const double m_load = ratio > 0.0 ? ratio * k * M : M / (-ratio * k);
+        SCOPED_TRACE(b.name() + ", theta " + std::to_string(theta) + ", m/M " + std::to_string(m_load / M));
+        Machine mc(b);
+        const BodyId left = mc.box(M, Vec3(-r, -2.0, 0.0)), right = mc.box(m_load, Vec3(r, -2.0, 0.0));
+        LinkDef over = wrap(mc.drum(r, Vec3::Zero()), -1, mu);
+        over.stored = theta * r;
+        CableDef def;
+        def.links = {LinkDef::attachment(left, Vec3(0.0, 0.05, 0.0)), over,
+                     LinkDef::attachment(right, Vec3(0.0, 0.05, 0.0))};
+        mc.cable = mc.cables.addCable(def);
+        mc.total = mc.cables.totalLength(mc.cable);
+        // The first step sticks (the tensions it reports decide the slip):
+        // the acceleration is measured after it, from 0.25 s to 0.75 s.
+        mc.run(0.25);
+        const double v0 = mc.world.body(right).v.y(), t0 = mc.world.time();
+        mc.run(0.5);
+        const double t = mc.world.time() - t0, v = mc.world.body(right).v.y() - v0;
+        if (std::abs(ratio) < 1.0) {
+          EXPECT_LT(std::abs(v), 1e-6);  // held by friction
+          EXPECT_NEAR(mc.cables.tension(mc.cable, 1), m_load * kG, 1e-3 * m_load * kG);
+          EXPECT_NEAR(mc.cables.tension(mc.cable, 0), M * kG, 1e-3 * M * kG);
+        } else {
+          const double sense = ratio > 0.0 ? 1.0 : -1.0;  // +1: the load is heavy and falls
+          const double heavy = sense > 0.0 ? m_load : M, light = sense > 0.0 ? M : m_load;
+          const double a = kG * (heavy / k - light) / (heavy / k + light);
+          EXPECT_NEAR(v, -sense * a * t, 1e-2 * a * t);
+          const double t_heavy = mc.cables.tension(mc.cable, sense > 0.0 ? 1 : 0);
+          const double t_light = mc.cables.tension(mc.cable, sense > 0.0 ? 0 : 1);
+          EXPECT_NEAR(t_heavy / t_light, k, 1e-2 * k);
+        }
+        mc.expectLengthKept();
+      }
+}
+
+// A load of 2 kg hauled up and let down by a hand of 0.5 kg whose pull
+// (an applied force) rises slowly to 1.15 k m g and falls to 0.6 m g / k
+// through a wrap of theta around a static drum, k = exp(mu theta): the
+// load rises only while the hand's span pulls k times the load's, comes
+// down only while it pulls 1 / k times it, and stays put in between (the
+// hysteresis of the capstan: the two branches of the bound).
+TEST(Capstan, HaulingAndLoweringTraceTheTwoBranchesOfTheBound) {
+  constexpr double mu = 0.2, r = 0.1, m_load = 2.0, m_hand = 0.5;
+  for (const double turns : {0.5, 1.0, 2.0})  // theta = pi, 2 pi, 4 pi
+    for (const Budget& b : kBudgets) {
+      const double theta = 2.0 * kPi * turns, k = std::exp(mu * theta);
+      SCOPED_TRACE(b.name() + ", theta " + std::to_string(theta));
+      Machine m(b);
+      // Half a turn: the hand hangs below the drum's left side and hauls
+      // downwards; whole turns: it is above the right side and hauls up.
+      const bool half = turns == 0.5;
+      const double up = half ? -1.0 : 1.0;  // the hand's hauling direction along y
+      const BodyId hand = m.box(m_hand, half ? Vec3(-r, -3.0, 0.0) : Vec3(r, 3.0, 0.0));
+      const BodyId load = m.box(m_load, Vec3(r, -3.0, 0.0));
+      LinkDef around = wrap(m.drum(r, Vec3::Zero()), -1, mu);
+      around.stored = theta * r;
+      CableDef def;
+      def.links = {LinkDef::attachment(hand, Vec3::Zero()), around, LinkDef::attachment(load, Vec3::Zero())};
+      m.cable = m.cables.addCable(def);
+      m.total = m.cables.totalLength(m.cable);
+      // The hand's weight is held and it is pulled along `up`, the pull
+      // changing geometrically: from m g to 1.15 k m g in 2 s, then down to
+      // 0.6 m g / k in 3 s.
+      const double w = m_load * kG, hi = 1.15 * k * w, lo = 0.6 * w / k;
+      // The pull is set per frame and a sticking link slips from the
+      // substep after the bound is passed, so a held ratio may be past the
+      // bound by a frame's change of the pull.
+      const double held_tolerance = std::max(std::log(hi / w) / 120.0, std::log(hi / lo) / 180.0) + 5e-3;
+      int rising = 0, falling = 0, held = 0;
+      for (int f = 0; f < 300; ++f) {
+        const double t = f / 60.0;
+        const double pull = t < 2.0 ? w * std::pow(hi / w, t / 2.0) : hi * std::pow(lo / hi, (t - 2.0) / 3.0);
+        m.world.body(hand).applied_force = Vec3(0.0, up * pull + m_hand * kG, 0.0);  // its weight held too
+        m.run(1.0 / 60.0);
+        const double v = m.world.body(load).v.y();
+        const double ratio = m.cables.tension(m.cable, 0) / m.cables.tension(m.cable, 1);
+        if (v > 1e-3) {
+          ++rising;
+          EXPECT_NEAR(ratio, k, 1e-2 * k) << "rising at t = " << t;
+        } else if (v < -1e-3) {
+          ++falling;
+          EXPECT_NEAR(ratio, 1.0 / k, 1e-2 / k) << "coming down at t = " << t;
+        } else if (std::abs(v) < 1e-9) {
+          ++held;
+          EXPECT_GE(ratio, (1.0 - held_tolerance) / k) << "held at t = " << t;
+          EXPECT_LE(ratio, (1.0 + held_tolerance) * k) << "held at t = " << t;
+        }
+      }
+      EXPECT_GT(rising, 10);
+      EXPECT_GT(falling, 10);
+      EXPECT_GT(held, 10);
+      m.expectLengthKept();
+    }
+}
+
+// A wheel (a solid 1 kg disc of r = 0.1 m on an axle) driven by a motor
+// torque tau, a cable over it with M = 1 kg on the left and m = 1.2 kg on
+// the right, mu = 0.25 over theta = pi (k = exp(mu pi) = 2.19). Without
+// slip the torque lifts the load at a = (tau / r - (m - M) g) / (m + M +
+// I / r^2), which needs T_m / T_M = m (g + a) / (M (g - a)): below k at
+// tau = 0.5 N m (1.51), and the wheel transmits exactly; above it at 2 N m
+// (6.3), and the cable slides over the faster rim, the ratio on the bound:
+// a = g (k M - m) / (k M + m).
+TEST(Capstan, ADrivenWheelTransmitsExactlyBelowTheBoundAndSlipsAboveIt) {
+  constexpr double mu = 0.25, r = 0.1, M = 1.0, m_load = 1.2, I = 0.5 * 1.0 * r * r;
+  const double k = std::exp(mu * kPi);
+  for (const Budget& b : kBudgets)
+    for (const double tau : {0.5, 2.0}) {
+      SCOPED_TRACE(b.name() + ", torque " + std::to_string(tau) + " N m");
+      Machine m(b);
+      BodyDef w;
+      w.shape = Shape::cylinder(r, 0.05);
+      w.mass = 1.0;
+      const BodyId wheel = m.world.addBody(w);
+      m.world.addHinge({wheel, kWorldBody, Vec3::Zero(), Vec3::UnitZ(), 0.0});
+      m.world.body(wheel).applied_torque = Vec3(0.0, 0.0, tau);  // counter-clockwise: the right side rises
+      const BodyId left = m.box(M, Vec3(-r, -2.0, 0.0)), right = m.box(m_load, Vec3(r, -2.0, 0.0));
+      CableDef def;
+      def.links = {LinkDef::attachment(left, Vec3(0.0, 0.05, 0.0)), wrap(wheel, -1, mu),
+                   LinkDef::attachment(right, Vec3(0.0, 0.05, 0.0))};
+      m.cable = m.cables.addCable(def);
+      m.total = m.cables.totalLength(m.cable);
+      m.run(0.25);  // a slip starts a substep late: measure after
+      const double v0 = m.world.body(right).v.y(), t0 = m.world.time();
+      m.run(0.25);
+      const double a_measured = (m.world.body(right).v.y() - v0) / (m.world.time() - t0);
+      const double a_stick = (tau / r - (m_load - M) * kG) / (m_load + M + I / (r * r));
+      if (tau < 1.0) {
+        EXPECT_NEAR(a_measured, a_stick, 1e-3 * a_stick);
+        EXPECT_NEAR(m.world.body(wheel).omega.z() * r, m.world.body(right).v.y(), 1e-3 * m.world.body(right).v.y());
+        EXPECT_EQ(m.cables.slipSpeed(m.cable, 1), 0.0);
+      } else {
+        const double a = kG * (k * M - m_load) / (k * M + m_load);
+        EXPECT_NEAR(a_measured, a, 1e-2 * a);
+        EXPECT_NEAR(m.cables.tension(m.cable, 1) / m.cables.tension(m.cable, 0), k, 1e-2 * k);
+        // The rim outruns the cable: the cable slides forward over it.
+        EXPECT_GT(m.world.body(wheel).omega.z() * r, m.world.body(right).v.y());
+        EXPECT_GT(m.cables.slipSpeed(m.cable, 1), 0.0);
+      }
+      m.expectLengthKept();
+    }
+}
+
+TEST(Capstan, AFrictionPinholeHoldsWithinTheBoundOfTheAngleTheCableTurnsThrough) {
+  // Two boxes hang from a hole in a fixed bar, 0.1 m apart 1 m below it:
+  // the cable turns through theta = pi - 2 atan(0.05) there. Held, each
+  // box swings on its own span and no cable passes the hole; beyond the
+  // bound the heavy side pulls cable through with the ratio on the bound
+  // of the angle at that moment.
+  constexpr double mu = 0.2;
+  const double k0 = std::exp(mu * (kPi - 2.0 * std::atan(0.05)));
+  for (const Budget& b : kBudgets)
+    for (const double ratio : {0.95, 1.05}) {
+      SCOPED_TRACE(b.name() + ", m / (M k) " + std::to_string(ratio));
+      Machine m(b);
+      const BodyId bar = m.drum(0.01, Vec3::Zero());
+      const BodyId left = m.box(1.0, Vec3(-0.05, -1.0, 0.0)), right = m.box(ratio * k0, Vec3(0.05, -1.0, 0.0));
+      LinkDef hole = LinkDef::pinhole(bar, Vec3::Zero());
+      hole.mu = mu;
+      CableDef def;
+      def.links = {LinkDef::attachment(left, Vec3::Zero()), hole, LinkDef::attachment(right, Vec3::Zero())};
+      m.cable = m.cables.addCable(def);
+      m.total = m.cables.totalLength(m.cable);
+      const double rest = m.cables.restLength(m.cable, 1);
+      m.run(0.3);
+      if (ratio < 1.0) {
+        EXPECT_EQ(m.cables.restLength(m.cable, 1), rest);
+        EXPECT_EQ(m.cables.slipSpeed(m.cable, 1), 0.0);
+      } else {
+        EXPECT_GT(m.cables.restLength(m.cable, 1) - rest, 5e-3);  // a = 0.24 m/s^2 for 0.3 s: 11 mm
+        const Vec3 u_in = -m.world.body(left).x.normalized(), u_out = m.world.body(right).x.normalized();
+        const double k = std::exp(mu * std::acos(u_in.dot(u_out)));
+        EXPECT_NEAR(m.cables.tension(m.cable, 1) / m.cables.tension(m.cable, 0), k, 1e-2 * k);
+        EXPECT_GT(m.cables.slipSpeed(m.cable, 1), 0.03);
+      }
+      m.expectLengthKept();
+    }
+}
+
+TEST(Friction, BadValuesAreRefused) {
+  World world;
+  CableSystem cables(world);
+  BodyDef def;
+  def.shape = Shape::cylinder(0.1, 0.05);
+  def.mass = 1.0;
+  const BodyId a = world.addBody(def), b = world.addBody(def);
+  world.body(b).x = Vec3(1.0, 0.0, 0.0);
+  CableDef cable;
+  LinkDef end = LinkDef::rolling(a, 1);
+  end.mu = 0.5;
+  cable.links = {end, LinkDef::attachment(b, Vec3::Zero())};
+  EXPECT_THROW(cables.addCable(cable), std::invalid_argument);  // an end of an open cable
+  LinkDef tie = LinkDef::attachment(a, Vec3::Zero());
+  tie.mu = 0.5;
+  cable.links = {LinkDef::attachment(b, Vec3::Zero()), tie, LinkDef::attachment(b, Vec3(0.0, 1.0, 0.0))};
+  EXPECT_THROW(cables.addCable(cable), std::invalid_argument);  // an attachment cannot slide
+  LinkDef negative = LinkDef::rolling(a, 1);
+  negative.mu = -0.1;
+  cable.links = {LinkDef::attachment(b, Vec3::Zero()), negative, LinkDef::attachment(b, Vec3(0.0, 1.0, 0.0))};
+  EXPECT_THROW(cables.addCable(cable), std::invalid_argument);
+  EXPECT_EQ(world.pathCount(), 0);  // nothing left behind
+}
+
+}  // namespace
+}  // namespace reeve

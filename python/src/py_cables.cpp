@@ -54,6 +54,15 @@ py::array_t<double> perJoint(const CableView& v, Get get) {
   return out;
 }
 
+// One value per link of the cable: get(link), shape (links,).
+template <class T, class Get>
+py::array_t<T> perLink(const CableView& v, Get get) {
+  const auto& links = cable(v).links;
+  py::array_t<T> out(static_cast<py::ssize_t>(links.size()));
+  for (std::size_t k = 0; k < links.size(); ++k) out.mutable_at(k) = get(links[k]);
+  return out;
+}
+
 }  // namespace
 
 void bindCables(py::module_& m) {
@@ -96,32 +105,17 @@ void bindCables(py::module_& m) {
           "Whether each joint exists now (its link is active; merge and split, paper sec. 4.3), shape (joints,).")
       .def_property_readonly(
           "stored_m",
-          [](const CableView& v) {
-            const auto& links = cable(v).links;
-            py::array_t<double> out(static_cast<py::ssize_t>(links.size()));
-            for (std::size_t k = 0; k < links.size(); ++k) out.mutable_at(k) = links[k].stored;
-            return out;
-          },
+          [](const CableView& v) { return perLink<double>(v, [](const Link& l) { return l.stored; }); },
           "Cable stored on each link (m), shape (links,): wound on a rolling or hybrid end, 0 elsewhere.")
       .def_property_readonly(
           "slip_speeds_m_per_s",
-          [](const CableView& v) {
-            const auto& links = cable(v).links;
-            py::array_t<double> out(static_cast<py::ssize_t>(links.size()));
-            for (std::size_t k = 0; k < links.size(); ++k) out.mutable_at(k) = links[k].slip_speed;
-            return out;
-          },
+          [](const CableView& v) { return perLink<double>(v, [](const Link& l) { return l.slip_speed; }); },
           "Slip speed of each link (m/s), shape (links,): cable sliding forward (towards the next link) over "
           "the body or through the hole, measured as the last substep started, over the one before it; 0 "
           "where it sticks, rolls or is tied.")
       .def_property_readonly(
           "slipping",
-          [](const CableView& v) {
-            const auto& links = cable(v).links;
-            py::array_t<bool> out(static_cast<py::ssize_t>(links.size()));
-            for (std::size_t k = 0; k < links.size(); ++k) out.mutable_at(k) = links[k].slides();
-            return out;
-          },
+          [](const CableView& v) { return perLink<bool>(v, [](const Link& l) { return l.slides(); }); },
           "Whether the cable slides over or through each link now, shape (links,): frictionless pinholes "
           "and wraps always, friction links (mu) while their capstan bound is exceeded.")
       .def_property_readonly(

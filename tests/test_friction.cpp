@@ -140,19 +140,52 @@ TEST(FrictionlessWrap, AWheelUnderAFrictionlessCableIsNotTurnedWhateverItsMass) 
     }
 }
 
+TEST(FrictionlessWrap, ABeltOverFrictionlessDrumsIsOneLoopThatHoldsAPulleyWithHalfItsWeightEachSide) {
+  // A closed cable over two static drums (r = 0.1 m, 1 m apart) and under a
+  // hanging 3 kg pulley wheel between them, every wrap with mu 0: no link
+  // holds the cable, so it is one loop, and the pulley hangs on two
+  // vertical strands of m g / 2 each.
+  for (const Budget& b : kBudgets) {
+    SCOPED_TRACE(b.name());
+    Machine m(b);
+    const double r = 0.1;
+    const BodyId a = m.drum(r, Vec3(-0.5, 0.0, 0.0)), c = m.drum(r, Vec3(0.5, 0.0, 0.0));
+    BodyDef w;
+    w.shape = Shape::cylinder(0.4, 0.05);
+    w.mass = 3.0;
+    w.position = Vec3(0.0, -1.0, 0.0);
+    const BodyId pulley = m.world.addBody(w);
+    CableDef def;
+    def.closed = true;
+    // Over the left drum (cw), down and under the pulley (ccw), up over the
+    // right drum (cw), and back along the top.
+    def.links = {wrap(a, -1, 0.0), wrap(pulley, 1, 0.0), wrap(c, -1, 0.0)};
+    m.cable = m.cables.addCable(def);
+    m.total = m.cables.totalLength(m.cable);
+    m.run(0.5);
+    EXPECT_LT(m.world.body(pulley).v.norm(), 1e-6);
+    EXPECT_LT((m.world.body(pulley).x - Vec3(0.0, -1.0, 0.0)).norm(), 1e-6);
+    for (int j = 0; j < 2; ++j) EXPECT_NEAR(m.cables.tension(m.cable, j), 1.5 * kG, 1e-3 * 1.5 * kG) << j;
+    EXPECT_TRUE(m.cables.cables()[m.cable].links[0].slides());
+    m.expectLengthKept();
+  }
+}
+
 // Capstan Atwood machine over one static drum of radius 0.2 m wrapped by
 // theta = pi (1 + 2 n): counterweight M on the left, load m on the right.
 // Within exp(-mu theta) <= m / M <= exp(mu theta) the cable sticks and
 // nothing moves; beyond, the heavier side falls with the ratio on the
 // bound, a = g (m / k - M) / (m / k + M) for k = exp(mu theta).
 TEST(Capstan, HangingLoadsHoldWithinTheBoundAndSlideBeyondItWithTheCapstanAcceleration) {
-  constexpr double mu = 0.3, r = 0.2, M = 1.0;
+  constexpr double mu = 0.3, r = 0.2;
+  for (const double M : {1.0, 100.0})  // 100 kg: loads of 1 to 17 kN
   for (const int n : {0, 1})
     for (const Budget& b : kBudgets)
       for (const double ratio : {0.97, 1.03, -0.97, -1.03}) {  // of the bound; negative: the light side
         const double theta = kPi * (1 + 2 * n), k = std::exp(mu * theta);
         const double m_load = ratio > 0.0 ? ratio * k * M : M / (-ratio * k);
-        SCOPED_TRACE(b.name() + ", theta " + std::to_string(theta) + ", m/M " + std::to_string(m_load / M));
+        SCOPED_TRACE(b.name() + ", theta " + std::to_string(theta) + ", M " + std::to_string(M) + ", m/M " +
+                     std::to_string(m_load / M));
         Machine mc(b);
         const BodyId left = mc.box(M, Vec3(-r, -2.0, 0.0)), right = mc.box(m_load, Vec3(r, -2.0, 0.0));
         LinkDef over = wrap(mc.drum(r, Vec3::Zero()), -1, mu);

@@ -3,6 +3,7 @@
 // links that slip, beyond the paper) are solved as one path constraint.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "link_geometry.h"
@@ -193,8 +194,11 @@ void CableSystem::buildRuns(Cable& cable) {
     }
     path.rest_length = rest + chords;
     path.compliance = cable.compliance_per_m * stretch;
+    path.max_tension = std::numeric_limits<double>::infinity();
     path.enabled = true;
   });
+  if (cable.winch)  // its pull is limited
+    world_.path(cable.joints[cable.joints[winchSpan(cable).second].run].path).max_tension = cable.winch->max_pull;
 }
 
 double CableSystem::wrapAngle(const Cable& cable, int k) const {

@@ -52,6 +52,7 @@ void CableSystem::update(double time_s, double h) {
   measureTurns(h);
   for (int c = 0; c < static_cast<int>(cables_.size()); ++c) {
     Cable& cable = cables_[c];
+    if (cable.winch && h > 0.0) reel(cable, h);
     // Runs' rest lengths as the last solve left them, before this
     // substep's turns pay cable in and out.
     settleRuns(cable, h);

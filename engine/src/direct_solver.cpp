@@ -205,17 +205,18 @@ void DirectSolver::prepare(World& world, double h) {
     const Row& row = rows_[r];
     if (row.source != Source::Path && row.source != Source::Distance) continue;
     bool unilateral = true;
+    lo_[r] = -kInf;
     if (row.source == Source::Path) {
       PathConstraint& p = world.path(row.index);
       alpha_[r] = p.compliance * inv_h2;
       mirror_[r] = &p.lambda;
+      if (std::isfinite(p.max_tension)) lo_[r] = -p.max_tension * h * h;  // a winch's pull, at most
     } else {
       DistanceConstraint& c = world.distance(row.index);
       alpha_[r] = c.compliance * inv_h2;
       mirror_[r] = &c.lambda;
       unilateral = c.unilateral;
     }
-    lo_[r] = -kInf;
     hi_[r] = unilateral ? 0.0 : kInf;
     linear_a_[r] = angular_a_[r] = nullptr;
   }

@@ -21,7 +21,7 @@ thread_local Scratch scratch;
 
 }  // namespace
 
-void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double alpha_tilde) {
+void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double alpha_tilde, double h) {
   if (!path.enabled) return;
   const size_t n = path.points.size();
   assert(n >= 2);
@@ -66,7 +66,7 @@ void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double a
   }
   if (!(w + alpha_tilde > 0.0)) return;
   double dl = (-C - alpha_tilde * path.lambda) / (w + alpha_tilde);
-  dl = std::min(path.lambda + dl, 0.0) - path.lambda;
+  dl = std::clamp(path.lambda + dl, -path.max_tension * h * h, 0.0) - path.lambda;
   path.lambda += dl;
   for (size_t i = 0; i < n; ++i) {
     BodyState& b = bodies(path.points[i].body);

@@ -462,7 +462,7 @@ void World::solvePositions(double h) {
       }
       if (weighted)
         for (PathConstraint& p : paths_)
-          if (!p.weights.empty()) solvePathConstraint(p, table, p.compliance * inv_h2);
+          if (!p.weights.empty()) solvePathConstraint(p, table, p.compliance * inv_h2, h);
     }
     return;
   }
@@ -475,7 +475,7 @@ void World::solvePositions(double h) {
     for (FixedJoint& j : fixeds_) solveFixedJoint(j, body(j.a), body(j.b), h);
     for (DistanceConstraint& c : distances_)
       solveDistanceConstraint(c, body(c.a), body(c.b), c.compliance * inv_h2);
-    for (PathConstraint& p : paths_) solvePathConstraint(p, table, p.compliance * inv_h2);
+    for (PathConstraint& p : paths_) solvePathConstraint(p, table, p.compliance * inv_h2, h);
     for (ContactManifold& m : manifolds_) {
       const Contact& c = contacts_[m.first];
       solveContactPositions(m, contacts_.data(), body(c.a), body(c.b));

@@ -172,6 +172,22 @@ struct CableEvent {
 /// "split").
 const char* eventName(CableEvent::Kind kind);
 
+/// A winch at an end of an open cable (beyond the paper). The end link is
+/// an attachment the winch reels cable into and pays it out of, keeping
+/// what it holds as that link's stored cable. Speed mode: at `speed`
+/// (m/s of cable; > 0 hauls in, < 0 pays out); length mode (with
+/// `target_stored`): towards that much stored cable at `max_speed`, then
+/// holds. Either way at most `max_speed` and with a pull of at most
+/// `max_pull` (N): asked for more, the winch stalls and pays out under the
+/// load, which then moves as that force says.
+struct WinchDef {
+  bool at_start = false;  ///< the winch is at the first link; false: the last
+  double speed = 0.0;     ///< m/s
+  double max_speed = std::numeric_limits<double>::infinity();  ///< m/s, > 0
+  double max_pull = std::numeric_limits<double>::infinity();   ///< N, > 0
+  std::optional<double> target_stored;                          ///< m, >= 0
+};
+
 struct Cable {
   std::string name;
   bool closed = false;
@@ -179,6 +195,7 @@ struct Cable {
   double total_length = 0.0;      // m: rest lengths plus stored cable, as made or set
   std::vector<Link> links;
   std::vector<CableJoint> joints;  // joints[j] leaves links[j]
+  std::optional<WinchDef> winch;
 };
 
 /// A break of the cable bookkeeping's invariants (CableSystem::firstBreach).
@@ -264,12 +281,26 @@ class CableSystem {
   /// Sets the rest length (m, >= 0) of joint j of cable c: a winch paying
   /// out or hauling in cable, or slack given after set-up.
   void setRestLength(int c, int j, double rest_length_m);
+  /// Puts a winch on cable c, or changes its command (a controller may
+  /// call this between steps). Throws std::invalid_argument for a closed
+  /// cable, an end link that is not an attachment, or values out of range
+  /// (max_speed, max_pull > 0; |speed| <= max_speed; target_stored >= 0;
+  /// all but the maxima finite).
+  void setWinch(int c, const WinchDef& winch);
+  /// The pull (N) of cable c's winch over the last substep: the tension of
+  /// the span it reels; 0 without a winch.
+  double winchPull(int c) const;
 
  private:
   /// turn_[b]: how far (rad, unwrapped) body b turned about its cable
   /// plane's normal (local z) since the last update.
   void measureTurns(double h);
   void updateJoint(Cable& cable, int j);
+  /// The winch's substep (WinchDef): what it paid out stalled in the last
+  /// solve, then what it reels in this one, `h` (s).
+  void reel(Cable& cable, double h);
+  /// The winch's link and the joint of the span it reels.
+  std::pair<int, int> winchSpan(const Cable& cable) const;
   void switchHybrids(Cable& cable, int c, double time_s);
   void mergeEmptyLinks(Cable& cable, int c, double time_s);
   void splitAtCrossedLinks(Cable& cable, int c, double time_s);

@@ -8,6 +8,7 @@
 // capstan ratio T_tight / T_slack = exp(mu theta) between the two sides.
 #pragma once
 
+#include <limits>
 #include <vector>
 
 #include "reeve/engine/body.h"
@@ -37,6 +38,10 @@ struct PathConstraint {
   std::vector<double> weights;
   double rest_length = 0.0;
   double compliance = 0.0;
+  /// The most the path pulls with (N, tension of a weight-1 segment): a
+  /// winch's maximum pull; beyond it the constraint gives, lambda held at
+  /// -max_tension h^2. Infinite: no limit.
+  double max_tension = std::numeric_limits<double>::infinity();
   bool enabled = true;
   double lambda = 0.0;  // accumulated this substep, kg m; <= 0 when pulling
 };
@@ -54,8 +59,9 @@ struct BodyTable {
 /// i (weighted w_{i-1} u_{i-1} - w_i u_i for the force). A body holding
 /// several points gets the sum of their gradients, and the generalized
 /// inverse mass is J_c M^-1 J_f^T over all of them (SCA 2020 eq. 2-4 for a
-/// general gradient; J_c = J_f without weights). lambda is kept <= 0 (pull
-/// only).
-void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double alpha_tilde);
+/// general gradient; J_c = J_f without weights). lambda is kept in
+/// [-max_tension h^2, 0] (pull only, and at most max_tension) for the
+/// substep `h` (s).
+void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double alpha_tilde, double h);
 
 }  // namespace reeve

@@ -1,0 +1,71 @@
+// Winches (beyond the paper): an end of an open cable reeled in or paid
+// out at a commanded speed or to a commanded length, with a bounded pull.
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "links.h"
+#include "reeve/cable/cable.h"
+
+namespace reeve {
+
+std::pair<int, int> CableSystem::winchSpan(const Cable& cable) const {
+  const int last = static_cast<int>(cable.links.size()) - 1;
+  return cable.winch->at_start ? std::pair{0, 0} : std::pair{last, previousActive(cable, last)};
+}
+
+void CableSystem::setWinch(int c, const WinchDef& winch) {
+  Cable& cable = cables_[c];
+  const auto fail = [&](const std::string& what) {
+    throw std::invalid_argument("cable '" + cable.name + "': winch: " + what);
+  };
+  if (cable.closed) fail("a closed cable has no end to reel");
+  const int k = winch.at_start ? 0 : static_cast<int>(cable.links.size()) - 1;
+  if (cable.links[k].type != LinkType::Attachment) fail("the end link must be an attachment (the winch's drum)");
+  if (!(winch.max_speed > 0.0)) fail("max_speed must be > 0");
+  if (!(winch.max_pull > 0.0)) fail("max_pull must be > 0");
+  if (!std::isfinite(winch.speed) || std::abs(winch.speed) > winch.max_speed)
+    fail("speed must be finite and within max_speed");
+  if (winch.target_stored && !(*winch.target_stored >= 0.0 && std::isfinite(*winch.target_stored)))
+    fail("target_stored must be finite and >= 0");
+  cable.winch = winch;
+  buildRuns(cable);  // the pull limit on the run it reels
+}
+
+double CableSystem::winchPull(int c) const {
+  const Cable& cable = cables_[c];
+  return cable.winch ? tension(c, winchSpan(cable).second) : 0.0;
+}
+
+void CableSystem::reel(Cable& cable, double h) {
+  const WinchDef& winch = *cable.winch;
+  const auto [k, j] = winchSpan(cable);
+  Link& drum = cable.links[k];
+  CableJoint& span = cable.joints[j];
+  // Stalled: the last solve held the pull at max_pull and the run came out
+  // longer than its rest length; the winch paid that out. Measured at the
+  // poses that solve left (the anchors are still its anchors).
+  const PathConstraint& path = world_.path(cable.joints[span.run].path);
+  if (std::isfinite(winch.max_pull) && -path.lambda >= winch.max_pull * h * h * (1.0 - 1e-9)) {
+    double length = 0.0;
+    for (std::size_t i = 0; i + 1 < path.points.size(); ++i) {
+      const BodyState& a = world_.body(path.points[i].body);
+      const BodyState& b = world_.body(path.points[i + 1].body);
+      length += ((b.x_prev + b.q_prev * path.points[i + 1].local) - (a.x_prev + a.q_prev * path.points[i].local)).norm();
+    }
+    const double given = std::min(std::max(0.0, length - path.rest_length), drum.stored);
+    span.rest_length += given;
+    drum.stored -= given;
+  }
+  // This substep's command: cable reeled in (> 0), within what the span
+  // holds and what the drum stores.
+  const double step = winch.max_speed * h;
+  double in = winch.target_stored ? std::clamp(*winch.target_stored - drum.stored, -step, step)
+                                  : std::clamp(winch.speed * h, -step, step);
+  in = std::clamp(in, -drum.stored, span.rest_length);
+  span.rest_length -= in;
+  drum.stored += in;
+}
+
+}  // namespace reeve

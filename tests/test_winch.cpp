@@ -1,0 +1,156 @@
+// Winches (CableSystem::setWinch, beyond the paper): a load lifted at the
+// commanded speed, a stall at the maximum pull with the acceleration that
+// force gives, length mode stopping at its length, and the stored cable
+// equal to what was reeled; both solvers, 20 x 1 and 1 x 10.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "reeve/cable/cable.h"
+
+namespace reeve {
+namespace {
+
+constexpr double kG = 9.81;
+
+struct Crane {
+  World world;
+  CableSystem cables{world};
+  BodyId load = 0;
+  int cable = 0;
+  double total = 0.0;
+  // A load of `mass` kg hanging 3 m below a winch fixed at the origin.
+  Crane(double mass, SolverKind solver, int substeps, int iterations) {
+    world.settings().gravity = Vec3(0.0, -kG, 0.0);
+    world.settings().solver = solver;
+    world.settings().substeps = substeps;
+    world.settings().iterations = iterations;
+    BodyDef frame;
+    frame.is_static = true;
+    frame.shape = Shape::box(Vec3::Constant(0.1));
+    const BodyId top = world.addBody(frame);
+    BodyDef def;
+    def.shape = Shape::box(Vec3::Constant(0.1));
+    def.mass = mass;
+    def.position = Vec3(0.0, -3.0, 0.0);
+    load = world.addBody(def);
+    CableDef c;
+    c.links = {LinkDef::attachment(load, Vec3::Zero()), LinkDef::attachment(top, Vec3::Zero())};
+    cable = cables.addCable(c);
+    total = cables.totalLength(cable);
+  }
+  void run(double seconds) {
+    for (int f = 0; f < std::lround(seconds * 60.0); ++f) world.step(1.0 / 60.0);
+  }
+  double stored() const { return cables.cables()[cable].links[1].stored; }
+};
+
+struct Budget {
+  SolverKind solver;
+  int substeps, iterations;
+};
+const Budget kBudgets[] = {{SolverKind::Direct, 20, 1}, {SolverKind::Direct, 1, 10},
+                           {SolverKind::GaussSeidel, 20, 1}, {SolverKind::GaussSeidel, 1, 10}};
+std::string name(const Budget& b) {
+  return std::string(b.solver == SolverKind::Direct ? "direct " : "gauss-seidel ") + std::to_string(b.substeps) +
+         " x " + std::to_string(b.iterations);
+}
+
+TEST(Winch, LiftsAtTheCommandedSpeedAndStoresWhatItReeled) {
+  for (const Budget& b : kBudgets)
+    for (const double mass : {5.0, 500.0}) {  // 49 N and 4.9 kN
+      SCOPED_TRACE(name(b) + ", " + std::to_string(mass) + " kg");
+      Crane c(mass, b.solver, b.substeps, b.iterations);
+      WinchDef w;
+      w.speed = 0.2;
+      c.cables.setWinch(c.cable, w);
+      c.run(1.0);
+      EXPECT_NEAR(c.world.body(c.load).v.y(), 0.2, 2e-4);
+      EXPECT_NEAR(c.stored(), 0.2 * c.world.time(), 1e-9);
+      EXPECT_NEAR(c.world.body(c.load).x.y(), -3.0 + c.stored(), 1e-6);
+      // Holding at speed: the pull is the weight.
+      EXPECT_NEAR(c.cables.winchPull(c.cable), mass * kG, 1e-3 * mass * kG);
+      EXPECT_NEAR(c.cables.totalLength(c.cable), c.total, 1e-9 * c.total);
+      EXPECT_FALSE(c.cables.firstBreach().has_value());
+    }
+}
+
+TEST(Winch, StallsAtItsMaximumPullAndTheLoadMovesAsThatForceSays) {
+  // 5 kg (49 N), lifted at 0.5 m/s for 1 s (0.5 m on the drum), then
+  // overloaded: a 40 N winch cannot hold it, which slows at g - 40 / 5 and
+  // falls, the drum paying out; a 60 N winch asked for 1 m/s gets there at
+  // 60 / 5 - g and then holds that speed.
+  for (const Budget& b : kBudgets)
+    for (const double pull : {40.0, 60.0}) {
+      SCOPED_TRACE(name(b) + ", max pull " + std::to_string(pull) + " N");
+      Crane c(5.0, b.solver, b.substeps, b.iterations);
+      WinchDef w;
+      w.speed = 0.5;
+      c.cables.setWinch(c.cable, w);
+      c.run(1.0);
+      w.speed = 1.0;
+      w.max_pull = pull;
+      c.cables.setWinch(c.cable, w);
+      c.run(0.1);
+      const double v0 = c.world.body(c.load).v.y(), t0 = c.world.time(), stored0 = c.stored();
+      c.run(0.1);
+      const double a = (c.world.body(c.load).v.y() - v0) / (c.world.time() - t0);
+      EXPECT_NEAR(a, pull / 5.0 - kG, 1e-3 * std::abs(pull / 5.0 - kG));
+      EXPECT_NEAR(c.cables.winchPull(c.cable), pull, 1e-6 * pull);
+      EXPECT_NEAR(c.cables.totalLength(c.cable), c.total, 1e-9 * c.total);
+      EXPECT_FALSE(c.cables.firstBreach().has_value());
+      c.run(0.5);
+      if (pull > 50.0) {
+        EXPECT_NEAR(c.world.body(c.load).v.y(), 1.0, 1e-3);
+      } else {  // falling by now, the drum paying out under it
+        EXPECT_NEAR(c.world.body(c.load).v.y(), 0.5 + (pull / 5.0 - kG) * (c.world.time() - 1.0), 1e-3);
+        EXPECT_LT(c.stored(), stored0);
+      }
+      EXPECT_NEAR(c.cables.totalLength(c.cable), c.total, 1e-9 * c.total);
+    }
+}
+
+TEST(Winch, LengthModeStopsAtItsLength) {
+  for (const Budget& b : kBudgets) {
+    SCOPED_TRACE(name(b));
+    Crane c(5.0, b.solver, b.substeps, b.iterations);
+    WinchDef w;
+    w.max_speed = 0.3;
+    w.target_stored = 0.5;
+    c.cables.setWinch(c.cable, w);
+    c.run(1.0);
+    EXPECT_NEAR(c.world.body(c.load).v.y(), 0.3, 3e-4);  // on its way at max speed
+    c.run(2.0);
+    EXPECT_NEAR(c.stored(), 0.5, 1e-12);
+    EXPECT_NEAR(c.world.body(c.load).x.y(), -2.5, 1e-3);  // within 1 mm
+    EXPECT_LT(std::abs(c.world.body(c.load).v.y()), 1e-6);
+    // Paying out again: to 0.2 m stored.
+    w.target_stored = 0.2;
+    c.cables.setWinch(c.cable, w);
+    c.run(2.0);
+    EXPECT_NEAR(c.world.body(c.load).x.y(), -2.8, 1e-3);
+    EXPECT_NEAR(c.cables.totalLength(c.cable), c.total, 1e-9 * c.total);
+  }
+}
+
+TEST(Winch, BadCommandsAreRefused) {
+  Crane c(1.0, SolverKind::Direct, 10, 1);
+  WinchDef w;
+  w.max_pull = 0.0;
+  EXPECT_THROW(c.cables.setWinch(c.cable, w), std::invalid_argument);
+  w = WinchDef();
+  w.max_speed = 0.1;
+  w.speed = 0.2;
+  EXPECT_THROW(c.cables.setWinch(c.cable, w), std::invalid_argument);
+  w = WinchDef();
+  w.target_stored = -1.0;
+  EXPECT_THROW(c.cables.setWinch(c.cable, w), std::invalid_argument);
+  w = WinchDef();
+  w.speed = std::nan("");
+  EXPECT_THROW(c.cables.setWinch(c.cable, w), std::invalid_argument);
+  EXPECT_FALSE(c.cables.cables()[c.cable].winch.has_value());
+}
+
+}  // namespace
+}  // namespace reeve

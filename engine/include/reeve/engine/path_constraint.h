@@ -31,8 +31,10 @@ struct PathPoint {
 /// rest_length; only the forces are weighted (gradient of the length J_c,
 /// force direction J_f = sum w_i grad L_i), so the path is not a
 /// conservative constraint when the weights differ: it dissipates, as the
-/// friction it stands for does. `compliance` is the stretch of the whole
-/// path per unit T: sum_i w_i c_i for segment compliances c_i.
+/// friction it stands for does (the direct solver, whose system is
+/// symmetric, sweeps weighted paths with solvePathConstraint after each of
+/// its iterations). `compliance` is the stretch of the whole path per unit
+/// T: sum_i w_i c_i for segment compliances c_i.
 struct PathConstraint {
   std::vector<PathPoint> points;
   std::vector<double> weights;

@@ -47,6 +47,8 @@ const char* eventName(CableEvent::Kind kind) {
     case CableEvent::Kind::HybridRollsAgain: return "hybrid_rolls_again";
     case CableEvent::Kind::Merge: return "merge";
     case CableEvent::Kind::Split: return "split";
+    case CableEvent::Kind::Break: return "break";
+    case CableEvent::Kind::RunsOff: return "runs_off";
   }
   return "?";
 }
@@ -65,10 +67,12 @@ int CableSystem::addCable(const CableDef& def) {
   if (!def.rest_lengths.empty() && static_cast<int>(def.rest_lengths.size()) != joints)
     fail("rest_lengths needs one value per joint (" + std::to_string(joints) + ")");
   if (!(def.compliance >= 0.0)) fail("compliance must be >= 0");
+  if (std::isnan(def.breaking_tension) || def.breaking_tension <= 0.0) fail("the breaking tension must be > 0");
 
   Cable cable;
   cable.name = def.name;
   cable.closed = def.closed;
+  cable.breaking_tension = def.breaking_tension;
   int active = 0;
   for (int k = 0; k < n; ++k) {
     const LinkDef& ld = def.links[k];

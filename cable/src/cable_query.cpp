@@ -14,7 +14,9 @@ std::vector<CableEvent> CableSystem::takeEvents() {
   return out;
 }
 
-bool CableSystem::jointEnabled(int c, int j) const { return cables_[c].links[j].active; }
+bool CableSystem::jointEnabled(int c, int j) const {
+  return cables_[c].links[j].active && !cables_[c].joints[j].parted;
+}
 
 double CableSystem::tension(int c, int j) const {
   const Cable& cable = cables_[c];
@@ -67,7 +69,7 @@ std::optional<CableBreach> CableSystem::findBreach() const {
       return b;
     };
     for (int j = 0; j < static_cast<int>(cable.joints.size()); ++j)
-      if (cable.links[j].active && cable.joints[j].rest_length < -slack)
+      if (cable.links[j].active && !cable.joints[j].parted && cable.joints[j].rest_length < -slack)
         return broken("joint " + std::to_string(j) + " has a negative rest length (" +
                       std::to_string(cable.joints[j].rest_length) + " m)");
     for (int k = 0; k < static_cast<int>(cable.links.size()); ++k) {

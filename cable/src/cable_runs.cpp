@@ -23,11 +23,11 @@ void forEachRun(const Cable& cable, F f) {
   for (int j = 0; j < joints; ++j)
     if (cable.links[j].active && !cable.links[j].slides()) {
       held = true;
-      f(j, false);
+      if (!cable.joints[j].parted) f(j, false);
     }
   if (held || !cable.closed) return;
   for (int j = 0; j < joints; ++j)
-    if (cable.links[j].active) return f(j, true);
+    if (cable.links[j].active && !cable.joints[j].parted) return f(j, true);
 }
 
 // Whether span k's far link ends the run started at j.
@@ -118,7 +118,7 @@ void CableSystem::switchSlips(Cable& cable, double h) {
   const int n = static_cast<int>(cable.links.size());
   for (int k = 0; k < n; ++k) {
     Link& link = cable.links[k];
-    if (!link.active || !hasFriction(link)) continue;
+    if (!link.active || !hasFriction(link) || cable.joints[k].parted) continue;
     if (link.slipping) {
       // Sticks when the slip stopped, or will have by the next update at
       // its present deceleration (a substep's lag is a substep of friction
@@ -197,7 +197,7 @@ void CableSystem::buildRuns(Cable& cable) {
     path.max_tension = std::numeric_limits<double>::infinity();
     path.enabled = true;
   });
-  if (cable.winch)  // its pull is limited
+  if (cable.winch && !cable.joints[winchSpan(cable).second].parted)  // its pull is limited
     world_.path(cable.joints[cable.joints[winchSpan(cable).second].run].path).max_tension = cable.winch->max_pull;
 }
 

@@ -52,11 +52,13 @@ void CableSystem::update(double time_s, double h) {
   measureTurns(h);
   for (int c = 0; c < static_cast<int>(cables_.size()); ++c) {
     Cable& cable = cables_[c];
-    if (cable.winch && h > 0.0) reel(cable, h);
+    if (h > 0.0 && std::isfinite(cable.breaking_tension)) breakOverloaded(cable, c, time_s, h);
+    if (cable.winch && h > 0.0) reel(cable, time_s - h, h);
     // Runs' rest lengths as the last solve left them, before this
     // substep's turns pay cable in and out.
     settleRuns(cable, h);
     for (int j = 0; j < static_cast<int>(cable.joints.size()); ++j) updateJoint(cable, j);
+    if (cable.broken) releaseFreeEnds(cable, c, time_s);
     switchHybrids(cable, c, time_s);
     mergeEmptyLinks(cable, c, time_s);
     splitAtCrossedLinks(cable, c, time_s);
@@ -79,7 +81,7 @@ void CableSystem::updateJoint(Cable& cable, int j) {
   Link& from = cable.links[j];
   CableJoint& joint = cable.joints[j];
   Link& to = cable.links[joint.to];
-  if (!from.active || (!from.rolls() && !to.rolls())) return;
+  if (!from.active || joint.parted || (!from.rolls() && !to.rolls())) return;
   const auto anchors = spanAnchors(from, world_.body(from.body), to, world_.body(to.body), joint.local_b);
   if (!anchors) return;  // overlapping sections: keep the old anchors
   // Alg. 1 l. 4-5 and Alg. 2 l. 8-9: the anchors turned with their bodies
@@ -122,6 +124,7 @@ void CableSystem::switchHybrids(Cable& cable, int c, double time_s) {
     const bool leaving = k == 0;  // the span leaves the first link, arrives at the last
     const int j = leaving ? 0 : previousActive(cable, k);
     CableJoint& joint = cable.joints[j];
+    if (joint.parted) continue;
     Vec3& anchor = leaving ? joint.local_a : joint.local_b;
     if (!link.attached) {
       if (link.stored >= 0.0) continue;
@@ -181,6 +184,7 @@ void CableSystem::mergeEmptyLinks(Cable& cable, int c, double time_s) {
     CableJoint& in = cable.joints[p];
     const CableJoint& out = cable.joints[k];
     if (p == out.to) continue;  // a belt keeps at least two links
+    if (in.parted || out.parted) continue;  // a free end: releaseFreeEnds
     in.to = out.to;
     in.local_b = out.local_b;
     in.rest_length += out.rest_length + link.stored;
@@ -198,7 +202,7 @@ void CableSystem::splitAtCrossedLinks(Cable& cable, int c, double time_s) {
   // rest length is shared so both parts have the same strain.
   const int n = static_cast<int>(cable.links.size());
   for (int j = 0; j < static_cast<int>(cable.joints.size()); ++j) {
-    if (!cable.links[j].active) continue;
+    if (!cable.links[j].active || cable.joints[j].parted) continue;
     CableJoint& in = cable.joints[j];
     for (int k = (j + 1) % n; k != in.to; k = (k + 1) % n) {
       Link& mid = cable.links[k];

@@ -2,6 +2,8 @@
 // out at a commanded speed or to a commanded length, with a bounded pull.
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -29,6 +31,18 @@ void CableSystem::setWinch(int c, const WinchDef& winch) {
     fail("speed must be finite and within max_speed");
   if (winch.target_stored && !(*winch.target_stored >= 0.0 && std::isfinite(*winch.target_stored)))
     fail("target_stored must be finite and >= 0");
+  double after = -std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < winch.schedule.size(); ++i) {
+    const WinchCommand& command = winch.schedule[i];
+    const std::string at = "schedule[" + std::to_string(i) + "]: ";
+    if (!(std::isfinite(command.from_s) && command.from_s > after))
+      fail(at + "from_s must be finite and after the command before");
+    after = command.from_s;
+    if (!std::isfinite(command.speed) || std::abs(command.speed) > winch.max_speed)
+      fail(at + "speed must be finite and within max_speed");
+    if (command.target_stored && !(*command.target_stored >= 0.0 && std::isfinite(*command.target_stored)))
+      fail(at + "target_stored must be finite and >= 0");
+  }
   cable.winch = winch;
   buildRuns(cable);  // the pull limit on the run it reels
 }
@@ -38,11 +52,20 @@ double CableSystem::winchPull(int c) const {
   return cable.winch ? tension(c, winchSpan(cable).second) : 0.0;
 }
 
-void CableSystem::reel(Cable& cable, double h) {
-  const WinchDef& winch = *cable.winch;
+void CableSystem::reel(Cable& cable, double start_s, double h) {
+  WinchDef& winch = *cable.winch;
+  // Commands due by the middle of this substep take over, in order.
+  std::size_t due = 0;
+  while (due < winch.schedule.size() && winch.schedule[due].from_s <= start_s + 0.5 * h) {
+    winch.speed = winch.schedule[due].speed;
+    winch.target_stored = winch.schedule[due].target_stored;
+    ++due;
+  }
+  winch.schedule.erase(winch.schedule.begin(), winch.schedule.begin() + static_cast<std::ptrdiff_t>(due));
   const auto [k, j] = winchSpan(cable);
   Link& drum = cable.links[k];
   CableJoint& span = cable.joints[j];
+  if (span.parted) return;  // the cable broke: nothing left to reel
   // Stalled: the last solve held the pull at max_pull and the run came out
   // longer than its rest length; the winch paid that out. Measured at the
   // poses that solve left (the anchors are still its anchors).

@@ -141,11 +141,12 @@ std::vector<Vec3> wrapPath(const Link& link, const BodyState& body, const Vec3& 
   return world;
 }
 
-std::vector<Vec3> cablePath(const CableSystem& cables, int c, double max_step_rad) {
+std::vector<std::vector<Vec3>> cablePaths(const CableSystem& cables, int c, double max_step_rad) {
   const Cable& cable = cables.cables()[c];
   const World& world = cables.world();
   Vec3 down = world.settings().gravity;
   if (!(down.allFinite() && down.norm() > 0.0)) down = -Vec3::UnitY();
+  down.normalize();
   const int joints = static_cast<int>(cable.joints.size());
   // A closed cable starts at an active link, so that the wrap on it comes
   // first and the loop ends where it began.
@@ -157,11 +158,17 @@ std::vector<Vec3> cablePath(const CableSystem& cables, int c, double max_step_ra
   for (int j = 0; j < joints; ++j)
     if (cables.jointEnabled(c, j)) arriving[cable.joints[j].to] = j;
 
-  std::vector<Vec3> path;
+  std::vector<std::vector<Vec3>> paths;  // pieces ended and loose ends
+  std::vector<Vec3> path;                 // the piece being drawn
+  const auto hang = [&](const Vec3& from, double length) {
+    if (length > 0.0) paths.push_back({from, from + length * down});
+  };
   for (int step = 0; step < joints; ++step) {
     const int j = (first + step) % joints;
-    if (!cables.jointEnabled(c, j)) continue;
     const Link& link = cable.links[j];
+    const CableJoint& joint = cable.joints[j];
+    if (!link.active) continue;
+    if (!joint.parted && !cables.jointEnabled(c, j)) continue;
     const Vec3 start = cables.startPoint(c, j), end = cables.endPoint(c, j);
     const int in = link.rolls() ? arriving[j] : -1;
     if (in >= 0) {
@@ -175,6 +182,13 @@ std::vector<Vec3> cablePath(const CableSystem& cables, int c, double max_step_ra
       }
     }
     push(path, start);
+    if (joint.parted) {  // a piece ends here; the next starts after the gap
+      paths.push_back(std::move(path));
+      path.clear();
+      hang(start, joint.tail_a);
+      hang(end, joint.tail_b);
+      continue;
+    }
     const double rest = cables.restLength(c, j), chord = (end - start).norm();
     if (isSlack(rest, chord)) {
       const auto curve = slackCurve(start, end, rest, down, kSlackSegments);
@@ -182,7 +196,10 @@ std::vector<Vec3> cablePath(const CableSystem& cables, int c, double max_step_ra
     }
     push(path, end);
   }
-  return path;
+  paths.push_back(std::move(path));
+  paths.erase(std::remove_if(paths.begin(), paths.end(), [](const auto& p) { return p.size() < 2; }),
+              paths.end());
+  return paths;
 }
 
 std::vector<Vec3> spoolCoil(const CableSystem& cables, int c, int k, double pitch,

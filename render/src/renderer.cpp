@@ -317,8 +317,8 @@ Image Renderer::render(const World& world, const CableSystem& cables, const Came
   drawSectionOutlines(meshes, cables, style::kSectionOutlineScale * cable_radius);
   Mesh tubes;
   for (int c = 0; c < static_cast<int>(cables.cables().size()); ++c) {
-    appendTube(tubes, cablePath(cables, c, kArcStepRad), cable_radius, kTubeSides,
-               meshes.ball);
+    for (const auto& piece : cablePaths(cables, c, kArcStepRad))
+      appendTube(tubes, piece, cable_radius, kTubeSides, meshes.ball);
     const int last = static_cast<int>(cables.cables()[c].links.size()) - 1;
     for (int k : {0, last})
       appendTube(tubes,

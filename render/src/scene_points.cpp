@@ -38,8 +38,7 @@ std::vector<Vec3> scenePoints(const World& world, const CableSystem& cables) {
   }
   constexpr double kStepRad = 2.0 * std::numbers::pi / 16.0;  // coarse: an outline will do
   for (int c = 0; c < static_cast<int>(cables.cables().size()); ++c) {
-    const auto path = cablePath(cables, c, kStepRad);
-    points.insert(points.end(), path.begin(), path.end());
+    for (const auto& path : cablePaths(cables, c, kStepRad)) points.insert(points.end(), path.begin(), path.end());
     const Cable& cable = cables.cables()[c];
     for (const Link& link : cable.links)
       if (link.type == LinkType::Rolling || link.type == LinkType::Hybrid) {

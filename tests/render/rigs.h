@@ -3,9 +3,12 @@
 // passing an inactive link, a belt.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <vector>
 
 #include "reeve/cable/cable.h"
+#include "reeve/render/cable_path.h"
 
 namespace reeve::test {
 
@@ -40,6 +43,14 @@ struct Rig {
     for (int f = 0; f < frames; ++f) world.step(1.0 / 60.0);
   }
 };
+
+/// The one polyline of an unbroken cable (cablePaths); a failure if there
+/// is not exactly one.
+inline std::vector<Vec3> onePath(const CableSystem& cables, int c, double max_step_rad) {
+  auto paths = cablePaths(cables, c, max_step_rad);
+  EXPECT_EQ(paths.size(), 1u);
+  return paths.empty() ? std::vector<Vec3>{} : paths.front();
+}
 
 inline LinkDef attachment(BodyId body, const Vec3& point = Vec3::Zero()) {
   LinkDef l;

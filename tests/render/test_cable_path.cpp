@@ -26,7 +26,7 @@ double maxY(const std::vector<Vec3>& path) {
 // The Atwood cable runs from the light box up its span, clockwise over the
 // top of the wheel (orientation -1) and down to the heavy box.
 void expectOverTheTop(const AtwoodRig& rig) {
-  const auto path = cablePath(rig.cables, rig.cable, kStep);
+  const auto path = test::onePath(rig.cables, rig.cable, kStep);
   const World& w = rig.world;
   EXPECT_TRUE(path.front().isApprox(w.body(rig.light_box).toWorld(Vec3(0, 0.12, 0)), 1e-12));
   EXPECT_TRUE(path.back().isApprox(w.body(rig.heavy_box).toWorld(Vec3(0, 0.15, 0)), 1e-12));
@@ -79,7 +79,7 @@ TEST(CablePath, CounterClockwiseLinkWrapsUnderTheWheel) {
   def.links = {test::attachment(top, Vec3(-1.0, 0.0, 0.0)), test::rolling(wheel, 1),
                test::attachment(top, Vec3(1.0, 0.0, 0.0))};
   const int c = cables.addCable(def);
-  const auto path = cablePath(cables, c, kStep);
+  const auto path = test::onePath(cables, c, kStep);
   double min_y = INFINITY;
   for (const Vec3& p : path) min_y = std::min(min_y, p.y());
   EXPECT_LT(min_y, -0.3 * std::cos(kStep));
@@ -104,7 +104,7 @@ TEST(CablePath, WrapOnASquareRunsAlongItsHullVerticesInTheOrientationSense) {
   constexpr double kOffset = 0.02;
   test::SquareWheelRig rig(0.3, kOffset);
   const BodyState& wheel = rig.world.body(rig.wheel);
-  const auto path = cablePath(rig.cables, rig.cable, kStep);
+  const auto path = test::onePath(rig.cables, rig.cable, kStep);
   // path: light box, arrival vertex, passed vertices..., departure vertex, heavy box.
   ASSERT_GE(path.size(), 5u);
   const double h = test::SquareWheelRig::kHalf;
@@ -169,7 +169,7 @@ TEST(CablePath, StoredCableBeyondTheWrapDrawsWholeExtraTurns) {
   const double perimeter = 2.0 * std::numbers::pi * 0.3;
   test::Rig wound;
   build(wound, wrap + 2.0 * perimeter);
-  const auto path = cablePath(wound.cables, 0, kStep);
+  const auto path = test::onePath(wound.cables, 0, kStep);
   const double drawn = polylineLength(path, 1, path.size() - 2);
   EXPECT_NEAR(drawn, wrap + 2.0 * perimeter, 2e-3 * drawn);  // chords of a 3.75 degree step
   for (std::size_t i = 1; i + 1 < path.size(); ++i) EXPECT_NEAR(path[i].norm(), 0.3, 1e-9);
@@ -178,7 +178,7 @@ TEST(CablePath, StoredCableBeyondTheWrapDrawsWholeExtraTurns) {
 TEST(CablePath, DisabledJointsAreLeftOut) {
   test::InactiveLinkRig rig;
   ASSERT_FALSE(rig.cables.jointEnabled(rig.cable, 1));
-  const auto path = cablePath(rig.cables, rig.cable, kStep);
+  const auto path = test::onePath(rig.cables, rig.cable, kStep);
   ASSERT_EQ(path.size(), 2u);
   EXPECT_EQ(path[0], rig.world.body(rig.left).x);
   EXPECT_EQ(path[1], rig.world.body(rig.right).x);
@@ -189,7 +189,7 @@ TEST(CablePath, DisabledJointsAreLeftOut) {
 
 TEST(CablePath, ClosedBeltWrapsBothWheelsAndCloses) {
   test::BeltRig rig;
-  const auto path = cablePath(rig.cables, rig.cable, kStep);
+  const auto path = test::onePath(rig.cables, rig.cable, kStep);
   ASSERT_GT(path.size(), 10u);
   EXPECT_LT((path.front() - path.back()).norm(), 1e-12);
   const double r = test::BeltRig::kRadius;
@@ -218,7 +218,7 @@ TEST(CablePath, ClosedBeltWhoseFirstLinkIsInactiveStartsAtTheNextAndCloses) {
   def.links = {first, test::rolling(left, 1), test::rolling(right, 1)};
   rig.cable = rig.cables.addCable(def);
   ASSERT_FALSE(rig.cables.jointEnabled(rig.cable, 0));
-  const auto path = cablePath(rig.cables, rig.cable, kStep);
+  const auto path = test::onePath(rig.cables, rig.cable, kStep);
   EXPECT_LT((path.front() - path.back()).norm(), 1e-12);
   EXPECT_TRUE(path.front().isApprox(rig.cables.endPoint(rig.cable, 2), 1e-12));  // arrives at link 1
   for (const Vec3& p : path) EXPECT_GT(p.y(), -0.26);  // nowhere near the idle wheel
@@ -228,7 +228,7 @@ TEST(CablePath, ClosedBeltWhoseFirstLinkIsInactiveStartsAtTheNextAndCloses) {
 
 TEST(CablePath, LooseSpanHangsWithItsRestLength) {
   test::SlackRig rig(1.3);
-  const auto path = cablePath(rig.cables, rig.cable, kStep);
+  const auto path = test::onePath(rig.cables, rig.cable, kStep);
   ASSERT_EQ(path.size(), std::size_t(kSlackSegments + 1));
   EXPECT_EQ(path.front(), rig.a);
   EXPECT_EQ(path.back(), rig.b);
@@ -239,13 +239,13 @@ TEST(CablePath, LooseSpanHangsWithItsRestLength) {
   EXPECT_LT(lowest, rig.b.y() - 0.2);
   // Taut again: straight.
   rig.cables.setRestLength(rig.cable, 0, (rig.b - rig.a).norm());
-  EXPECT_EQ(cablePath(rig.cables, rig.cable, kStep).size(), 2u);
+  EXPECT_EQ(test::onePath(rig.cables, rig.cable, kStep).size(), 2u);
 }
 
 TEST(CablePath, LooseSpanSagsAlongTheWorldsGravity) {
   test::SlackRig rig(1.3);
   rig.world.settings().gravity = Vec3(9.81, 0.0, 0.0);  // "down" is +x
-  const auto path = cablePath(rig.cables, rig.cable, kStep);
+  const auto path = test::onePath(rig.cables, rig.cable, kStep);
   double furthest = -INFINITY;
   for (const Vec3& p : path) furthest = std::max(furthest, p.x());
   EXPECT_GT(furthest, rig.b.x() + 0.1);
@@ -319,6 +319,46 @@ TEST(SpoolCoil, CapsTheTurnsAndTheThicknessOfAFullCoil) {
   EXPECT_NEAR(drum.toLocal(banded.back()).norm(), 0.3 + 0.5, 1e-9);
   const auto fine = spoolCoil(rig.cables, rig.cable, 0, 0.01, kStep, 0.5);
   EXPECT_NEAR(drum.toLocal(fine.back()).norm(), 0.3 + 0.2, 1e-9);
+}
+
+TEST(CablePath, APartedCableIsDrawnAsItsPiecesWithLooseEndsHanging) {
+  // 1 kg and 2 kg over a hinged 2 kg wheel; the cable breaks at once (at
+  // 5 N, under both loads' pulls), the heavy box's span first; the free
+  // end then unwinds the wheel. Drawn: the light box's piece up over the
+  // wheel, and the parted span's two ends hanging straight down, half its
+  // cable each.
+  test::Rig rig;
+  constexpr double r = 0.3;
+  const BodyId wheel = rig.addDynamic(Shape::cylinder(r, 0.06), 2.0, Vec3::Zero());
+  rig.world.addHinge({wheel, kWorldBody, Vec3::Zero(), Vec3::UnitZ(), 0.0});
+  const BodyId light = rig.addDynamic(Shape::box(Vec3::Constant(0.1)), 1.0, Vec3(-r, -1.2, 0.0));
+  const BodyId heavy = rig.addDynamic(Shape::box(Vec3::Constant(0.1)), 2.0, Vec3(r, -1.2, 0.0));
+  CableDef def;
+  def.links = {test::attachment(light, Vec3(0.0, 0.1, 0.0)), test::rolling(wheel, -1),
+               test::attachment(heavy, Vec3(0.0, 0.1, 0.0))};
+  def.breaking_tension = 5.0;
+  rig.cable = rig.cables.addCable(def);
+  const double rest = rig.cables.restLength(rig.cable, 1);
+  const Vec3 start = rig.cables.startPoint(rig.cable, 1), end = rig.cables.endPoint(rig.cable, 1);
+  rig.world.settings().substeps = 1;
+  rig.world.step(1.0 / 600.0);  // the solve overloads it; the next update parts it
+  rig.world.step(1.0 / 600.0);
+  ASSERT_TRUE(rig.cables.cables()[rig.cable].joints[1].parted);
+  const auto paths = cablePaths(rig.cables, rig.cable, kStep);
+  ASSERT_EQ(paths.size(), 3u);
+  // The piece: from the light box up over the wheel.
+  EXPECT_NEAR((paths[0].front() - rig.cables.startPoint(rig.cable, 0)).norm(), 0.0, 1e-12);
+  EXPECT_GT(maxY(paths[0]), 0.9 * r);
+  // The loose ends: straight down from where the span left and arrived
+  // (the wheel and the box moved a little in the two substeps).
+  for (int i : {1, 2}) {
+    SCOPED_TRACE(i);
+    ASSERT_EQ(paths[i].size(), 2u);
+    const Vec3 hang = paths[i][1] - paths[i][0];
+    EXPECT_NEAR(hang.norm(), 0.5 * rest, 1e-9);
+    EXPECT_NEAR(hang.normalized().dot(-Vec3::UnitY()), 1.0, 1e-12);
+    EXPECT_LT((paths[i][0] - (i == 1 ? start : end)).norm(), 1e-2);
+  }
 }
 
 TEST(SpoolCoil, ShrinksAsTheSpoolPaysOutAndStopsWhenTheHybridIsTied) {

@@ -154,7 +154,7 @@ TEST(RenderLinks, SpoolShowsItsStoredCableAsACoil) {
 TEST(RenderLinks, LooseSpanHangsAndTautSpanIsStraight) {
   test::SlackRig rig(1.3);
   const Frame f = shoot(rig);
-  const auto path = cablePath(rig.cables, rig.cable, 0.05);
+  const auto path = test::onePath(rig.cables, rig.cable, 0.05);
   Vec3 lowest = path.front();
   for (const Vec3& p : path)
     if (p.y() < lowest.y()) lowest = p;

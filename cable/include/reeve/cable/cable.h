@@ -96,12 +96,16 @@ struct LinkDef {
 /// would stretch if it hung free); each free span gets the share of its
 /// rest length, so strain, not span count, sets the stretch; cable stored
 /// on a body does not stretch (0: inextensible).
+///
+/// `breaking_tension` (N, > 0; infinite: never): a span whose tension
+/// passes it parts (beyond the paper; CableSystem::update).
 struct CableDef {
   std::string name;
   std::vector<LinkDef> links;
   bool closed = false;
   double compliance = 0.0;
   std::vector<double> rest_lengths;
+  double breaking_tension = std::numeric_limits<double>::infinity();
 };
 
 /// A link in the solver. `attached` marks a hybrid link that has run out of
@@ -147,7 +151,10 @@ struct Link {
 /// they share one tension (times `weight`, the capstan ratio of friction
 /// links slipping between it and the run's tightest span, which has 1);
 /// `path` is this span's path when it starts a run, `run` the joint whose
-/// path carries it. Disabled while link j is inactive.
+/// path carries it. Disabled while link j is inactive, and for good once
+/// `parted`: the cable broke here, or a free end ran off a link the span
+/// left from (its cable went to the links either side as loose cable,
+/// stored there: `tail_a` (m) to link j, `tail_b` to link `to`).
 struct CableJoint {
   int to = 0;
   Vec3 local_a = Vec3::Zero();
@@ -156,36 +163,54 @@ struct CableJoint {
   PathId path = 0;
   int run = 0;
   double weight = 1.0;
+  bool parted = false;
+  double tail_a = 0.0, tail_b = 0.0;  // m
 };
 
-/// A link switch, merge or split (paper Alg. 2), for logs.
+/// A link switch, merge or split (paper Alg. 2), or a break, for logs.
+/// Break: the span leaving `link` parted at `tension` (N). RunsOff: a free
+/// end (after a break) left `link`, which could not hold it: a pinhole or
+/// a wrap it slides over, or a wheel whose stored cable ran out; the span
+/// beyond goes slack for good.
 struct CableEvent {
-  enum class Kind { HybridRunsOut, HybridRollsAgain, Merge, Split };
+  enum class Kind { HybridRunsOut, HybridRollsAgain, Merge, Split, Break, RunsOff };
   Kind kind;
-  double time_s;  // end of the substep in which it happened
+  double time_s;  // end of the substep in which it happened; a break: of the solve that overloaded it
   int cable;
   int link;
   int orientation;  // the link's orientation after the event
+  double tension = 0.0;  // N, breaks only
 };
 
 /// Name of an event kind ("hybrid_runs_out", "hybrid_rolls_again", "merge",
-/// "split").
+/// "split", "break", "runs_off").
 const char* eventName(CableEvent::Kind kind);
+
+/// A command to a winch from simulated time `from_s` (s) on: speed mode
+/// (`speed`, m/s of cable; > 0 hauls in, < 0 pays out) or, with
+/// `target_stored` (m, >= 0), length mode: towards that much stored cable
+/// at the winch's max_speed, then hold.
+struct WinchCommand {
+  double from_s = 0.0;
+  double speed = 0.0;
+  std::optional<double> target_stored;
+};
 
 /// A winch at an end of an open cable (beyond the paper). The end link is
 /// an attachment the winch reels cable into and pays it out of, keeping
-/// what it holds as that link's stored cable. Speed mode: at `speed`
-/// (m/s of cable; > 0 hauls in, < 0 pays out); length mode (with
-/// `target_stored`): towards that much stored cable at `max_speed`, then
-/// holds. Either way at most `max_speed` and with a pull of at most
-/// `max_pull` (N): asked for more, the winch stalls and pays out under the
-/// load, which then moves as that force says.
+/// what it holds as that link's stored cable. It follows `speed` and
+/// `target_stored` (a WinchCommand's), and then each of `schedule`'s
+/// commands from its time on (at the first substep starting within half
+/// a substep of it; times increasing). Either way at most `max_speed` and
+/// with a pull of at most `max_pull` (N): asked for more, the winch stalls
+/// and pays out under the load, which then moves as that force says.
 struct WinchDef {
   bool at_start = false;  ///< the winch is at the first link; false: the last
   double speed = 0.0;     ///< m/s
   double max_speed = std::numeric_limits<double>::infinity();  ///< m/s, > 0
   double max_pull = std::numeric_limits<double>::infinity();   ///< N, > 0
   std::optional<double> target_stored;                          ///< m, >= 0
+  std::vector<WinchCommand> schedule;
 };
 
 struct Cable {
@@ -196,6 +221,8 @@ struct Cable {
   std::vector<Link> links;
   std::vector<CableJoint> joints;  // joints[j] leaves links[j]
   std::optional<WinchDef> winch;
+  double breaking_tension = std::numeric_limits<double>::infinity();  // N
+  bool broken = false;  // a span has parted
 };
 
 /// A break of the cable bookkeeping's invariants (CableSystem::firstBreach).
@@ -229,7 +256,9 @@ class CableSystem {
   /// between adjacent links).
   int addCable(const CableDef& def);
 
-  /// One substep of bookkeeping from the current poses: tangent points,
+  /// One substep of bookkeeping from the current poses: first breaks (a
+  /// span the last solve pulled past the breaking tension parts, beyond
+  /// the paper), the winch's reeling, then tangent points,
   /// rest lengths and stored cable (Alg. 1 l. 2-7, Alg. 2 l. 8-9), pinhole
   /// sliding (Alg. 1 l. 8-16), hybrid switches (Alg. 2 l. 11-22), merges and
   /// splits (Alg. 2 l. 23-28). `time_s` stamps the events. `h` (s) is the
@@ -251,7 +280,8 @@ class CableSystem {
   double tension(int c, int j) const;
   double restLength(int c, int j) const;
   double length(int c, int j) const;
-  /// Whether joint j of cable c currently exists (its link is active).
+  /// Whether joint j of cable c currently exists (its link is active and
+  /// it has not parted).
   bool jointEnabled(int c, int j) const;
   /// Slip speed (m/s) of link k of cable c: cable sliding forward (towards
   /// link k + 1) over the body or through the hole, measured as the last
@@ -285,7 +315,7 @@ class CableSystem {
   /// call this between steps). Throws std::invalid_argument for a closed
   /// cable, an end link that is not an attachment, or values out of range
   /// (max_speed, max_pull > 0; |speed| <= max_speed; target_stored >= 0;
-  /// all but the maxima finite).
+  /// all but the maxima finite; schedule times finite and increasing).
   void setWinch(int c, const WinchDef& winch);
   /// The pull (N) of cable c's winch over the last substep: the tension of
   /// the span it reels; 0 without a winch.
@@ -296,12 +326,23 @@ class CableSystem {
   /// plane's normal (local z) since the last update.
   void measureTurns(double h);
   void updateJoint(Cable& cable, int j);
-  /// The winch's substep (WinchDef): what it paid out stalled in the last
-  /// solve, then what it reels in this one, `h` (s).
-  void reel(Cable& cable, double h);
+  /// The winch's substep (WinchDef) of `h` (s) starting at `start_s`: what
+  /// it paid out stalled in the last solve, then what it reels in this one.
+  void reel(Cable& cable, double start_s, double h);
   /// The winch's link and the joint of the span it reels.
   std::pair<int, int> winchSpan(const Cable& cable) const;
   void switchHybrids(Cable& cable, int c, double time_s);
+  /// Breaking (cable_break.cpp): parts the span the last solve pulled
+  /// hardest past the cable's breaking tension (its lambda over `h`), then
+  /// lets free ends run off what cannot hold them (releaseFreeEnds).
+  void breakOverloaded(Cable& cable, int c, double time_s, double h);
+  /// Parts span j: its rest length goes to its two links as loose cable,
+  /// `share_a` of it to link j.
+  void part(Cable& cable, int j, double share_a);
+  /// A free end holds at an attachment, a hybrid end and a no-slip wheel
+  /// that still stores cable; through anything else it runs off, parting
+  /// the span beyond, until something holds.
+  void releaseFreeEnds(Cable& cable, int c, double time_s);
   void mergeEmptyLinks(Cable& cable, int c, double time_s);
   void splitAtCrossedLinks(Cable& cable, int c, double time_s);
   /// Runs (spans joined through sliding links), each substep: share out

@@ -36,19 +36,24 @@ std::vector<Vec3> wrapPath(const Link& link, const BodyState& body, const Vec3& 
 int extraTurns(const Link& link, const BodyState& body, const Vec3& arrival,
                const Vec3& departure);
 
-/// World points (m) along cable `c`, following its enabled joints only
-/// (a disabled joint, leaving an inactive link, is not drawn): for each
-/// enabled joint j from startPoint(c, j) to endPoint(c, j) a straight span,
+/// Polylines of world points (m) along cable `c`, following its enabled
+/// joints only (a disabled joint, leaving an inactive link, is not drawn):
+/// for each enabled joint j from startPoint(c, j) to endPoint(c, j) a straight span,
 /// or, when its rest length exceeds its length (isSlack), a catenary of the
 /// rest length sagging along the World's gravity (world -y if gravity is
 /// zero); between the arriving joint and joint k, on every active link k
 /// that rolls, the wrap of wrapPath() with extraTurns(). An open cable runs
 /// from its first link to its last; a closed cable starts with the wrap on
 /// its first active link and ends where it began, so the loop closes.
-/// Consecutive wrap points are at most `max_step_rad` apart in angle on
-/// circles; points closer than 1e-12 m to the last are dropped. `c` must
-/// be a valid cable index and max_step_rad > 0.
-std::vector<Vec3> cablePath(const CableSystem& cables, int c, double max_step_rad);
+/// An unbroken cable is one polyline; a parted joint (CableJoint::parted)
+/// ends one piece at its start point and the next begins after it, and
+/// its loose ends hang from its two end points along gravity, tail_a and
+/// tail_b long, each a polyline of its own (pieces and ends in cable
+/// order, the last piece last). Polylines of fewer than two points are
+/// left out. Consecutive wrap points are at most `max_step_rad` apart in
+/// angle on circles; points closer than 1e-12 m to the last are dropped.
+/// `c` must be a valid cable index and max_step_rad > 0.
+std::vector<std::vector<Vec3>> cablePaths(const CableSystem& cables, int c, double max_step_rad);
 
 /// The stored cable of end link k of open cable c drawn as a coil, when
 /// that link rolls (rolling, or hybrid not attached) and stores cable > 0:

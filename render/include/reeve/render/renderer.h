@@ -15,7 +15,7 @@ namespace reeve {
 
 /// Draws bodies (shaded boxes, cylinders, spheres; dynamic bodies in blues,
 /// static ones in warm greys), a ground grid just below the lowest body, and
-/// the cables as dark tubes (see cablePath): the enabled spans only,
+/// the cables as dark tubes (see cablePaths): the enabled spans only, loose ends hanging where a cable parted,
 /// straight when taut and hanging as catenaries when loose, the arcs wrapped
 /// on rolling links along their sections (polygon hulls too), and the cable
 /// stored on spools as a coil (see spoolCoil). A section a rolling link

@@ -1,0 +1,93 @@
+// Cables that break (beyond the paper): a span pulled past the cable's
+// breaking tension parts, and the free ends it leaves run off whatever
+// cannot hold them.
+#include <cmath>
+
+#include "links.h"
+#include "reeve/cable/cable.h"
+
+namespace reeve {
+namespace {
+
+// Whether a free end can pull on the span beyond `link`: tied there, or
+// wound on a wheel it cannot slip on while cable is left on it. A pinhole
+// or a wrap with friction holds nothing: with no tension on the free side,
+// the capstan bound T_far <= exp(mu theta) x 0 leaves none on the other.
+bool holdsFreeEnd(const Link& link) {
+  switch (link.type) {
+    case LinkType::Attachment:
+    case LinkType::Hybrid: return true;
+    case LinkType::Rolling: return !std::isfinite(link.mu) && link.stored >= 0.0;
+    case LinkType::Pinhole: return false;
+  }
+  return false;
+}
+
+}  // namespace
+
+void CableSystem::breakOverloaded(Cable& cable, int c, double time_s, double h) {
+  // The last solve's tensions (lambda / h^2, times a span's capstan weight
+  // in a run with friction): the hardest pulled span past the limit parts.
+  int worst = -1;
+  double worst_tension = cable.breaking_tension;
+  for (int j = 0; j < static_cast<int>(cable.joints.size()); ++j) {
+    const CableJoint& joint = cable.joints[j];
+    if (!cable.links[j].active || joint.parted) continue;
+    const double t = -world_.path(cable.joints[joint.run].path).lambda / (h * h) * joint.weight;
+    if (t > worst_tension) {
+      worst = j;
+      worst_tension = t;
+    }
+  }
+  if (worst < 0) return;
+  part(cable, worst, 0.5);
+  events_.push_back({CableEvent::Kind::Break, time_s - h, c, worst, cable.links[worst].orientation, worst_tension});
+  releaseFreeEnds(cable, c, time_s);
+  buildRuns(cable);  // the parted span leaves its run before anything reads it
+}
+
+void CableSystem::part(Cable& cable, int j, double share_a) {
+  CableJoint& joint = cable.joints[j];
+  // The ends hang loose with the cable the span held, so the total length
+  // is kept.
+  joint.tail_a = share_a * joint.rest_length;
+  joint.tail_b = joint.rest_length - joint.tail_a;
+  cable.links[j].stored += joint.tail_a;
+  cable.links[joint.to].stored += joint.tail_b;
+  joint.rest_length = 0.0;
+  joint.parted = true;
+  cable.broken = true;
+}
+
+void CableSystem::releaseFreeEnds(Cable& cable, int c, double time_s) {
+  const int n = static_cast<int>(cable.links.size());
+  for (bool released = true; released;) {
+    released = false;
+    for (int j = 0; j < static_cast<int>(cable.joints.size()); ++j) {
+      const CableJoint& gone = cable.joints[j];
+      if (!gone.parted || !cable.links[j].active) continue;
+      // The free end at link j (its span arrives from p) and at link `to`
+      // (its span leaves to the link after it).
+      for (const int k : {j, gone.to}) {
+        Link& link = cable.links[k];
+        if (holdsFreeEnd(link)) continue;
+        const bool before = k == j;  // the free end's other span arrives at k
+        if (before ? (!cable.closed && k == 0) : (!cable.closed && k == n - 1)) continue;
+        const int other = before ? previousActive(cable, k) : k;
+        CableJoint& span = cable.joints[other];
+        if (span.parted) continue;
+        // Everything on link k runs off with the end and hangs from the
+        // span's far link, with the span's own cable.
+        span.rest_length += link.stored;
+        link.stored = 0.0;
+        part(cable, other, before ? 1.0 : 0.0);
+        link.slipping = link.mu == 0.0;
+        link.slip_speed = link.slip_speed_before = 0.0;
+        events_.push_back({CableEvent::Kind::RunsOff, time_s, c, k, link.orientation});
+        released = true;
+      }
+    }
+  }
+}
+
+}  // namespace reeve

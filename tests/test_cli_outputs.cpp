@@ -203,3 +203,34 @@ TEST_F(Cli, EveryShippedScenesCsvIsTheSameBytesFromTwoProcesses) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST_F(Cli, AWinchsPullIsACsvColumnAndABreakAnEventWithItsTension) {
+  // 5 kg hauled at 1 m/s on an elastic rope (EA 500 N) that breaks at 80 N:
+  // the pull is the weight until the haul's swing passes 80 N.
+  const std::string scene = path("winch.json");
+  std::ofstream(scene) << R"({"name": "winch", "solver": {"substeps": 20}, "duration_s": 1,
+    "bodies": [{"name": "top", "static": true, "shape": {"type": "box", "half_extents_m": [0.1, 0.1, 0.1]}, "position_m": [0, 0, 0]},
+               {"name": "load", "shape": {"type": "box", "half_extents_m": [0.1, 0.1, 0.1]}, "mass_kg": 5, "position_m": [0, -2.1962, 0]}],
+    "cables": [{"name": "rope", "compliance_m_per_N": 0.004, "breaking_tension_N": 80, "rest_length_m": [2],
+      "links": [{"body": "load", "type": "attachment", "point_m": [0, 0, 0]}, {"body": "top", "type": "attachment", "point_m": [0, 0, 0]}],
+      "winch": {"end": "last", "commands": [{"from_s": 0.5, "speed_m_per_s": 1}]}}]})";
+  const std::string csv = path("winch.csv"), events = path("events.jsonl");
+  const Result r = reeve("run " + scene + " --csv " + csv + " --events " + events);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string table = slurp(csv);
+  std::size_t pos = 0;
+  const auto header = record(table, pos);
+  const auto column = std::find(header.begin(), header.end(), "rope.winch_pull_N");
+  ASSERT_NE(column, header.end());
+  // Frame 15 (0.25 s): hanging at rest, held by the winch, m g = 49 N.
+  for (int row = 0; row < 15; ++row) record(table, pos);
+  const auto at_rest = record(table, pos);
+  EXPECT_NEAR(std::stod(at_rest[column - header.begin()]), 5 * 9.81, 0.05);
+  const std::string log = slurp(events);
+  EXPECT_NE(log.find("\"event\":\"break\""), std::string::npos) << log;
+  EXPECT_NE(log.find("\"tension_N\":8"), std::string::npos) << log;
+}
+
+}  // namespace

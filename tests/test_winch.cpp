@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
+#include <stdexcept>
 #include <string>
 
 #include "reeve/cable/cable.h"
@@ -150,6 +152,38 @@ TEST(Winch, BadCommandsAreRefused) {
   w.speed = std::nan("");
   EXPECT_THROW(c.cables.setWinch(c.cable, w), std::invalid_argument);
   EXPECT_FALSE(c.cables.cables()[c.cable].winch.has_value());
+}
+
+TEST(Winch, FollowsItsScheduleFromEachCommandsTime) {
+  // Hauls 0.2 m/s from the start, pays out at 0.1 m/s from 0.5 s, then
+  // goes to 0.02 m stored from 1 s: 0.1 m at 0.5 s, 0.05 m at 1 s, 0.02 m
+  // (and holding) by 1.5 s. Commands take over at substep starts, so the
+  // stored cable is exact where the times fall on substeps.
+  for (const Budget& b : kBudgets) {
+    SCOPED_TRACE(name(b));
+    Crane c(5.0, b.solver, b.substeps, b.iterations);
+    WinchDef w;
+    w.max_speed = 0.3;
+    w.speed = 0.2;
+    w.schedule = {{0.5, -0.1, std::nullopt}, {1.0, 0.0, 0.02}};
+    c.cables.setWinch(c.cable, w);
+    c.run(0.5);
+    EXPECT_NEAR(c.stored(), 0.1, 1e-9);
+    c.run(0.5);
+    EXPECT_NEAR(c.stored(), 0.05, 1e-9);
+    c.run(0.5);
+    EXPECT_NEAR(c.stored(), 0.02, 1e-9);
+    EXPECT_NEAR(c.world.body(c.load).x.y(), -3.0 + 0.02, 1e-3);
+    EXPECT_NEAR(c.cables.totalLength(c.cable), c.total, 1e-9 * c.total);
+  }
+  // Out of order, or faster than the winch: refused.
+  Crane c(5.0, SolverKind::Direct, 1, 1);
+  WinchDef w;
+  w.max_speed = 0.3;
+  w.schedule = {{1.0, 0.1, std::nullopt}, {1.0, 0.0, std::nullopt}};
+  EXPECT_THROW(c.cables.setWinch(c.cable, w), std::invalid_argument);
+  w.schedule = {{1.0, 0.5, std::nullopt}};
+  EXPECT_THROW(c.cables.setWinch(c.cable, w), std::invalid_argument);
 }
 
 }  // namespace

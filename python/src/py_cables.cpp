@@ -4,6 +4,8 @@
 #include <pybind11/stl.h>
 
 #include <cmath>
+#include <optional>
+#include <stdexcept>
 #include <string>
 #include <variant>
 #include <vector>
@@ -102,11 +104,13 @@ void bindCables(py::module_& m) {
             for (int j = 0; j < n; ++j) out.mutable_at(j) = v.scene().cables->jointEnabled(v.index, j);
             return out;
           },
-          "Whether each joint exists now (its link is active; merge and split, paper sec. 4.3), shape (joints,).")
+          "Whether each joint exists now (its link is active, merge and split, paper sec. 4.3; and it has not "
+          "parted at the cable's breaking tension), shape (joints,).")
       .def_property_readonly(
           "stored_m",
           [](const CableView& v) { return perLink<double>(v, [](const Link& l) { return l.stored; }); },
-          "Cable stored on each link (m), shape (links,): wound on a rolling or hybrid end, 0 elsewhere.")
+          "Cable stored on each link (m), shape (links,): wound on a rolling or hybrid end or a winch's drum, "
+          "and after a break the loose cable hanging from the link; 0 elsewhere.")
       .def_property_readonly(
           "slip_speeds_m_per_s",
           [](const CableView& v) { return perLink<double>(v, [](const Link& l) { return l.slip_speed; }); },
@@ -138,6 +142,34 @@ void bindCables(py::module_& m) {
       .def_property_readonly(
           "total_length_m", [](const CableView& v) { return v.scene().cables->totalLength(v.index); },
           "Rest lengths plus stored cable (m): conserved while the cable runs over its links.")
+      .def_property_readonly(
+          "winch_pull_N",
+          [](const CableView& v) -> std::optional<double> {
+            if (!cable(v).winch) return std::nullopt;
+            return v.scene().cables->winchPull(v.index);
+          },
+          "The pull of the cable's winch (N) over the last substep; None without a winch.")
+      .def(
+          "command_winch",
+          [](CableView& v, std::optional<double> speed_m_per_s, std::optional<double> stored_m) {
+            if (!cable(v).winch) throw py::value_error("cable '" + cable(v).name + "' has no winch");
+            if (speed_m_per_s.has_value() == stored_m.has_value())
+              throw py::value_error("expected exactly one of speed_m_per_s and stored_m");
+            WinchDef winch = *cable(v).winch;
+            winch.speed = speed_m_per_s.value_or(0.0);
+            winch.target_stored = stored_m;
+            winch.schedule.clear();
+            try {
+              v.scene().cables->setWinch(v.index, winch);
+            } catch (const std::invalid_argument& e) {
+              throw py::value_error(e.what());
+            }
+          },
+          py::kw_only(), py::arg("speed_m_per_s") = py::none(), py::arg("stored_m") = py::none(),
+          "Commands the cable's winch from now on, replacing the scene's schedule: reel at speed_m_per_s "
+          "(m/s of cable, > 0 hauls in) or towards stored_m (m on the drum) at its max speed. ValueError "
+          "without a winch, with both or neither, or out of range (a speed above max_speed_m_per_s, a "
+          "negative or non-finite value).")
       .def(
           "set_rest_length",
           [](CableView& v, int joint, double rest_length_m) {

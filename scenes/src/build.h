@@ -67,8 +67,9 @@ HingeDrive hingeDrive(const nlohmann::json& drive, const std::string& pointer,
 /// sections of non-zero area, no pinhole ends of open cables, hybrid links
 /// only there, active ends, no stored cable on inactive links, not only
 /// pinholes in a closed cable, one rest length per joint (0 for joints
-/// leaving inactive links); CableSystem::addCable's own refusals at the
-/// cable's path.
+/// leaving inactive links), a winch only on an open cable's attachment
+/// end with commands in order of time, one mode each and speeds within its
+/// maximum; CableSystem::addCable's own refusals at the cable's path.
 void addCables(const nlohmann::json& cables, const BodyNames& names, CableSystem& system,
                const std::string& source);
 

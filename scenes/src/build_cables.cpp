@@ -1,3 +1,5 @@
+#include <cmath>
+#include <optional>
 #include <set>
 #include <stdexcept>
 
@@ -109,6 +111,53 @@ void checkLinkPlace(const nlohmann::json& link, const LinkDef& def, std::size_t 
                      literal(link.at("stored_m")));
 }
 
+// The "winch" object of the cable at `path` (schema-checked), for a cable
+// built from `links`: an open cable whose winch end is an attachment,
+// commands in order of time, each with exactly one mode, speeds within
+// the maximum.
+WinchDef winchOf(const nlohmann::json& winch, const nlohmann::json& links, bool closed,
+                 const std::string& path, const std::string& source) {
+  const std::string at = path + "/winch";
+  if (closed)
+    throw SceneError(source, at, "no winch on a closed cable (a winch reels an end of an open cable)",
+                     "a winch on a closed cable");
+  WinchDef def;
+  def.at_start = winch.at("end") == "first";
+  const std::size_t k = def.at_start ? 0 : links.size() - 1;
+  if (links[k].at("type") != "attachment")
+    throw SceneError(source, path + "/links/" + std::to_string(k) + "/type",
+                     "\"attachment\" for the winch's end link (the drum it reels the cable onto)",
+                     literal(links[k].at("type")));
+  def.max_speed = winch.value("max_speed_m_per_s", def.max_speed);
+  def.max_pull = winch.value("max_pull_N", def.max_pull);
+  const nlohmann::json& commands = winch.at("commands");
+  for (std::size_t i = 0; i < commands.size(); ++i) {
+    const nlohmann::json& command = commands[i];
+    const std::string cp = at + "/commands/" + std::to_string(i);
+    WinchCommand c;
+    c.from_s = command.at("from_s").get<double>();
+    if (i > 0 && !(c.from_s > def.schedule.back().from_s))
+      throw SceneError(source, cp + "/from_s",
+                       "a time after the command before's (" + number(def.schedule.back().from_s) + " s)",
+                       literal(command.at("from_s")));
+    const bool speed = command.contains("speed_m_per_s"), stored = command.contains("stored_m");
+    if (speed == stored)
+      throw SceneError(source, cp, "exactly one of \"speed_m_per_s\" (speed mode) and \"stored_m\" (length mode)",
+                       speed ? "both" : "neither");
+    if (speed) {
+      c.speed = command.at("speed_m_per_s").get<double>();
+      if (std::abs(c.speed) > def.max_speed)
+        throw SceneError(source, cp + "/speed_m_per_s",
+                         "a speed within max_speed_m_per_s (" + number(def.max_speed) + ")",
+                         literal(command.at("speed_m_per_s")));
+    } else {
+      c.target_stored = command.at("stored_m").get<double>();
+    }
+    def.schedule.push_back(c);
+  }
+  return def;
+}
+
 }  // namespace
 
 void addCables(const nlohmann::json& cables, const BodyNames& names, CableSystem& system,
@@ -155,9 +204,14 @@ void addCables(const nlohmann::json& cables, const BodyNames& names, CableSystem
                            literal(rest->at(j)));
     }
     def.compliance = cable.value("compliance_m_per_N", 0.0);
+    def.breaking_tension = cable.value("breaking_tension_N", def.breaking_tension);
+    std::optional<WinchDef> winch;
+    if (const auto w = cable.find("winch"); w != cable.end())
+      winch = winchOf(*w, links, def.closed, path, source);
 
     try {
-      system.addCable(def);
+      const int index = system.addCable(def);
+      if (winch) system.setWinch(index, *winch);
     } catch (const std::invalid_argument& e) {
       throw SceneError(source, path, "a cable the solver can build", e.what());
     }

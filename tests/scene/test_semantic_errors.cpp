@@ -265,5 +265,47 @@ TEST(SemanticErrors, ANumberWhoseSquareOverflowsIsRefusedWhereverItIs) {
               "-2e+154");
 }
 
+// A winch on the rope's last link (the ball), with `commands`.
+std::string winchWith(const std::string& winch) {
+  return baseWith(R"({"body": "ball", "type": "attachment", "point_m": [0, 0.2, 0]}]}])",
+                  R"({"body": "ball", "type": "attachment", "point_m": [0, 0.2, 0]}], "winch": )" + winch + "}]");
+}
+
+TEST(SemanticErrors, WinchesAreRefusedWhereTheyCannotReel) {
+  // A valid winch loads, at either end (both are attachments).
+  EXPECT_NO_THROW(parseScene(winchWith(R"({"end": "first", "commands": [{"from_s": 0, "speed_m_per_s": 0.5}]})"),
+                             "test.json"));
+  EXPECT_NO_THROW(parseScene(
+      winchWith(R"({"end": "last", "max_speed_m_per_s": 1, "commands": [{"from_s": 0, "speed_m_per_s": 0.5},
+                {"from_s": 2, "stored_m": 0.3}]})"),
+      "test.json"));
+  expectError(baseWith(R"({"body": "ball", "type": "attachment", "point_m": [0, 0.2, 0]}]}])",
+                       R"({"body": "ball", "type": "rolling", "orientation": "cw"}], "winch": {"end": "last", "commands": [{"from_s": 0, "speed_m_per_s": 1}]}}])"),
+              "/cables/0/links/2/type", "\"attachment\" for the winch's end link", "\"rolling\"");
+  expectError(winchWith(R"({"end": "last", "commands": [{"from_s": 1, "speed_m_per_s": 0.5},
+              {"from_s": 1, "speed_m_per_s": 0}]})"),
+              "/cables/0/winch/commands/1/from_s", "a time after the command before's (1 s)", "1");
+  expectError(winchWith(R"({"end": "last", "commands": [{"from_s": 0, "speed_m_per_s": 0.5, "stored_m": 1}]})"),
+              "/cables/0/winch/commands/0", "exactly one of \"speed_m_per_s\"", "both");
+  expectError(winchWith(R"({"end": "last", "commands": [{"from_s": 0}]})"), "/cables/0/winch/commands/0",
+              "exactly one of \"speed_m_per_s\"", "neither");
+  expectError(winchWith(R"({"end": "last", "max_speed_m_per_s": 0.2, "commands": [{"from_s": 0, "speed_m_per_s": -0.5}]})"),
+              "/cables/0/winch/commands/0/speed_m_per_s", "a speed within max_speed_m_per_s (0.2)", "-0.5");
+  // The schema: bounds and keys.
+  expectError(winchWith(R"({"end": "last", "max_pull_N": 0, "commands": [{"from_s": 0, "speed_m_per_s": 1}]})"),
+              "/cables/0/winch/max_pull_N", "a number > 0", "0");
+  expectError(winchWith(R"({"end": "last", "commands": [{"from_s": 0, "stored_m": -1}]})"),
+              "/cables/0/winch/commands/0/stored_m", "a number >= 0", "-1");
+  expectError(winchWith(R"({"end": "middle", "commands": [{"from_s": 0, "stored_m": 1}]})"),
+              "/cables/0/winch/end", "\"first\"", "\"middle\"");
+}
+
+TEST(SemanticErrors, AWinchOnABeltAndABreakingTensionOfZeroAreRefused) {
+  expectError(baseWith(R"("name": "rope", "links")", R"("name": "rope", "closed": true, "winch": {"end": "last", "commands": [{"from_s": 0, "speed_m_per_s": 1}]}, "links")"),
+              "/cables/0/winch", "no winch on a closed cable", "");
+  expectError(baseWith(R"("name": "rope", "links")", R"("name": "rope", "breaking_tension_N": 0, "links")"),
+              "/cables/0/breaking_tension_N", "a number > 0", "0");
+}
+
 }  // namespace
 }  // namespace reeve::test

@@ -60,6 +60,7 @@ CsvWriter::CsvWriter(const std::filesystem::path& path, bool replace, const Cabl
     for (size_t k = 0; k < c.links.size(); ++k) add(c.name + ".link" + std::to_string(k) + ".stored_m");
     for (size_t k = 0; k < c.links.size(); ++k)
       if (canSlip(c.links[k])) add(c.name + ".link" + std::to_string(k) + ".slip_m_per_s");
+    if (c.winch) add(c.name + ".winch_pull_N");
   }
   out_.write(header + "\n");
 }
@@ -92,6 +93,7 @@ void CsvWriter::writeRow() {
       if (canSlip(cable.links[k]))
         append(row, cable.links[k].slip_speed, t,
                [&] { return "cable '" + cable.name + "' link " + std::to_string(k) + " slip speed"; });
+    if (cable.winch) append(row, cables_.winchPull(c), t, [&] { return "cable '" + cable.name + "' winch pull"; });
   }
   out_.write(row + "\n");
 }

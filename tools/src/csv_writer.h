@@ -17,9 +17,10 @@ std::string nonFiniteMessage(double time_s, const std::string& what);
 /// per frame): time_s; for each dynamic body
 /// B: B.x_m, B.y_m, B.z_m; for each cable C, each joint j (0-based):
 /// C.j.tension_N, C.j.rest_length_m, C.j.length_m (0 while the joint is
-/// merged away), then each link k: C.link<k>.stored_m, then each link k
-/// the cable can slide over or through (a pinhole, or a link with mu):
-/// C.link<k>.slip_m_per_s (CableSystem::slipSpeed). Header fields are
+/// merged away or parted), then each link k: C.link<k>.stored_m, then
+/// each link k the cable can slide over or through (a pinhole, or a link
+/// with mu): C.link<k>.slip_m_per_s (CableSystem::slipSpeed), then, for a
+/// cable with a winch, C.winch_pull_N (CableSystem::winchPull). Header fields are
 /// quoted per RFC 4180 where a name holds a comma, a quote or a line
 /// break. Numbers have 10 significant digits; -0 is written 0.
 class CsvWriter {

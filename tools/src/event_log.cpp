@@ -18,11 +18,12 @@ void EventLog::drain(CableSystem& cables) {
     // all the same, as every number Reeve writes is.
     if (!std::isfinite(e.time_s))
       throw std::runtime_error(nonFiniteMessage(e.time_s, "an event's time is " + std::to_string(e.time_s)));
-    const nlohmann::json line = {{"time_s", e.time_s},
-                                 {"cable", cables.cables()[e.cable].name},
-                                 {"link", e.link},
-                                 {"event", eventName(e.kind)},
-                                 {"orientation", e.orientation > 0 ? "ccw" : "cw"}};
+    nlohmann::json line = {{"time_s", e.time_s},
+                           {"cable", cables.cables()[e.cable].name},
+                           {"link", e.link},
+                           {"event", eventName(e.kind)},
+                           {"orientation", e.orientation > 0 ? "ccw" : "cw"}};
+    if (e.kind == CableEvent::Kind::Break) line["tension_N"] = e.tension;
     out_.write(line.dump() + "\n");
   }
 }

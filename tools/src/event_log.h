@@ -8,7 +8,8 @@
 
 namespace reeve {
 
-/// Writes {"time_s", "cable", "link", "event", "orientation"} per line.
+/// Writes {"time_s", "cable", "link", "event", "orientation"} per line, and
+/// "tension_N" for a break.
 class EventLog {
  public:
   /// Opens `path` (an OutputFile: nothing appears there before commit()).

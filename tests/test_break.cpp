@@ -14,22 +14,16 @@
 #include <vector>
 
 #include "reeve/cable/cable.h"
+#include "solver_budgets.h"
 
 namespace reeve {
 namespace {
 
 constexpr double kG = 9.81;
 
-struct Budget {
-  SolverKind solver;
-  int substeps, iterations;
-};
-const Budget kBudgets[] = {{SolverKind::Direct, 20, 1}, {SolverKind::Direct, 1, 10},
-                           {SolverKind::GaussSeidel, 20, 1}, {SolverKind::GaussSeidel, 1, 10}};
-std::string name(const Budget& b) {
-  return std::string(b.solver == SolverKind::Direct ? "direct " : "gauss-seidel ") + std::to_string(b.substeps) +
-         " x " + std::to_string(b.iterations);
-}
+using test::Budget;
+using test::kBudgets;
+using test::name;
 void apply(World& world, const Budget& b) {
   world.settings().solver = b.solver;
   world.settings().substeps = b.substeps;

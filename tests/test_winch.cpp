@@ -10,6 +10,7 @@
 #include <string>
 
 #include "reeve/cable/cable.h"
+#include "solver_budgets.h"
 
 namespace reeve {
 namespace {
@@ -48,16 +49,9 @@ struct Crane {
   double stored() const { return cables.cables()[cable].links[1].stored; }
 };
 
-struct Budget {
-  SolverKind solver;
-  int substeps, iterations;
-};
-const Budget kBudgets[] = {{SolverKind::Direct, 20, 1}, {SolverKind::Direct, 1, 10},
-                           {SolverKind::GaussSeidel, 20, 1}, {SolverKind::GaussSeidel, 1, 10}};
-std::string name(const Budget& b) {
-  return std::string(b.solver == SolverKind::Direct ? "direct " : "gauss-seidel ") + std::to_string(b.substeps) +
-         " x " + std::to_string(b.iterations);
-}
+using test::Budget;
+using test::kBudgets;
+using test::name;
 
 TEST(Winch, LiftsAtTheCommandedSpeedAndStoresWhatItReeled) {
   for (const Budget& b : kBudgets)

@@ -171,6 +171,19 @@ TEST_F(Cli, BadScenesExitWithCode2AndNameFilePathExpectedAndFound) {
   }
 }
 
+// Issue 27: a 2 MB scene of a million nested arrays crashed validate and
+// run with a stack overflow; now the depth limit is a scene error.
+TEST_F(Cli, AMillionNestedArraysAreASceneErrorNotACrash) {
+  const std::string deep = write("deep.json", R"({"name": "deep", "solver": {}, "bodies": )" +
+                                                  std::string(1000000, '[') + std::string(1000000, ']') + "}");
+  for (const char* command : {"validate ", "run --frames 1 "}) {
+    const Result r = reeve(command + deep);
+    EXPECT_EQ(r.code, 2) << command << r.err;
+    EXPECT_NE(r.err.find("deep.json: /bodies/0/0/"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("expected arrays and objects nested at most 64 deep"), std::string::npos) << r.err;
+  }
+}
+
 TEST_F(Cli, AStateThatBecomesNonFiniteStopsTheRunNamingTheBodyAndQuantity) {
   // The Simple scene at one frame per 1e100 s: within every limit, but its
   // first substep (1e99 s) flings the boxes 1e199 m and the cable spins the
@@ -230,6 +243,32 @@ TEST_F(Cli, ADivergedSolveThatBreaksTheCableBookkeepingStopsTheRun) {
     EXPECT_EQ(shipped.code, 0) << shipped.err;
     EXPECT_EQ(shipped.err.find("warning"), std::string::npos) << shipped.err;
   }
+}
+
+// Issue 27: the schema allows 1e10 iterations a frame, and validate said
+// "ok" to a run of days. Settings whose predicted cost passes a minute per
+// simulated second are warned of (exit status unchanged), with the
+// prediction; the shipped scenes' settings are not (the test above).
+TEST_F(Cli, SettingsThatWillTakeHoursAreWarnedOfBeforeTheRun) {
+  std::string text = test::slurp(std::string(REEVE_SCENES_DIR) + "/hilbert3.json");
+  const std::string settings = R"("substeps":1,"iterations":10)";
+  const std::size_t at = text.find(settings);
+  ASSERT_NE(at, std::string::npos);
+  const std::string slow = write("slow.json", text.replace(at, settings.size(), R"("substeps":100,"iterations":1000)"));
+  const std::regex warning(R"(reeve: warning: .*slow\.json: /solver: 100 substeps x 1000 iterations a frame at 60 Hz \(direct\) predict about ([0-9.e+]+) s of computing per simulated second \(([0-9.e+]+) h for the scene's [0-9.]+ s\): lower substeps or iterations, or expect to wait)");
+  const Result v = reeve("validate " + slow);
+  EXPECT_EQ(v.code, 0) << v.err;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(v.err, m, warning)) << v.err;
+  // 60 x 100 x 1000 row-iterations of 512 cable joints a simulated second:
+  // at least 3e8 rows, which no solver does in a minute.
+  EXPECT_GT(std::stod(m[1]), 60.0);
+  const Result r = reeve("run " + slow + " --frames 1 --substeps 1 --iterations 1");
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.err.find("/solver"), std::string::npos) << "the settings run are the ones judged: " << r.err;
+  const Result slow_run = reeve("run " + slow + " --frames 1 --substeps 40");  // the direct solver converges early
+  EXPECT_EQ(slow_run.code, 0) << slow_run.err;
+  EXPECT_NE(slow_run.err.find("/solver: 40 substeps x 1000 iterations"), std::string::npos) << slow_run.err;
 }
 
 TEST_F(Cli, ASpoolThatRunsOutOfCableStopsTheRunSayingSo) {

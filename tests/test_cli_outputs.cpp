@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <regex>
 #include <string>
 #include <utility>
 #include <vector>
@@ -119,6 +120,41 @@ TEST_F(Cli, AVideoNameIsAFileNeverAnFfmpegProtocol) {
   EXPECT_EQ(slurp(path("victim.mp4")), "my video\n");
   EXPECT_EQ(listing(dir_), (std::vector<std::string>{"file:victim.mp4", "victim.mp4"}));
   EXPECT_GT(fs::file_size(path("file:victim.mp4")), 0u);
+}
+
+// Issue 27: ffmpeg's failure used to show its temporary file's name
+// ("/proc/.v.reeve-22295-9imp6fo1.mp4: No such file ... Broken pipe").
+TEST_F(Cli, AVideoThatCannotBeWrittenIsNamedAsTheUserWroteItWithFfmpegsReason) {
+  const Result r = reeve("run " + kAtwood + " --frames 2 --width 64 --height 48 --video /proc/v.mp4");
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_NE(r.err.find("cannot write the video '/proc/v.mp4': No such file or directory (ffmpeg, exit status 1)"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.err.find(".reeve-"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("Broken pipe"), std::string::npos) << r.err;
+}
+
+// Issue 27: a signal was read only between frames, so a frame of hours
+// (the schema allows 1e10 iterations a frame) could only be killed. Now it
+// ends the frame under way within a solver iteration, writes the whole
+// frames done (here none: the CSV has its header and t = 0) and says where
+// it stopped.
+TEST_F(Cli, AnInterruptInsideALongFrameEndsItAtOnce) {
+  const std::string script =
+      "set -m; cd " + dir_.string() + " && { REEVE_TRAP_FP=1 " REEVE_BINARY " run " + kAtwood +
+      " --substeps 100000 --iterations 100000 --solver gauss-seidel --csv c.csv >out.txt 2>err.txt & };"
+      " pid=$!; sleep 1; kill -INT $pid; t0=$(date +%s%N);"
+      " for i in $(seq 3000); do kill -0 $pid 2>/dev/null || break; sleep 0.01; done;"
+      " echo $(( ($(date +%s%N) - t0) / 1000000 )) > ms.txt; kill -KILL $pid 2>/dev/null; wait $pid;"
+      " echo $? > code.txt";
+  ASSERT_EQ(std::system(("bash -c '" + script + "'").c_str()), 0);
+  const std::string err = slurp(path("err.txt"));
+  EXPECT_EQ(std::stoi(slurp(path("code.txt"))), 130) << err;
+  EXPECT_LT(std::stoi(slurp(path("ms.txt"))), 1000) << "ms from the signal to the exit";
+  const std::regex said(R"(interrupted \(SIGINT\): stopped after 0 of 84 frames inside frame 1 \(at t = [0-9.e-]+ s, not written\); the outputs hold those 0 frames)");
+  EXPECT_TRUE(std::regex_search(err, said)) << err;
+  const std::string csv = slurp(path("c.csv"));
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 2) << "a header and t = 0";
 }
 
 TEST_F(Cli, BodyNamesWithCommasQuotesAndLineBreaksAreQuotedInTheCsvHeader) {

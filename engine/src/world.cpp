@@ -370,8 +370,9 @@ void World::step(double dt) {
   assert(settings_.substeps > 0 && settings_.iterations > 0);
   if (rotors_dirty_ || rotors_for_ != settings_.solver || rotorHingeChanged()) refreshRotors();
   last_iterations_ = 0;
+  interrupted_ = false;
   const double h = dt / settings_.substeps;
-  for (int s = 0; s < settings_.substeps; ++s) {
+  for (int s = 0; s < settings_.substeps && !interrupted_; ++s) {
     releaseDrives(h);
     integrate(h);
     if (!non_finite_) checkFinite(time_ + h, false, h);  // born before any constraint spreads it
@@ -397,6 +398,8 @@ void World::step(double dt) {
     limitSpeeds();  // last, so no later pass can push past the guard
     if (!non_finite_) checkFinite(time_ + h, true, h);
     time_ += h;
+    if (progress_) progress_(s + 1, settings_.substeps);
+    interrupted_ = interruptRequested();
   }
   last_h_ = h;
 }
@@ -463,11 +466,12 @@ void World::solvePositions(double h) {
       if (weighted)
         for (PathConstraint& p : paths_)
           if (!p.weights.empty()) solvePathConstraint(p, table, p.compliance * inv_h2, h);
+      if (interruptRequested()) break;  // the substep ends here (setInterruptFlag)
     }
     return;
   }
-  last_iterations_ += settings_.iterations;
   for (int it = 0; it < settings_.iterations; ++it) {
+    ++last_iterations_;
     // Joints first (all types), then distances and paths (cables).
     for (HingeJoint& j : hinges_) solveHingeJoint(j, body(j.a), body(j.b), h);
     for (PrismaticJoint& j : prismatics_) solvePrismaticJoint(j, body(j.a), body(j.b), h);
@@ -480,6 +484,7 @@ void World::solvePositions(double h) {
       const Contact& c = contacts_[m.first];
       solveContactPositions(m, contacts_.data(), body(c.a), body(c.b));
     }
+    if (interruptRequested()) break;  // the substep ends here (setInterruptFlag)
   }
 }
 

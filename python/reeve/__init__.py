@@ -20,6 +20,10 @@ import json as _json
 import os as _os
 import pathlib as _pathlib
 
+from . import _runtime
+
+_runtime.check()  # before the compiled module: a wrong interpreter is told which python3 to use
+
 from ._reeve import (  # noqa: F401  (the public names)
     Bodies,
     Cable,

@@ -12,6 +12,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "interrupt.h"
 #include "run_scene.h"
 
 namespace py = pybind11;
@@ -36,18 +37,43 @@ void checkRange(const char* name, double value, double lo, double hi, bool lo_op
                           py::str(py::float_(value)).cast<std::string>());
 }
 
+bool onMainThread() {
+  const py::module_ threading = py::module_::import("threading");
+  return threading.attr("current_thread")().is(threading.attr("main_thread")());
+}
+
 void step(PyScene& s, int frames) {
   if (frames < 0) throw py::value_error("frames: expected a count >= 0, got " + std::to_string(frames));
   const double dt = 1.0 / s.scene.frame_rate_hz;
-  for (int f = 0; f < frames; ++f) {
+  World& world = *s.scene.world;
+  // On the main thread, where Python handles signals, SIGINT and SIGTERM
+  // end the substep under way (World::setInterruptFlag) instead of waiting
+  // for the GIL after the frame; then Python's own handlers are back and
+  // the signal is raised as Python would have: KeyboardInterrupt, or
+  // SIGTERM again. The world stays usable, at that substep's end.
+  std::optional<InterruptGuard> interrupt;
+  if (onMainThread()) interrupt.emplace();
+  struct Detach {
+    World& world;
+    ~Detach() { world.setInterruptFlag(nullptr); }
+  } detach{world};
+  if (interrupt) world.setInterruptFlag(InterruptGuard::flag());
+  for (int f = 0; f < frames && !(interrupt && interrupt->received()); ++f) {
     {
       py::gil_scoped_release release;  // other Python threads (a Dask worker's) run meanwhile
-      s.scene.world->step(dt);
+      world.step(dt);
     }
     if (const auto why = stopReason(s.scene)) throwSimulationError("reeve: " + *why);
-    if (PyErr_CheckSignals() != 0) throw py::error_already_set();  // Ctrl-C between frames
   }
   s.scene.cables->takeEvents();  // not kept: nothing in Python reads them yet
+  const int signal = interrupt ? interrupt->received() : 0;
+  interrupt.reset();  // Python's handlers back
+  if (signal == SIGINT) {
+    PyErr_SetNone(PyExc_KeyboardInterrupt);
+    throw py::error_already_set();
+  }
+  if (signal == SIGTERM) std::raise(SIGTERM);
+  if (PyErr_CheckSignals() != 0) throw py::error_already_set();  // off the main thread: between calls
 }
 
 py::array_t<std::uint8_t> render(PyScene& s, int width, int height) {
@@ -202,7 +228,8 @@ void bindScene(py::module_& m) {
       .def("step", &step, py::arg("frames") = 1,
            "Advances `frames` frames of 1 / settings.frame_rate_hz s (each of settings.substeps substeps). "
            "Raises reeve.SimulationError, as `reeve run` stops, when the state becomes non-finite or the cable "
-           "bookkeeping breaks; KeyboardInterrupt between frames on Ctrl-C.")
+           "bookkeeping breaks. On Ctrl-C (SIGINT) the substep under way ends after its solver iteration in progress "
+           "and KeyboardInterrupt is raised, the scene usable at time_s; SIGTERM likewise, then re-raised.")
       .def("render", &render, py::arg("width") = 1280, py::arg("height") = 720,
            "The current poses drawn as `reeve run --png` draws them (off-screen OpenGL, OSMesa): a numpy uint8 "
            "array of shape (height, width, 3), RGB, top row first. The camera is the scene's, or one that "

@@ -23,6 +23,17 @@ std::vector<SceneWarning> sceneWarnings(const Scene& scene) {
       warnings.push_back({"/cables/" + std::to_string(c) + "/rest_length_m/" + std::to_string(j), text});
     }
   }
+  const double cost = predictedSecondsPerSimulatedSecond(scene);
+  if (cost > kSlowSceneWarning_s) {
+    const SolverSettings& settings = scene.world->settings();
+    char text[384];
+    std::snprintf(text, sizeof text,
+                  "%d substeps x %d iterations a frame at %g Hz (%s) predict about %.2g s of computing per simulated "
+                  "second (%.2g h for the scene's %g s): lower substeps or iterations, or expect to wait",
+                  settings.substeps, settings.iterations, scene.frame_rate_hz, solverMethodName(settings.solver),
+                  cost, cost * scene.duration_s / 3600.0, scene.duration_s);
+    warnings.push_back({"/solver", text});
+  }
   return warnings;
 }
 

@@ -33,9 +33,13 @@ int simulate(const RunOptions& o) {
   const RunResult r = runScene(scene, frames, outputs);
   const int done = r.frames_done;
   const double dt = 1.0 / scene.frame_rate_hz;
-  if (r.signal)
-    std::fprintf(stderr, "reeve: %s: stopped after %d of %d frames; the outputs hold those %d frames\n",
-                 r.signal == SIGINT ? "interrupted (SIGINT)" : "terminated (SIGTERM)", done, frames, done);
+  if (r.signal) {
+    char inside[96] = "";
+    if (r.part_frame_s)
+      std::snprintf(inside, sizeof inside, " inside frame %d (at t = %.6g s, not written)", done + 1, *r.part_frame_s);
+    std::fprintf(stderr, "reeve: %s: stopped after %d of %d frames%s; the outputs hold those %d frames\n",
+                 r.signal == SIGINT ? "interrupted (SIGINT)" : "terminated (SIGTERM)", done, frames, inside, done);
+  }
   std::printf("reeve: simulated %d frames of '%s' (%.3f s, %d substeps x %d iterations, %s) in %.3f ms/frame of physics\n",
               done, scene.name.c_str(), done * dt, scene.world->settings().substeps,
               scene.world->settings().iterations, solverMethodName(scene.world->settings().solver),

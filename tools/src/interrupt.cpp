@@ -3,7 +3,9 @@
 namespace reeve {
 namespace {
 
-volatile std::sig_atomic_t g_received = 0;
+// Lock-free, so a signal handler may store to it (and World::step read it).
+std::atomic<int> g_received{0};
+static_assert(std::atomic<int>::is_always_lock_free);
 
 extern "C" void onInterrupt(int signal) { g_received = signal; }
 
@@ -30,6 +32,8 @@ InterruptGuard::~InterruptGuard() {
   sigaction(SIGTERM, &old_term_, nullptr);
 }
 
-int InterruptGuard::received() const { return g_received; }
+int InterruptGuard::received() const { return g_received.load(); }
+
+const std::atomic<int>* InterruptGuard::flag() { return &g_received; }
 
 }  // namespace reeve

@@ -145,19 +145,34 @@ RunResult runScene(Scene& scene, int frames, const RunOutputs& o) {
   if (!o.video.empty()) {
     createParent(o.video);
     video_file.path = temporarySibling(o.video);
-    video = std::make_unique<VideoWriter>(video_file.path, o.width, o.height, scene.frame_rate_hz);
+    video = std::make_unique<VideoWriter>(video_file.path, o.width, o.height, scene.frame_rate_hz, o.video);
   }
 
   const double dt = 1.0 / scene.frame_rate_hz;
   RunResult result;
   const InterruptGuard interrupt;
   ProgressBar progress(frames);
+  // A signal ends the frame under way within a solver iteration (its
+  // part-frame is not written); the bar moves inside long frames.
+  struct Detach {
+    World& world;
+    ~Detach() {
+      world.setInterruptFlag(nullptr);
+      world.setSubstepProgress({});
+    }
+  } detach{*scene.world};
+  scene.world->setInterruptFlag(InterruptGuard::flag());
+  scene.world->setSubstepProgress([&](int done, int substeps) { progress.updateWithin(done, substeps); });
   if (csv) csv->writeRow();  // t = 0: the scene as loaded
   for (int f = 0; f < frames && !interrupt.received(); ++f) {
     const auto t0 = std::chrono::steady_clock::now();
     scene.world->step(dt);
     result.physics_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (const auto why = stopReason(scene)) throw std::runtime_error(*why);
+    if (scene.world->stepInterrupted()) {
+      result.part_frame_s = scene.world->time();
+      break;
+    }
     if (csv) csv->writeRow();
     if (events) events->drain(*scene.cables);
     else scene.cables->takeEvents();  // nobody asked: do not let them pile up

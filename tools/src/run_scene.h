@@ -36,7 +36,10 @@ struct RunOutputs {
 /// How a run went.
 struct RunResult {
   int frames_done = 0;      ///< whole frames stepped and written
-  int signal = 0;           ///< SIGINT or SIGTERM that stopped it after a whole frame, else 0
+  int signal = 0;           ///< SIGINT or SIGTERM that stopped it, else 0
+  /// Simulated time (s) where a signal stopped it inside a frame, which
+  /// is then not written; nullopt when it stopped between frames or ran.
+  std::optional<double> part_frame_s;
   double physics_s = 0.0;   ///< wall time spent in World::step (s)
 };
 
@@ -61,7 +64,8 @@ Camera sceneCamera(const Scene& scene, double aspect);
 /// frame too), the cable events, the PNG frame (frame_00000.png, ...) and
 /// the video frame (MP4, H.264, through the ffmpeg program). Every output
 /// is checked before the first step (checkRunOutputs) and appears only whole, at the end (on
-/// SIGINT or SIGTERM too, holding the frames done). Throws WouldOverwrite,
+/// SIGINT or SIGTERM too, holding the whole frames done: a signal ends the
+/// frame under way after the solver iteration in progress). Throws WouldOverwrite,
 /// OutputClash, std::runtime_error for a bad output name, a failed write,
 /// a non-finite state or a broken cable bookkeeping (World::firstNonFinite,
 /// CableSystem::firstBreach), leaving no output behind.

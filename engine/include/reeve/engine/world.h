@@ -2,6 +2,7 @@
 // step of Müller et al. 2020, Alg. 2.
 #pragma once
 
+#include <atomic>
 #include <cassert>
 #include <functional>
 #include <limits>
@@ -139,8 +140,26 @@ class World {
   /// The same grouped by touching pair (ranges of contacts()).
   const std::vector<ContactManifold>& contactManifolds() const { return manifolds_; }
 
-  /// Advances by dt (s) with the current settings.
+  /// Advances by dt (s) with the current settings, or less when the
+  /// interrupt flag is raised meanwhile (setInterruptFlag).
   void step(double dt);
+
+  /// Lets step() stop early (issue 27): it reads `*flag` (an atomic a
+  /// signal handler may write) after each solver iteration and each
+  /// substep. Once it is non-zero the substep under way ends after the
+  /// iteration in progress (velocities, contacts and checks as after any
+  /// substep, so the world can step on), no further substep starts, and
+  /// stepInterrupted() is true until the next step(). nullptr, the
+  /// default, never stops. The flag must outlive its use here.
+  void setInterruptFlag(const std::atomic<int>* flag) { interrupt_ = flag; }
+  /// Whether the last step() stopped early at the interrupt flag; time()
+  /// is then the end of the last substep it ran.
+  bool stepInterrupted() const { return interrupted_; }
+  /// Called after each substep of a step() with the substeps done and the
+  /// substeps it has (a progress bar inside a long frame); empty: none.
+  void setSubstepProgress(std::function<void(int done, int substeps)> progress) {
+    progress_ = std::move(progress);
+  }
 
   SolverSettings& settings() { return settings_; }
   const SolverSettings& settings() const { return settings_; }
@@ -259,6 +278,8 @@ class World {
   void releaseDrives(double h);
   void integrate(double h);
   void solvePositions(double h);
+  /// The interrupt flag is raised (setInterruptFlag); read, not cleared.
+  bool interruptRequested() const { return interrupt_ && interrupt_->load(std::memory_order_relaxed) != 0; }
   void updateVelocities(double h);
   void limitSpeeds();
   // Records the first non-finite body state (and, with `tensions`, distance
@@ -288,6 +309,9 @@ class World {
   double last_h_ = 0.0;
   std::optional<NonFiniteState> non_finite_;
   int last_iterations_ = 0;
+  const std::atomic<int>* interrupt_ = nullptr;  // setInterruptFlag
+  bool interrupted_ = false;
+  std::function<void(int, int)> progress_;
   std::vector<double> mass_;  // kg per body, 0 when static
   std::unique_ptr<DirectSolver> direct_;
   bool rotors_dirty_ = true;  // bodies or joints added since refreshRotors()

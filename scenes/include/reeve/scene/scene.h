@@ -96,6 +96,19 @@ class SceneError : public std::runtime_error {
 /// shipped scene (hilbert3.json, 170 kB, 512 wheels).
 inline constexpr std::uintmax_t kMaxSceneFileBytes = 16u << 20;
 
+/// What one scene document may make the loader spend (issue 27). Past any
+/// of these parseScene() throws a SceneError at the JSON path where the
+/// limit was passed, before anything walks the document, so no input can
+/// exhaust the stack or memory (scenes/README.md, "Limits"). The shipped
+/// scenes nest 6 deep, hold at most 513 bodies and links, and describe
+/// themselves in at most 3.1 kB.
+inline constexpr int kMaxSceneDepth = 64;                    ///< arrays and objects nested in each other
+inline constexpr std::size_t kMaxSceneStringBytes = 65536;   ///< one string or key, bytes of UTF-8
+inline constexpr std::size_t kMaxSceneArrayLength = 100000;  ///< elements of one array ("bodies" too)
+inline constexpr std::size_t kMaxSceneObjectMembers = 1000;  ///< keys of one object
+inline constexpr std::size_t kMaxSceneJoints = 100000;       ///< entries of "hinges" and "joints" together
+inline constexpr std::size_t kMaxSceneLinks = 100000;        ///< links of all cables together
+
 /// Reads and builds the scene in the JSON file at `path`.
 /// Throws SceneError if the file cannot be read, is not a regular file (a
 /// FIFO, a device such as /dev/zero, a folder: refused before it is

@@ -22,11 +22,27 @@ struct SceneWarning {
 inline constexpr double kStartStretchWarning = 0.1;
 inline constexpr double kStartStretchWarningMin_m = 0.01;
 
-/// Warnings for a loaded, not yet stepped scene: cable spans that start
-/// more than kStartStretchWarning of their rest length (and 1 cm) longer
-/// than it. The first solve pulls such a span in at once, and a direct
-/// solve that must turn wheels radians to do it can diverge
-/// (CableSystem::firstBreach). The fuzzer's first finding was one.
+/// Above this predicted cost (s of computing per simulated second) the
+/// solver settings get a warning: a run that will take hours says so first.
+inline constexpr double kSlowSceneWarning_s = 60.0;
+
+/// The computing time (s, one core of a 2020s x86 machine) that stepping
+/// `scene` with its current settings takes per simulated second, at most:
+/// frame_rate_hz x substeps x (fixed work per substep + iterations x work
+/// per iteration), each linear in the bodies, cable joints and joint rows,
+/// with constants measured on the shipped scenes (DESIGN.md, "Cost
+/// estimate"). The direct solver stops iterating once it converges, so it
+/// often takes less; it is meant for orders of magnitude.
+double predictedSecondsPerSimulatedSecond(const Scene& scene);
+
+/// Warnings for a loaded, not yet stepped scene:
+/// - cable spans that start more than kStartStretchWarning of their rest
+///   length (and 1 cm) longer than it. The first solve pulls such a span
+///   in at once, and a direct solve that must turn wheels radians to do it
+///   can diverge (CableSystem::firstBreach). The fuzzer's first finding
+///   was one.
+/// - solver settings (at "/solver") that predict more than
+///   kSlowSceneWarning_s per simulated second, with the prediction.
 std::vector<SceneWarning> sceneWarnings(const Scene& scene);
 
 }  // namespace reeve

@@ -31,8 +31,11 @@ TEST_P(Interrupt, EndsTheSubstepUnderWayAndTheWorldStepsOnExactly) {
   EXPECT_TRUE(a.world.stepInterrupted());
   EXPECT_NEAR(a.world.time(), 3 * h, 1e-15);
   EXPECT_EQ(hooks, 3);
-  if (GetParam() == SolverKind::GaussSeidel) EXPECT_EQ(a.world.lastStepIterations(), 2 + 2 + 1);
-  EXPECT_LE(a.world.lastStepIterations(), 5);
+  if (GetParam() == SolverKind::GaussSeidel) {
+    EXPECT_EQ(a.world.lastStepIterations(), 2 + 2 + 1);
+  } else {
+    EXPECT_LE(a.world.lastStepIterations(), 5);  // the direct solver may converge early
+  }
 
   a.world.step(dt);  // still raised: one substep, one iteration at most
   EXPECT_TRUE(a.world.stepInterrupted());

@@ -1,4 +1,4 @@
-// `reeve segment`'s generator (tools/src/segment_scene.h): the Atwood
+// `reeve segment`'s generator (reeve/machines/segment_scene.h): the Atwood
 // machine's rope replaced by a chain of rigid segments is a valid scene,
 // follows the cable's path with its length, and holds the boxes.
 #include <gtest/gtest.h>
@@ -8,7 +8,7 @@
 #include <utility>
 
 #include "reeve/scene/scene.h"
-#include "segment_scene.h"
+#include "reeve/machines/segment_scene.h"
 
 namespace reeve {
 namespace {

@@ -9,7 +9,7 @@
 
 #include "reeve/machines/closed_forms.h"
 #include "reeve/machines/machines.h"
-#include "segment_scene.h"
+#include "reeve/machines/segment_scene.h"
 
 namespace reeve::bench {
 namespace {

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <string>
 
-#include "segment_scene.h"
+#include "reeve/machines/segment_scene.h"
 
 namespace reeve {
 

@@ -1,4 +1,4 @@
-#include "segment_scene.h"
+#include "reeve/machines/segment_scene.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,8 +6,8 @@
 #include <cstdio>
 #include <set>
 
-#include "rope_chain.h"
-#include "rope_path.h"
+#include "reeve/machines/rope_chain.h"
+#include "reeve/machines/rope_path.h"
 
 namespace reeve {
 

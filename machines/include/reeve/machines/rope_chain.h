@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "rope_path.h"
+#include "reeve/machines/rope_path.h"
 
 namespace reeve {
 

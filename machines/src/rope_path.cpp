@@ -1,4 +1,4 @@
-#include "rope_path.h"
+#include "reeve/machines/rope_path.h"
 
 #include <cmath>
 

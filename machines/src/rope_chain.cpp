@@ -1,4 +1,4 @@
-#include "rope_chain.h"
+#include "reeve/machines/rope_chain.h"
 
 #include <algorithm>
 #include <cmath>

@@ -126,7 +126,7 @@ TEST(Collide, ThinRodOnAWheelTouchesOnTheRadiusThroughBothAxes) {
       const Shape wheel = Shape::cylinder(0.3, half_length), rod = Shape::cylinder(0.01, 0.08);
       const BodyState w = at(Vec3::Zero());
       const BodyState r = at((0.31 - depth) * radial + along * tangent + Vec3(0.0, 0.0, z),
-                             Quat::FromTwoVectors(Vec3::UnitZ(), tangent));
+                             rotationBetween(Vec3::UnitZ(), tangent));
       for (const bool wheel_first : {true, false}) {
         SCOPED_TRACE(testing::Message() << "half length " << half_length << ", phi " << phi << ", depth "
                                         << depth << (wheel_first ? ", wheel first" : ", rod first"));

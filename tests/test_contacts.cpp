@@ -337,7 +337,7 @@ TEST(Contacts, ThinRodRestsOnAWheelWithoutSpinningOrSlidingAlongTheAxle) {
         const Vec3 radial(std::sin(a), std::cos(a), 0.0), tangent(std::cos(a), -std::sin(a), 0.0);
         const Vec3 start = 0.3099 * radial;  // 0.1 mm into the wheel
         const BodyId rod = add(world, Shape::cylinder(0.01, 0.1), 5e-4, start, ContactMaterial{}, true,
-                               Quat::FromTwoVectors(Vec3::UnitZ(), tangent));
+                               rotationBetween(Vec3::UnitZ(), tangent));
         double spin = 0.0, off_axle = 0.0;
         for (int f = 0; f < 120; ++f) {
           world.step(kFrame);

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Every test again, built with clang under AddressSanitizer (leaks included)
-# and UndefinedBehaviorSanitizer, in Debug at -O1 (asserts and the cable
-# invariant checks after every substep on), with a bounded libFuzzer run of
-# the scene loader among the tests. CI's second step (.ci/run); README,
-# "Hardening". On 2 cores: about 6.5 minutes to build, 8 to test.
+# and UndefinedBehaviorSanitizer, in Debug at -O1 (the engine and cables at
+# -O2; our asserts and the cable invariant checks after every substep on),
+# with bounded libFuzzer runs of the scene loader among the tests. CI's
+# second step (.ci/run); README, "Hardening"; DESIGN, "CI time" has the
+# timings.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash tools/setup.sh --sanitizers

@@ -234,7 +234,7 @@ void World::refreshRotors() {
     // where it is made).
     const BodyState& other = body(a_moves ? j.b : j.a);
     const Vec3 other_axis = other.q * (a_moves ? j.frame.axis_b : j.frame.axis_a).normalized();
-    b.q = (Quat::FromTwoVectors(b.q * axis, other_axis) * b.q).normalized();
+    b.q = (rotationBetween(b.q * axis, other_axis) * b.q).normalized();
     b.x = other.toWorld(a_moves ? j.frame.anchor_b : j.frame.anchor_a) - b.q * anchor;
     const Vec3 u = b.q * axis;
     b.v.setZero();

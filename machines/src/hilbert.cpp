@@ -4,6 +4,7 @@
 #include <string>
 
 #include "common.h"
+#include "reeve/machines/scene_json.h"
 
 namespace reeve::machines {
 namespace {

@@ -1,6 +1,6 @@
 #include <string>
 
-#include "reeve/machines/machines.h"
+#include "reeve/machines/scene_json.h"
 
 namespace reeve::machines {
 namespace {

@@ -88,7 +88,7 @@ void drawBall(const ShapeMeshes& meshes, const Vec3& centre, double radius) {
 
 void drawRing(const ShapeMeshes& meshes, const Vec3& centre, const Vec3& axis, double radius) {
   glPushMatrix();
-  transform(centre, Quat::FromTwoVectors(Vec3::UnitZ(), axis), Vec3::Constant(radius));
+  transform(centre, rotationBetween(Vec3::UnitZ(), axis), Vec3::Constant(radius));
   drawMesh(meshes.ring);
   glPopMatrix();
 }

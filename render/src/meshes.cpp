@@ -145,7 +145,7 @@ void appendTube(Mesh& mesh, const std::vector<Vec3>& path, double radius, int si
   for (int i = 0; i < segments; ++i) {
     const Vec3& t = directions[i];
     if (i > 0) {
-      u = (Quat::FromTwoVectors(directions[i - 1], t) * u).normalized();
+      u = (rotationBetween(directions[i - 1], t) * u).normalized();
       if (directions[i - 1].dot(t) < std::cos(kMitreMaxTurnRad)) addBall(points[i]);
     }
     const Vec3 v = t.cross(u);

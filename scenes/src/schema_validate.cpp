@@ -69,4 +69,10 @@ void validateSceneSchema(const nlohmann::json& document, const std::string& sour
   throw SceneError(source, problem.pointer, problem.expected, problem.found);
 }
 
+bool satisfiesSchema(const nlohmann::json& schema, const nlohmann::json& value) {
+  valijson::Schema compiled;
+  valijson::SchemaParser().populateSchema(valijson::adapters::NlohmannJsonAdapter(schema), compiled);
+  return valijson::Validator().validate(compiled, valijson::adapters::NlohmannJsonAdapter(value), nullptr);
+}
+
 }  // namespace reeve::scene_detail

@@ -12,4 +12,9 @@ namespace reeve::scene_detail {
 /// out of bounds, values not allowed, wrong array sizes.
 void validateSceneSchema(const nlohmann::json& document, const std::string& source);
 
+/// Whether `value` satisfies the self-contained JSON Schema `schema`
+/// (valijson, draft-07). The one other place valijson is compiled in, so
+/// that its templates are instantiated in this file alone.
+bool satisfiesSchema(const nlohmann::json& schema, const nlohmann::json& value);
+
 }  // namespace reeve::scene_detail

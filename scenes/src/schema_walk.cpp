@@ -1,9 +1,6 @@
 #include "schema_walk.h"
 
-#include <valijson/adapters/nlohmann_json_adapter.hpp>
-#include <valijson/schema.hpp>
-#include <valijson/schema_parser.hpp>
-#include <valijson/validator.hpp>
+#include "schema_validate.h"
 
 namespace reeve::scene_detail {
 namespace {
@@ -14,12 +11,7 @@ using nlohmann::ordered_json;
 // Whether `value` satisfies the self-contained subschema `condition` (an
 // "if" of the scene schema).
 bool satisfies(const ordered_json& condition, const json& value) {
-  const json condition_json = json::parse(condition.dump());
-  valijson::Schema schema;
-  valijson::SchemaParser().populateSchema(valijson::adapters::NlohmannJsonAdapter(condition_json),
-                                          schema);
-  return valijson::Validator().validate(schema, valijson::adapters::NlohmannJsonAdapter(value),
-                                        nullptr);
+  return satisfiesSchema(json::parse(condition.dump()), value);
 }
 
 void collect(const ordered_json& node, const json* value, const ordered_json& root,

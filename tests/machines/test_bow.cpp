@@ -9,7 +9,7 @@
 // what the energy left in the bow leaves for it.
 #include <gtest/gtest.h>
 
-#include <Eigen/Dense>
+#include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

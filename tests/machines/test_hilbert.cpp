@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "reeve/cable/cable.h"
-#include "reeve/machines/machines.h"
+#include "reeve/machines/scene_json.h"
 #include "scene_fixture.h"
 
 namespace reeve {

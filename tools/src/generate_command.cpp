@@ -4,7 +4,7 @@
 #include <iostream>
 
 #include "commands.h"
-#include "reeve/machines/machines.h"
+#include "reeve/machines/scene_json.h"
 
 namespace reeve {
 

@@ -14,6 +14,12 @@ using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
 using Quat = Eigen::Quaterniond;
 
+/// The shortest rotation taking the direction of `from` to that of `to`
+/// (neither zero): Eigen's Quaternion::FromTwoVectors, compiled once in
+/// math.cpp (its antiparallel case is an SVD, seconds of compile time in
+/// every file that instantiates it).
+Quat rotationBetween(const Vec3& from, const Vec3& to);
+
 /// Rotates `q` by the small world-space rotation vector `dphi` (rad) and
 /// renormalizes: q <- q + 1/2 [dphi, 0] q (Müller et al. 2020, eq. 8).
 inline void rotateBy(Quat& q, const Vec3& dphi) {

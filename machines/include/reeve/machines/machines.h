@@ -8,7 +8,6 @@
 // reeve/machines/closed_forms.h. Wheels are solid cylinders: I = M r^2 / 2.
 #pragma once
 
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -149,14 +148,6 @@ struct Hilbert {
   BodyId load = kWorldBody;  // none when the end is a braked drum
   int cable = 0;
 };
-/// The machine as a scene file (scenes/README.md), as `reeve generate
-/// hilbert` writes it. Throws std::invalid_argument for a level outside
-/// [1, 4] or a negative slack, mass, radius or pitch.
-nlohmann::ordered_json hilbertSceneJson(const HilbertSpec& spec);
-/// The text of a generated scene file: indented by 2, but any array or
-/// object that fits in 200 characters on one line, so a body, a hinge or a
-/// link reads as one line. Ends with a newline.
-std::string sceneFileText(const nlohmann::ordered_json& doc);
 /// What `reeve generate hilbert --level L --slack S` writes
 /// (scenes/hilbert2.json, hilbert2_loose.json, hilbert3.json): level 2
 /// ends at a drum braked with 10 N m, its motor at 8 rad/s (2 m/s of
@@ -164,7 +155,7 @@ std::string sceneFileText(const nlohmann::ordered_json& doc);
 /// of at most 1000 N m, g = 9.81, 1 substep x 10 iterations (the paper's
 /// Table 1), 5 s taut, 10 s loose or level 3.
 HilbertSpec hilbertSceneSpec(int level, double slack_m);
-/// The machine loaded from hilbertSceneJson(spec).
+/// The machine loaded from hilbertSceneJson(spec) (scene_json.h).
 Hilbert hilbert(const HilbertSpec& spec);
 
 /// The points (grid units) of the 3D Hilbert curve with 2^level points per

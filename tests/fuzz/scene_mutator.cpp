@@ -116,7 +116,10 @@ class Mutator {
 
   void removeChild(json& node) {
     if (node.is_array() && !node.empty()) node.erase(pick(node.size()));
-    else if (node.is_object() && !node.empty()) node.erase(std::next(node.begin(), static_cast<long>(pick(node.size()))).key());
+    else if (node.is_object() && !node.empty()) {
+      const std::string key = std::next(node.begin(), static_cast<long>(pick(node.size()))).key();  // a copy
+      node.erase(key);
+    }
   }
 
   void copyChild(json& node, std::size_t copies) {

@@ -255,14 +255,14 @@ TEST_F(Cli, SettingsThatWillTakeHoursAreWarnedOfBeforeTheRun) {
   const std::size_t at = text.find(settings);
   ASSERT_NE(at, std::string::npos);
   const std::string slow = write("slow.json", text.replace(at, settings.size(), R"("substeps":100,"iterations":1000)"));
-  const std::regex warning(R"(reeve: warning: .*slow\.json: /solver: 100 substeps x 1000 iterations a frame at 60 Hz \(direct\) predict about ([0-9.e+]+) s of computing per simulated second \(([0-9.e+]+) h for the scene's [0-9.]+ s\): lower substeps or iterations, or expect to wait)");
+  const std::regex warning(R"(reeve: warning: .*slow\.json: /solver: 100 substeps x 1000 iterations a frame at 60 Hz \(direct\) predict about ([0-9.e+]+) s of computing per simulated second \(([0-9.e+]+) h for the scene's ([0-9.]+) s\): lower substeps or iterations, or expect to wait)");
   const Result v = reeve("validate " + slow);
   EXPECT_EQ(v.code, 0) << v.err;
   std::smatch m;
   ASSERT_TRUE(std::regex_search(v.err, m, warning)) << v.err;
-  // 60 x 100 x 1000 row-iterations of 512 cable joints a simulated second:
-  // at least 3e8 rows, which no solver does in a minute.
-  EXPECT_GT(std::stod(m[1]), 60.0);
+  // The hours are the rate times the scene's duration (both printed to two
+  // digits).
+  EXPECT_NEAR(std::stod(m[2]), std::stod(m[1]) * std::stod(m[3]) / 3600.0, 0.06 * std::stod(m[2]));
   const Result r = reeve("run " + slow + " --frames 1 --substeps 1 --iterations 1");
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(r.err.find("/solver"), std::string::npos) << "the settings run are the ones judged: " << r.err;

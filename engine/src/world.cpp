@@ -399,7 +399,7 @@ void World::step(double dt) {
     if (!non_finite_) checkFinite(time_ + h, true, h);
     time_ += h;
     if (progress_) progress_(s + 1, settings_.substeps);
-    interrupted_ = interruptRequested();
+    if (!interrupted_ && s + 1 < settings_.substeps) interrupted_ = interruptRequested();
   }
   last_h_ = h;
 }
@@ -466,7 +466,10 @@ void World::solvePositions(double h) {
       if (weighted)
         for (PathConstraint& p : paths_)
           if (!p.weights.empty()) solvePathConstraint(p, table, p.compliance * inv_h2, h);
-      if (interruptRequested()) break;  // the substep ends here (setInterruptFlag)
+      if (it + 1 < settings_.iterations && interruptRequested()) {  // the substep ends here
+        interrupted_ = true;
+        break;
+      }
     }
     return;
   }
@@ -484,7 +487,10 @@ void World::solvePositions(double h) {
       const Contact& c = contacts_[m.first];
       solveContactPositions(m, contacts_.data(), body(c.a), body(c.b));
     }
-    if (interruptRequested()) break;  // the substep ends here (setInterruptFlag)
+    if (it + 1 < settings_.iterations && interruptRequested()) {  // the substep ends here
+      interrupted_ = true;
+      break;
+    }
   }
 }
 

@@ -152,8 +152,9 @@ class World {
   /// stepInterrupted() is true until the next step(). nullptr, the
   /// default, never stops. The flag must outlive its use here.
   void setInterruptFlag(const std::atomic<int>* flag) { interrupt_ = flag; }
-  /// Whether the last step() stopped early at the interrupt flag; time()
-  /// is then the end of the last substep it ran.
+  /// Whether the interrupt flag cut the last step() short (an iteration or
+  /// a substep left out; a flag raised during its last iteration cuts
+  /// nothing); time() is then the end of the last substep it ran.
   bool stepInterrupted() const { return interrupted_; }
   /// Called after each substep of a step() with the substeps done and the
   /// substeps it has (a progress bar inside a long frame); empty: none.

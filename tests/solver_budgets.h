@@ -1,5 +1,6 @@
-// The solver budgets the winch and break tests run at: both solvers, many
-// substeps of one iteration and the paper's one step of ten iterations.
+// The solver budgets the tests run at: both solvers, many substeps of one
+// iteration and the paper's one step of ten iterations (winches, breaks);
+// the energy ledger's four.
 #pragma once
 
 #include <string>
@@ -14,6 +15,12 @@ struct Budget {
 };
 inline constexpr Budget kBudgets[] = {{SolverKind::Direct, 20, 1}, {SolverKind::Direct, 1, 10},
                                       {SolverKind::GaussSeidel, 20, 1}, {SolverKind::GaussSeidel, 1, 10}};
+/// The energy ledger's budgets (issue 28): 1 x 1, 1 x 10, 10 x 2 and 32 x 32,
+/// both solvers.
+inline constexpr Budget kFourBudgets[] = {
+    {SolverKind::Direct, 1, 1},       {SolverKind::Direct, 1, 10},       {SolverKind::Direct, 10, 2},
+    {SolverKind::Direct, 32, 32},     {SolverKind::GaussSeidel, 1, 1},   {SolverKind::GaussSeidel, 1, 10},
+    {SolverKind::GaussSeidel, 10, 2}, {SolverKind::GaussSeidel, 32, 32}};
 inline std::string name(const Budget& b) {
   return std::string(b.solver == SolverKind::Direct ? "direct " : "gauss-seidel ") + std::to_string(b.substeps) +
          " x " + std::to_string(b.iterations);

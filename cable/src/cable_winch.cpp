@@ -47,6 +47,12 @@ void CableSystem::setWinch(int c, const WinchDef& winch) {
   buildRuns(cable);  // the pull limit on the run it reels
 }
 
+double CableSystem::winchWork() const {
+  double work = winch_work_;
+  for (int c = 0; c < static_cast<int>(cables_.size()); ++c) work += cables_[c].reeled * winchPull(c);
+  return work;
+}
+
 double CableSystem::winchPull(int c) const {
   const Cable& cable = cables_[c];
   return cable.winch ? tension(c, winchSpan(cable).second) : 0.0;
@@ -65,11 +71,17 @@ void CableSystem::reel(Cable& cable, double start_s, double h) {
   const auto [k, j] = winchSpan(cable);
   Link& drum = cable.links[k];
   CableJoint& span = cable.joints[j];
-  if (span.parted) return;  // the cable broke: nothing left to reel
+  if (span.parted) {  // the cable broke: nothing left to reel
+    cable.reeled = 0.0;
+    return;
+  }
   // Stalled: the last solve held the pull at max_pull and the run came out
   // longer than its rest length; the winch paid that out. Measured at the
   // poses that solve left (the anchors are still its anchors).
   const PathConstraint& path = world_.path(cable.joints[span.run].path);
+  const double pull = -path.lambda / (h * h) * span.weight;  // N, what the last solve pulled with
+  winch_work_ += pull * cable.reeled;
+  cable.reeled = 0.0;
   if (std::isfinite(winch.max_pull) && -path.lambda >= winch.max_pull * h * h * (1.0 - 1e-9)) {
     double length = 0.0;
     for (std::size_t i = 0; i + 1 < path.points.size(); ++i) {
@@ -80,6 +92,7 @@ void CableSystem::reel(Cable& cable, double start_s, double h) {
     const double given = std::min(std::max(0.0, length - path.rest_length), drum.stored);
     span.rest_length += given;
     drum.stored -= given;
+    winch_work_ -= pull * given;
   }
   // This substep's command: cable reeled in (> 0), within what the span
   // holds and what the drum stores.
@@ -89,6 +102,7 @@ void CableSystem::reel(Cable& cable, double start_s, double h) {
   in = std::clamp(in, -drum.stored, span.rest_length);
   span.rest_length -= in;
   drum.stored += in;
+  cable.reeled = in;
 }
 
 }  // namespace reeve

@@ -385,13 +385,17 @@ void World::step(double dt) {
     }
     solvePositions(h);
     updateVelocities(h);
+    addWork(h);
     if (contacts) {
       // SCA 2020, Alg. 2 line 24: the velocity pass of the contacts, with
       // restitution off below 2 |g| h.
       const double rest_speed = 2.0 * settings_.gravity.norm() * h;
       for (const ContactManifold& m : manifolds_) {
         const Contact& c = contacts_[m.first];
+        const double before = kineticEnergy(c.a) + kineticEnergy(c.b);
         solveContactVelocities(m, contacts_.data(), body(c.a), body(c.b), h, rest_speed);
+        // Only a loss is credited: a pass that added energy shows in the balance.
+        flows_.contact_loss += std::max(0.0, before - kineticEnergy(c.a) - kineticEnergy(c.b));
       }
     }
     if (settings_.solver == SolverKind::Direct) rotorWrenches(h);
@@ -517,7 +521,8 @@ void World::rotorWrenches(double h) {
 }
 
 void World::updateVelocities(double h) {
-  for (BodyState& b : bodies_) {
+  for (BodyId id = 0; id < bodyCount(); ++id) {
+    BodyState& b = bodies_[id];
     if (!b.moves()) continue;
     b.v = (b.x - b.x_prev) / h;
     // Not rotationVector(q q_prev^-1) / h, which is wrapped to half a turn
@@ -530,8 +535,11 @@ void World::updateVelocities(double h) {
       correction += n * (turned + std::remainder(along - turned, 2.0 * kPi) - along);
     }
     b.omega += correction / h;
+    if (b.linear_damping == 0.0 && b.angular_damping == 0.0) continue;
+    const double before = kineticEnergy(id);
     b.v *= std::exp(-b.linear_damping * h);
     b.omega *= std::exp(-b.angular_damping * h);
+    flows_.damping_loss += std::max(0.0, before - kineticEnergy(id));
   }
 }
 

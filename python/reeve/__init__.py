@@ -81,7 +81,8 @@ def _plain(value):
     raise TypeError(f"Object of type {type(value).__name__} is not JSON serializable")
 
 
-def run(scene, frames=None, csv=None, png_dir=None, video=None, events=None, width=1280, height=720, force=False):
+def run(scene, frames=None, csv=None, png_dir=None, video=None, events=None, width=1280, height=720, force=False,
+        strict=False):
     """Steps `scene` and writes what `reeve run` writes, from its current state.
 
     frames: frames to step (default: the scene's frame_count). csv: a CSV of
@@ -90,17 +91,21 @@ def run(scene, frames=None, csv=None, png_dir=None, video=None, events=None, wid
     frame_00000.png, ... png files. video: an .mp4 file (H.264 through the
     ffmpeg program; even width and height). events: the cable events (hybrid
     links running out, merges, splits) as CSV. width, height: image size in
-    pixels. force: replace outputs that exist.
+    pixels. force: replace outputs that exist. strict: energy created (the
+    energy ledger, Scene.energy()) is an error, as `reeve run --strict`.
 
     Each output appears whole at the end, or not at all. Returns a dict:
-    frames (done), physics_ms_per_frame. Raises FileExistsError for an
+    frames (done), physics_ms_per_frame, energy_created_frames (frames whose
+    ledger showed energy created; each of the first 100 is also warned of,
+    RuntimeWarning). Raises FileExistsError for an
     output that exists without force, ValueError for outputs that clash or a
     bad size, reeve.SimulationError when the state becomes non-finite or the
-    cable bookkeeping breaks (no output is left), KeyboardInterrupt on
+    cable bookkeeping breaks, or with strict energy is created (no output is
+    left), KeyboardInterrupt on
     Ctrl-C after a whole frame (the outputs hold the frames done).
     """
     path = lambda p: None if p is None else _os.fspath(p)  # noqa: E731
-    return scene._run(frames, path(csv), path(png_dir), path(video), path(events), width, height, force)
+    return scene._run(frames, path(csv), path(png_dir), path(video), path(events), width, height, force, strict)
 
 
 def scenes_dir():

@@ -21,11 +21,11 @@ namespace reeve::python {
 namespace {
 
 std::unique_ptr<PyScene> fromFile(const std::filesystem::path& path) {
-  return std::make_unique<PyScene>(PyScene{loadScene(path), path.string(), nullptr});
+  return std::make_unique<PyScene>(loadScene(path), path.string());
 }
 
 std::unique_ptr<PyScene> fromText(const std::string& text, const std::string& source) {
-  return std::make_unique<PyScene>(PyScene{parseScene(text, source), source, nullptr});
+  return std::make_unique<PyScene>(parseScene(text, source), source);
 }
 
 // The bounds the scene schema puts on the solver settings.
@@ -64,6 +64,9 @@ void step(PyScene& s, int frames) {
       world.step(dt);
     }
     if (const auto why = stopReason(s.scene)) throwSimulationError("reeve: " + *why);
+    if (const auto created = s.energy.check(s.scene))
+      if (PyErr_WarnEx(PyExc_RuntimeWarning, ("reeve: " + energyCreatedMessage(*created)).c_str(), 1) != 0)
+        throw py::error_already_set();  // warnings turned into errors
   }
   s.scene.cables->takeEvents();  // not kept: nothing in Python reads them yet
   const int signal = interrupt ? interrupt->received() : 0;
@@ -95,7 +98,7 @@ py::array_t<std::uint8_t> render(PyScene& s, int width, int height) {
 
 py::dict run(PyScene& s, std::optional<int> frames, std::optional<std::filesystem::path> csv,
              std::optional<std::filesystem::path> png_dir, std::optional<std::filesystem::path> video,
-             std::optional<std::filesystem::path> events, int width, int height, bool force) {
+             std::optional<std::filesystem::path> events, int width, int height, bool force, bool strict) {
   const int n = frames.value_or(s.scene.frameCount());
   if (n < 0) throw py::value_error("frames: expected a count >= 0, got " + std::to_string(n));
   RunOutputs outputs;
@@ -106,8 +109,10 @@ py::dict run(PyScene& s, std::optional<int> frames, std::optional<std::filesyste
   outputs.width = width;
   outputs.height = height;
   outputs.force = force;
+  outputs.strict = strict;
   if (std::filesystem::exists(s.source)) outputs.scene_file = s.source;
   RunResult r;
+  s.energy = EnergyWatch(s.scene);  // step()'s watch goes on from where the run ends
   try {
     py::gil_scoped_release release;
     r = runScene(s.scene, n, outputs);
@@ -129,10 +134,33 @@ py::dict run(PyScene& s, std::optional<int> frames, std::optional<std::filesyste
     throw py::error_already_set();
   }
   if (r.signal == SIGTERM) std::raise(SIGTERM);
+  s.energy = EnergyWatch(s.scene);
+  for (const EnergyCreated& created : r.energy_created)
+    if (PyErr_WarnEx(PyExc_RuntimeWarning, ("reeve: " + energyCreatedMessage(created)).c_str(), 1) != 0)
+      throw py::error_already_set();
   py::dict result;
   result["frames"] = r.frames_done;
+  result["energy_created_frames"] = r.energy_created_frames;
   result["physics_ms_per_frame"] = 1e3 * r.physics_s / std::max(r.frames_done, 1);
   return result;
+}
+
+py::dict energy(const PyScene& s) {
+  const EnergyLedger e = energyLedger(s.scene);
+  py::dict d;
+  d["kinetic_J"] = e.kinetic_J;
+  d["potential_J"] = e.potential_J;
+  d["elastic_J"] = e.elastic_J;
+  d["total_J"] = e.total_J();
+  d["drive_work_J"] = e.drive_work_J;
+  d["load_work_J"] = e.load_work_J;
+  d["winch_work_J"] = e.winch_work_J;
+  d["work_J"] = e.work_J();
+  d["damping_J"] = e.damping_J;
+  d["contact_J"] = e.contact_J;
+  d["dissipated_J"] = e.dissipated_J();
+  d["residual_J"] = e.balance_J() - s.start_balance_J;
+  return d;
 }
 
 }  // namespace
@@ -259,8 +287,15 @@ void bindScene(py::module_& m) {
           },
           "The prismatic, spherical and fixed joints (reeve.Joints), in the order of the "
           "scene's \"joints\".")
+      .def("energy", &energy,
+           "The energy ledger now (issue 28; DESIGN.md, \"Energy ledger\"), a dict of floats in J: kinetic_J, "
+           "potential_J (gravity, 0 at the origin), elastic_J (compliant cables, joints, springs), total_J (their "
+           "sum); since the scene was loaded: drive_work_J, load_work_J, winch_work_J, work_J (their sum), "
+           "damping_J, contact_J, dissipated_J (their sum); residual_J = total - total as loaded - work + "
+           "dissipated: <= 0 (the integrator's own losses) unless energy was created. step() warns "
+           "(RuntimeWarning) in a frame that created energy, as `reeve run` does.")
       .def("_run", &run, py::arg("frames"), py::arg("csv"), py::arg("png_dir"), py::arg("video"), py::arg("events"),
-           py::arg("width"), py::arg("height"), py::arg("force"))
+           py::arg("width"), py::arg("height"), py::arg("force"), py::arg("strict"))
       .def("__repr__", [](const PyScene& s) {
         return "<reeve.Scene '" + s.scene.name + "' from " + s.source +
                ", t = " + py::repr(py::float_(s.scene.world->time())).cast<std::string>() + " s, " +

@@ -6,17 +6,24 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "reeve/render/renderer.h"
+#include "reeve/scene/energy.h"
 #include "reeve/scene/scene.h"
 
 namespace reeve::python {
 
 /// A scene loaded from Python, with the renderer its render() reuses.
 struct PyScene {
+  PyScene(Scene scene_, std::string source_)
+      : scene(std::move(scene_)), source(std::move(source_)), start_balance_J(energyLedger(scene).balance_J()),
+        energy(scene) {}
   Scene scene;
   std::string source;                  ///< file name, "<text>" or "<dict>": for messages
   std::unique_ptr<Renderer> renderer;  ///< made by the first render(), remade for another size
+  double start_balance_J;              ///< EnergyLedger::balance_J as loaded: energy()'s residual_J
+  EnergyWatch energy;                  ///< step()'s watch: warns of energy created
 };
 
 /// The views (Settings, Bodies, Cables, Cable, Hinges, Joints) hold a

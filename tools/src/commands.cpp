@@ -20,6 +20,19 @@ void printWarnings(const Scene& scene, const std::string& source) {
     std::fprintf(stderr, "reeve: warning: %s: %s: %s\n", source.c_str(), w.json_path.c_str(), w.message.c_str());
 }
 
+// Energy created (EnergyWatch): the first few frames, and how many in all.
+void printEnergyCreated(const RunResult& r) {
+  constexpr int kShown = 3;
+  for (int i = 0; i < std::min<int>(kShown, static_cast<int>(r.energy_created.size())); ++i)
+    std::fprintf(stderr, "reeve: warning: %s\n", energyCreatedMessage(r.energy_created[i]).c_str());
+  if (r.energy_created_frames > kShown)
+    std::fprintf(stderr, "reeve: warning: energy created in %d frames in all\n", r.energy_created_frames);
+  if (r.energy_created_frames > 0)
+    std::fprintf(stderr,
+                 "reeve: warning: more substeps may remove it; the CSV's energy.* columns hold the ledger, and "
+                 "--strict makes this an error\n");
+}
+
 int simulate(const RunOptions& o) {
   Scene scene = o.scene.empty() ? parseScene(std::string(defaultSceneJson()), "<built-in simple.json>")
                                 : loadScene(o.scene);
@@ -27,7 +40,7 @@ int simulate(const RunOptions& o) {
   if (o.iterations) scene.world->settings().iterations = *o.iterations;
   if (!o.solver.empty()) scene.world->settings().solver = *solverMethodFromName(o.solver);
   const int frames = o.frames.value_or(scene.frameCount());
-  const RunOutputs outputs{o.png_dir, o.video, o.csv, o.events, o.width, o.height, o.force, o.scene};
+  const RunOutputs outputs{o.png_dir, o.video, o.csv, o.events, o.width, o.height, o.force, o.scene, o.strict};
   checkRunOutputs(outputs, frames);  // before the warnings: a refused output is the one message
   printWarnings(scene, o.scene.empty() ? "<built-in simple.json>" : o.scene);
   const RunResult r = runScene(scene, frames, outputs);
@@ -40,6 +53,7 @@ int simulate(const RunOptions& o) {
     std::fprintf(stderr, "reeve: %s: stopped after %d of %d frames%s; the outputs hold those %d frames\n",
                  r.signal == SIGINT ? "interrupted (SIGINT)" : "terminated (SIGTERM)", done, frames, inside, done);
   }
+  printEnergyCreated(r);
   std::printf("reeve: simulated %d frames of '%s' (%.3f s, %d substeps x %d iterations, %s) in %.3f ms/frame of physics\n",
               done, scene.name.c_str(), done * dt, scene.world->settings().substeps,
               scene.world->settings().iterations, solverMethodName(scene.world->settings().solver),

@@ -19,6 +19,7 @@ struct RunOptions {
   std::filesystem::path png_dir, video, csv, events;
   int width = 1280, height = 720;
   bool force = false;
+  bool strict = false;  ///< energy created is an error (exit 1), not a warning
 };
 
 /// `reeve run`: returns the process exit code (above, or 128 + SIGINT or

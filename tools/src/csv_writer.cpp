@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <stdexcept>
 
 namespace reeve {
@@ -37,10 +38,15 @@ void append(std::string& row, double value, double time_s, const What& what) {
 // Links the cable can slide over or through get a slip speed column.
 bool canSlip(const Link& link) { return link.type == LinkType::Pinhole || std::isfinite(link.mu); }
 
+// The energy ledger's columns (energy.h), in this order.
+constexpr const char* kEnergyColumns[] = {"kinetic_J", "potential_J", "elastic_J", "drive_work_J", "load_work_J",
+                                          "winch_work_J", "damping_J", "contact_J", "residual_J"};
+
 }  // namespace
 
-CsvWriter::CsvWriter(const std::filesystem::path& path, bool replace, const CableSystem& cables)
-    : out_(path, replace), cables_(cables) {
+CsvWriter::CsvWriter(const std::filesystem::path& path, bool replace, const CableSystem& cables,
+                     const EnergyWatch& energy)
+    : out_(path, replace), cables_(cables), energy_(energy) {
   const World& world = cables.world();
   std::string header = "time_s";
   const auto add = [&](const std::string& name) {
@@ -62,6 +68,7 @@ CsvWriter::CsvWriter(const std::filesystem::path& path, bool replace, const Cabl
       if (canSlip(c.links[k])) add(c.name + ".link" + std::to_string(k) + ".slip_m_per_s");
     if (c.winch) add(c.name + ".winch_pull_N");
   }
+  for (const char* column : kEnergyColumns) add(std::string("energy.") + column);
   out_.write(header + "\n");
 }
 
@@ -95,6 +102,12 @@ void CsvWriter::writeRow() {
                [&] { return "cable '" + cable.name + "' link " + std::to_string(k) + " slip speed"; });
     if (cable.winch) append(row, cables_.winchPull(c), t, [&] { return "cable '" + cable.name + "' winch pull"; });
   }
+  const EnergyLedger& e = energy_.ledger();
+  const double energies[] = {e.kinetic_J,   e.potential_J, e.elastic_J, e.drive_work_J,      e.load_work_J,
+                             e.winch_work_J, e.damping_J,   e.contact_J, energy_.residual_J()};
+  static_assert(std::size(energies) == std::size(kEnergyColumns));
+  for (std::size_t i = 0; i < std::size(energies); ++i)
+    append(row, energies[i], t, [&] { return std::string("the energy ledger's ") + kEnergyColumns[i]; });
   out_.write(row + "\n");
 }
 

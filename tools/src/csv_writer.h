@@ -6,6 +6,7 @@
 
 #include "output_file.h"
 #include "reeve/cable/cable.h"
+#include "reeve/scene/energy.h"
 
 namespace reeve {
 
@@ -20,13 +21,18 @@ std::string nonFiniteMessage(double time_s, const std::string& what);
 /// merged away or parted), then each link k: C.link<k>.stored_m, then
 /// each link k the cable can slide over or through (a pinhole, or a link
 /// with mu): C.link<k>.slip_m_per_s (CableSystem::slipSpeed), then, for a
-/// cable with a winch, C.winch_pull_N (CableSystem::winchPull). Header fields are
+/// cable with a winch, C.winch_pull_N (CableSystem::winchPull); last the
+/// energy ledger of the watch's last check (EnergyLedger, J):
+/// energy.kinetic_J, energy.potential_J, energy.elastic_J,
+/// energy.drive_work_J, energy.load_work_J, energy.winch_work_J,
+/// energy.damping_J, energy.contact_J, energy.residual_J
+/// (EnergyWatch::residual_J). Header fields are
 /// quoted per RFC 4180 where a name holds a comma, a quote or a line
 /// break. Numbers have 10 significant digits; -0 is written 0.
 class CsvWriter {
  public:
   /// Opens `path` (an OutputFile: nothing appears there before commit()).
-  CsvWriter(const std::filesystem::path& path, bool replace, const CableSystem& cables);
+  CsvWriter(const std::filesystem::path& path, bool replace, const CableSystem& cables, const EnergyWatch& energy);
   /// Appends the current state. Throws std::runtime_error naming the
   /// quantity if any number is not finite, before writing any of the row.
   void writeRow();
@@ -36,6 +42,7 @@ class CsvWriter {
  private:
   OutputFile out_;
   const CableSystem& cables_;
+  const EnergyWatch& energy_;
 };
 
 /// `field` as an RFC 4180 CSV field: quoted, with quotes doubled, when it

@@ -112,10 +112,11 @@ Camera sceneCamera(const Scene& scene, double aspect) {
 
 RunResult runScene(Scene& scene, int frames, const RunOutputs& o) {
   checkRunOutputs(o, frames);
+  EnergyWatch energy(scene);
   std::unique_ptr<CsvWriter> csv;
   if (!o.csv.empty()) {
     createParent(o.csv);
-    csv = std::make_unique<CsvWriter>(o.csv, o.force, *scene.cables);
+    csv = std::make_unique<CsvWriter>(o.csv, o.force, *scene.cables, energy);
   }
   std::unique_ptr<EventLog> events;
   if (!o.events.empty()) {
@@ -172,6 +173,12 @@ RunResult runScene(Scene& scene, int frames, const RunOutputs& o) {
     if (scene.world->stepInterrupted()) {
       result.part_frame_s = scene.world->time();
       break;
+    }
+    if (const auto created = energy.check(scene)) {
+      if (o.strict)
+        throw std::runtime_error(energyCreatedMessage(*created) +
+                                 "; nothing of that frame was written (--strict). Try more substeps");
+      if (result.energy_created_frames++ < kMaxEnergyFindings) result.energy_created.push_back(*created);
     }
     if (csv) csv->writeRow();
     if (events) events->drain(*scene.cables);

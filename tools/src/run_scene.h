@@ -7,8 +7,10 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "reeve/render/camera.h"
+#include "reeve/scene/energy.h"
 #include "reeve/scene/scene.h"
 
 namespace reeve {
@@ -31,6 +33,9 @@ struct RunOutputs {
   int width = 1280, height = 720;  ///< pixels, of the PNG frames and the video (even for a video)
   bool force = false;              ///< replace outputs that exist
   std::filesystem::path scene_file;
+  /// Energy created (EnergyWatch) stops the run with an error, as a
+  /// non-finite state does; otherwise it is reported in RunResult.
+  bool strict = false;
 };
 
 /// How a run went.
@@ -41,7 +46,14 @@ struct RunResult {
   /// is then not written; nullopt when it stopped between frames or ran.
   std::optional<double> part_frame_s;
   double physics_s = 0.0;   ///< wall time spent in World::step (s)
+  /// The frames whose energy ledger showed energy created (EnergyWatch),
+  /// the first kMaxEnergyFindings of them, and how many there were.
+  std::vector<EnergyCreated> energy_created;
+  int energy_created_frames = 0;
 };
+
+/// Findings of energy created a RunResult keeps (it counts them all).
+inline constexpr int kMaxEnergyFindings = 100;
 
 /// Checks every output before a run, so that nothing is half-written when a
 /// later one turns out to be refused: no two on one file nor on the scene
@@ -68,7 +80,9 @@ Camera sceneCamera(const Scene& scene, double aspect);
 /// frame under way after the solver iteration in progress). Throws WouldOverwrite,
 /// OutputClash, std::runtime_error for a bad output name, a failed write,
 /// a non-finite state or a broken cable bookkeeping (World::firstNonFinite,
-/// CableSystem::firstBreach), leaving no output behind.
+/// CableSystem::firstBreach), or with `strict` energy created
+/// (EnergyWatch), leaving no output behind. Without `strict` energy
+/// created is counted in the result.
 RunResult runScene(Scene& scene, int frames, const RunOutputs& outputs);
 
 }  // namespace reeve

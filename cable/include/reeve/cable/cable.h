@@ -221,6 +221,9 @@ struct Cable {
   std::vector<Link> links;
   std::vector<CableJoint> joints;  // joints[j] leaves links[j]
   std::optional<WinchDef> winch;
+  // m the winch reeled in before the last solve, whose pull (known once
+  // that solve is done) times it is the winch's work (winchWork).
+  double reeled = 0.0;
   double breaking_tension = std::numeric_limits<double>::infinity();  // N
   bool broken = false;  // a span has parted
 };
@@ -320,6 +323,11 @@ class CableSystem {
   /// The pull (N) of cable c's winch over the last substep: the tension of
   /// the span it reels; 0 without a winch.
   double winchPull(int c) const;
+  /// Work (J) the winches put into the machine since the system was made
+  /// (issue 28's energy ledger): per substep, the cable reeled in before
+  /// the solve times the pull that solve held it with (negative paying out
+  /// under load: a winch braking).
+  double winchWork() const;
 
  private:
   /// turn_[b]: how far (rad, unwrapped) body b turned about its cable
@@ -374,6 +382,7 @@ class CableSystem {
   std::vector<double> turn_;            // per body, rad (measureTurns)
   bool solve_turn_counted_ = false;     // the last update was by hand, after the solve
   std::optional<CableBreach> breach_;   // firstBreach()
+  double winch_work_ = 0.0;             // J, winchWork() but the last substep's
 };
 
 }  // namespace reeve

@@ -15,6 +15,7 @@
 #include "reeve/engine/collide.h"
 #include "reeve/engine/contact.h"
 #include "reeve/engine/distance_constraint.h"
+#include "reeve/engine/energy.h"
 #include "reeve/engine/fixed_joint.h"
 #include "reeve/engine/hinge_joint.h"
 #include "reeve/engine/path_constraint.h"
@@ -256,6 +257,10 @@ class World {
   /// World position (m) of a body-local point (kWorldBody allowed).
   Vec3 worldPoint(BodyId id, const Vec3& local) const { return body(id).toWorld(local); }
 
+  /// The World's side of the energy ledger (energy.h): the state's
+  /// energies now and the work and losses summed over every substep so far.
+  WorldEnergy energy() const;
+
   double time() const { return time_; }        // s simulated so far
   double lastSubstep() const { return last_h_; }  // s
   /// Iterations the last step() ran, over all its substeps: substeps x
@@ -282,6 +287,11 @@ class World {
   /// The interrupt flag is raised (setInterruptFlag); read, not cleared.
   bool interruptRequested() const { return interrupt_ && interrupt_->load(std::memory_order_relaxed) != 0; }
   void updateVelocities(double h);
+  /// Adds this substep's work of the motor drives and applied loads
+  /// (energy.h), once velocities are known.
+  void addWork(double h);
+  /// Kinetic energy (J) of body `id` now.
+  double kineticEnergy(BodyId id) const;
   void limitSpeeds();
   // Records the first non-finite body state (and, with `tensions`, distance
   // constraint tension) at the end of the substep ending at `end_s`.
@@ -314,6 +324,7 @@ class World {
   bool interrupted_ = false;
   std::function<void(int, int)> progress_;
   std::vector<double> mass_;  // kg per body, 0 when static
+  WorldEnergy flows_;         // the summed work and losses (energy.h); its state fields unused
   std::unique_ptr<DirectSolver> direct_;
   bool rotors_dirty_ = true;  // bodies or joints added since refreshRotors()
   SolverKind rotors_for_ = SolverKind::GaussSeidel;

@@ -1,0 +1,97 @@
+// The World's side of the energy ledger (energy.h; DESIGN.md, "Energy
+// ledger").
+#include <cmath>
+#include <numbers>
+
+#include "reeve/engine/world.h"
+
+namespace reeve {
+namespace {
+
+// alpha |F|^2 / 2 + alpha |tau|^2 / 2 of a compliant joint whose rows gave
+// body a the impulse `linear` (kg m) and angular impulse `angular` (kg m^2)
+// over a substep of h s (a joint's compliance is m/N and rad/(N m) alike).
+double jointElastic(double compliance, const Vec3& linear, const Vec3& angular, double h) {
+  if (compliance == 0.0 || h == 0.0) return 0.0;
+  const double h2 = h * h;
+  return 0.5 * compliance * ((linear / h2).squaredNorm() + (angular / h2).squaredNorm());
+}
+
+// C^2 / (2 alpha) of a compliant length row stretched by C (m) past its
+// rest length, of compliance alpha (m/N): from the poses, not the last
+// lambda, so a cable that starts stretched holds its energy from the start.
+double stretchElastic(double compliance, double stretch, bool unilateral) {
+  if (compliance == 0.0 || (unilateral && stretch <= 0.0)) return 0.0;
+  return 0.5 * stretch * stretch / compliance;
+}
+
+}  // namespace
+
+double World::kineticEnergy(BodyId id) const {
+  if (id == kWorldBody) return 0.0;
+  const BodyState& b = bodies_[id];
+  const Vec3 w = b.q.conjugate() * b.omega;  // body-local, where the inertia is
+  return 0.5 * mass_[id] * b.v.squaredNorm() + 0.5 * w.dot(b.inertia * w);
+}
+
+WorldEnergy World::energy() const {
+  WorldEnergy e = flows_;
+  const double h = last_h_;
+  for (BodyId id = 0; id < bodyCount(); ++id) {
+    if (mass_[id] == 0.0) continue;
+    e.kinetic += kineticEnergy(id);
+    e.gravity -= mass_[id] * settings_.gravity.dot(bodies_[id].x);
+  }
+  for (const DistanceConstraint& c : distances_)
+    if (c.enabled)
+      e.elastic += stretchElastic(c.compliance, currentLength(c, body(c.a), body(c.b)) - c.rest_length, c.unilateral);
+  for (PathId id = 0; id < pathCount(); ++id) {
+    const PathConstraint& p = paths_[id];
+    if (p.enabled) e.elastic += stretchElastic(p.compliance, pathLength(id) - p.rest_length, true);
+  }
+  for (HingeId id = 0; id < static_cast<HingeId>(hinges_.size()); ++id) {
+    const HingeJoint& j = hinges_[id];
+    e.elastic += jointElastic(j.compliance, j.impulse_point, j.impulse_axis, h);
+    if (j.drive.mode == HingeDrive::Mode::Angle && j.drive.stiffness > 0.0) {
+      const double error = std::remainder(hingeAngle(id) - j.drive.target, 2.0 * std::numbers::pi);
+      e.elastic += 0.5 * j.drive.stiffness * error * error;
+    }
+  }
+  for (PrismaticId id = 0; id < static_cast<PrismaticId>(prismatics_.size()); ++id) {
+    const PrismaticJoint& j = prismatics_[id];
+    e.elastic += jointElastic(j.compliance, j.impulse_linear, j.impulse_angular, h);
+    if (j.drive.mode == PrismaticDrive::Mode::Position && j.drive.stiffness > 0.0) {
+      const double error = prismaticSlide(id) - j.drive.target;
+      e.elastic += 0.5 * j.drive.stiffness * error * error;
+    }
+  }
+  for (const SphericalJoint& j : sphericals_)
+    e.elastic += jointElastic(j.compliance, j.impulse_linear, j.impulse_angular, h);
+  for (const FixedJoint& j : fixeds_)
+    e.elastic += jointElastic(j.compliance, j.impulse_linear, j.impulse_angular, h);
+  return e;
+}
+
+void World::addWork(double h) {
+  const double inv_h2 = 1.0 / (h * h);
+  // A motor drive's torque (lambda_drive / h^2, on a about the axis) times
+  // the turn of a relative to b over the substep, (w_a - w_b) . u h: the
+  // velocities are those the positions gave, whole turns and all.
+  for (const HingeJoint& j : hinges_) {
+    if (j.drive.mode == HingeDrive::Mode::None || j.drive.stiffness > 0.0 || j.angle.lambda_drive == 0.0) continue;
+    const Vec3 u = (body(j.a).q * j.frame.axis_a).normalized();
+    flows_.drive_work += j.angle.lambda_drive * inv_h2 * (body(j.a).omega - body(j.b).omega).dot(u) * h;
+  }
+  for (PrismaticId id = 0; id < static_cast<PrismaticId>(prismatics_.size()); ++id) {
+    const PrismaticJoint& j = prismatics_[id];
+    if (j.drive.mode == PrismaticDrive::Mode::None || j.drive.stiffness > 0.0 || j.slide.lambda_drive == 0.0) continue;
+    flows_.drive_work += j.slide.lambda_drive * inv_h2 * (prismaticSlide(id) - j.slide.start);
+  }
+  for (const BodyState& b : bodies_) {
+    if (!b.moves()) continue;
+    if (b.applied_force.squaredNorm() > 0.0) flows_.load_work += b.applied_force.dot(b.x - b.x_prev);
+    if (b.applied_torque.squaredNorm() > 0.0) flows_.load_work += b.applied_torque.dot(b.omega) * h;
+  }
+}
+
+}  // namespace reeve

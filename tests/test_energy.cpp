@@ -1,0 +1,234 @@
+// The energy ledger (issue 28): each channel against a closed form of the
+// integrator it measures (symplectic Euler: positions from the substep's
+// end velocity), at wheel/load masses from 1e-3 to 1e3 kg, both solvers and
+// budgets from 1 x 1 to 32 x 32; and the watch that tells energy created.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "reeve/cable/cable.h"
+#include "reeve/scene/energy.h"
+#include "solver_budgets.h"
+
+namespace reeve {
+namespace {
+
+constexpr double kG = 9.81;
+
+using test::Budget;
+using test::kFourBudgets;
+using test::name;
+
+World worldWith(const Budget& b, const Vec3& gravity) {
+  SolverSettings s;
+  s.gravity = gravity;
+  s.solver = b.solver;
+  s.substeps = b.substeps;
+  s.iterations = b.iterations;
+  return World(s);
+}
+
+void run(World& world, int frames) {
+  for (int f = 0; f < frames; ++f) world.step(1.0 / 60.0);
+}
+
+double total(const WorldEnergy& e) { return e.kinetic + e.gravity + e.elastic; }
+
+TEST(EnergyLedger, AFallingBodyLosesExactlyWhatSymplecticEulerLoses) {
+  // v += g h, x += v h: each substep trades m g . dx of potential for
+  // kinetic energy and loses m g^2 h^2 / 2, so after time T the balance is
+  // down by m g^2 h T / 2 (0.41 mJ per kg at 10 x 2 over 1 s).
+  for (const Budget& b : kFourBudgets)
+    for (const double mass : {1e-3, 1.0, 1e3}) {
+      SCOPED_TRACE(name(b) + ", " + std::to_string(mass) + " kg");
+      World world = worldWith(b, Vec3(0.0, -kG, 0.0));
+      BodyDef def;
+      def.shape = Shape::box(Vec3::Constant(0.1));
+      def.mass = mass;
+      def.linear_velocity = Vec3(1.0, 2.0, 0.0);
+      world.addBody(def);
+      const double start = total(world.energy());
+      run(world, 60);
+      const double h = 1.0 / (60.0 * b.substeps);
+      const double lost = 0.5 * mass * kG * kG * h * 1.0;
+      EXPECT_NEAR(total(world.energy()) - start, -lost, 1e-9 * mass * kG * kG);
+    }
+}
+
+TEST(EnergyLedger, AMotorPutsInWhatTheWheelHoldsPlusTheImplicitStepsLoss) {
+  // A 0.5 N m velocity drive spins a wheel (I = 0.09 kg m^2, or 1e3 times
+  // lighter or heavier) up from rest: w_k = k tau h / I after k substeps, so
+  // the work sum tau w_k h = I w_n^2 (1 + 1/n) / 2 while the wheel holds
+  // I w_n^2 / 2. Then, turned round, the drive brakes it to rest in as many
+  // substeps: its work is -I w_n^2 (1 - 1/n) / 2, so 2 / n of the spin is
+  // what the two implicit halves lost.
+  for (const Budget& b : kFourBudgets)
+    for (const double scale : {1e-3, 1.0, 1e3}) {
+      SCOPED_TRACE(name(b) + ", wheel x " + std::to_string(scale));
+      World world = worldWith(b, Vec3(0.0, -kG, 0.0));
+      BodyDef def;
+      def.shape = Shape::cylinder(0.3, 0.05);
+      def.mass = 2.0 * scale;
+      const BodyId wheel = world.addBody(def);
+      const double inertia = 0.5 * def.mass * 0.09;
+      const double tau = 0.5 * scale;
+      HingeDef hinge(wheel, kWorldBody, Vec3::Zero(), Vec3::UnitZ());
+      hinge.drive.mode = HingeDrive::Mode::Velocity;
+      hinge.drive.target = 100.0;  // not reached in 0.5 s: 0.5 / 0.09 x 0.5 = 2.8 rad/s
+      hinge.drive.max_torque = tau;
+      const HingeId id = world.addHinge(hinge);
+      run(world, 30);
+      const int n = 30 * b.substeps;
+      const double w = n * tau * (1.0 / (60.0 * b.substeps)) / inertia;
+      // Gauss-Seidel keeps the wheel on its axle by rows that the drive's
+      // row shares the sweep with: 1e-6 of the spin.
+      const double tolerance = b.solver == SolverKind::Direct ? 1e-9 : 1e-6;
+      ASSERT_NEAR(world.body(wheel).omega.z(), w, tolerance * w);
+      const WorldEnergy up = world.energy();
+      const double spin = 0.5 * inertia * w * w;
+      EXPECT_NEAR(up.kinetic, spin, tolerance * spin);
+      EXPECT_NEAR(up.drive_work, spin * (1.0 + 1.0 / n), tolerance * spin);
+      world.hinge(id).drive.target = 0.0;  // brake
+      run(world, 60);
+      const WorldEnergy down = world.energy();
+      EXPECT_NEAR(world.body(wheel).omega.z(), 0.0, tolerance * w);
+      EXPECT_NEAR(down.drive_work, spin * 2.0 / n, tolerance * spin);
+    }
+}
+
+TEST(EnergyLedger, AnAppliedForcePutsInMv2Over2PlusTheImplicitStepsLoss) {
+  for (const Budget& b : kFourBudgets) {
+    SCOPED_TRACE(name(b));
+    World world = worldWith(b, Vec3::Zero());
+    BodyDef def;
+    def.shape = Shape::sphere(0.1);
+    def.mass = 3.0;
+    const BodyId id = world.addBody(def);
+    world.body(id).applied_force = Vec3(6.0, 0.0, 0.0);
+    run(world, 60);
+    const int n = 60 * b.substeps;
+    const double v = 2.0;  // F t / m
+    const WorldEnergy e = world.energy();
+    EXPECT_NEAR(e.kinetic, 0.5 * 3.0 * v * v, 1e-9);
+    EXPECT_NEAR(e.load_work, 0.5 * 3.0 * v * v * (1.0 + 1.0 / n), 1e-9);
+  }
+}
+
+TEST(EnergyLedger, DampingTakesOutExactlyWhatTheSpinLoses) {
+  // A box spinning about a principal axis in zero gravity with angular
+  // damping c: w = w0 exp(-c t), and the ledger's damping is all of it.
+  for (const Budget& b : kFourBudgets) {
+    SCOPED_TRACE(name(b));
+    World world = worldWith(b, Vec3::Zero());
+    BodyDef def;
+    def.shape = Shape::box(Vec3(0.3, 0.2, 0.1));
+    def.mass = 5.0;
+    def.angular_velocity = Vec3(0.0, 0.0, 4.0);
+    def.angular_damping = 0.7;
+    const BodyId id = world.addBody(def);
+    const double start = world.energy().kinetic;
+    run(world, 120);
+    const WorldEnergy e = world.energy();
+    EXPECT_NEAR(world.body(id).omega.z(), 4.0 * std::exp(-0.7 * 2.0), 1e-12);
+    EXPECT_NEAR(e.damping_loss, start - e.kinetic, 1e-12 * start);
+  }
+}
+
+// A load of `mass` kg hanging 3 m below a winch drum fixed at the origin,
+// on an inextensible cable, or one of `compliance` (m/N).
+struct WinchRig {
+  World world;
+  CableSystem cables{world};
+  BodyId load = 0;
+  int cable = 0;
+  WinchRig(const Budget& b, double mass, double compliance = 0.0) : world(worldWith(b, Vec3(0.0, -kG, 0.0))) {
+    BodyDef frame;
+    frame.is_static = true;
+    frame.shape = Shape::box(Vec3::Constant(0.1));
+    const BodyId top = world.addBody(frame);
+    BodyDef def;
+    def.shape = Shape::box(Vec3::Constant(0.1));
+    def.mass = mass;
+    def.position = Vec3(0.0, -3.0, 0.0);
+    def.linear_damping = compliance > 0.0 ? 5.0 : 0.0;  // settles an elastic cable
+    load = world.addBody(def);
+    CableDef c;
+    c.compliance = compliance;
+    c.links = {LinkDef::attachment(load, Vec3::Zero()), LinkDef::attachment(top, Vec3::Zero())};
+    cable = cables.addCable(c);
+  }
+};
+
+TEST(EnergyLedger, AWinchPutsInTheLiftAndTakesItBackLosingOnlyItsFourJerks) {
+  // 5 kg or 500 kg hauled at 0.2 m/s for 1 s, held, paid out at 0.2 m/s for
+  // 1 s and held again: back where it started, at rest. A rigid cable
+  // changes the load's speed by 0.2 m/s within one substep four times, each
+  // an inelastic jerk of m (0.2)^2 / 2 that the implicit step loses, so the
+  // winch's net work is 0.08 m J, never less (less would be energy made).
+  for (const Budget& b : kFourBudgets)
+    for (const double mass : {5.0, 500.0}) {
+      SCOPED_TRACE(name(b) + ", " + std::to_string(mass) + " kg");
+      WinchRig rig(b, mass);
+      const double start = total(rig.world.energy());
+      WinchDef w;
+      for (const double speed : {0.2, 0.0, -0.2, 0.0}) {
+        w.speed = speed;
+        rig.cables.setWinch(rig.cable, w);
+        run(rig.world, 60);
+        const double work = rig.cables.winchWork(), gained = total(rig.world.energy()) - start;
+        EXPECT_GE(work, gained - 1e-9 * mass) << "at " << rig.world.time() << " s";
+        if (speed > 0.0) {
+          EXPECT_NEAR(gained, mass * (kG * 0.2 + 0.5 * 0.2 * 0.2), 1e-9 * mass);
+        }
+      }
+      EXPECT_NEAR(rig.world.body(rig.load).x.y(), -3.0, 1e-9);
+      EXPECT_NEAR(rig.cables.winchWork(), 4.0 * 0.5 * mass * 0.2 * 0.2, 1e-6 * mass);
+    }
+}
+
+TEST(EnergyLedger, AnElasticCableHoldsHalfItsComplianceTimesTheTensionSquared) {
+  // 2 kg at rest on a cable of 1e-3 m/N: stretch alpha m g, elastic energy
+  // alpha (m g)^2 / 2 = 0.192 J.
+  for (const Budget& b : kFourBudgets) {
+    SCOPED_TRACE(name(b));
+    WinchRig rig(b, 2.0, 3e-3);  // 3 m long: 1e-3 m/N per metre x 3 m
+    run(rig.world, 600);
+    const double weight = 2.0 * kG;
+    EXPECT_NEAR(rig.cables.tension(rig.cable, 0), weight, 1e-6 * weight);
+    EXPECT_NEAR(rig.world.energy().elastic, 0.5 * 3e-3 * weight * weight, 1e-6);
+  }
+}
+
+TEST(EnergyWatch, AKickNothingPutInIsEnergyCreatedAndTheScaleSetsTheTolerance) {
+  const std::string pendulum = R"({
+    "name": "pendulum", "duration_s": 5,
+    "solver": {"frame_rate_hz": 60, "substeps": 10, "iterations": 2},
+    "bodies": [{"name": "pin", "shape": {"type": "sphere", "radius_m": 0.01}, "static": true,
+                "position_m": [0, 0, 0]},
+               {"name": "bob", "shape": {"type": "sphere", "radius_m": 0.05}, "mass_kg": 1.0,
+                "position_m": [1, 0, 0]}],
+    "cables": [{"name": "rope", "links": [
+      {"body": "pin", "type": "attachment", "point_m": [0, 0, 0]},
+      {"body": "bob", "type": "attachment", "point_m": [0, 0, 0]}]}]})";
+  Scene scene = parseScene(pendulum, "<pendulum>");
+  EnergyWatch watch(scene);
+  for (int f = 0; f < 300; ++f) {
+    scene.world->step(1.0 / 60.0);
+    ASSERT_FALSE(watch.check(scene)) << "frame " << f;  // a swinging pendulum creates nothing
+  }
+  EXPECT_LE(watch.residual_J(), 0.0);
+  // A push by hand, which no actuator made: 1 kg given 3 m/s more.
+  scene.world->body(1).v += Vec3(0.0, 0.0, 3.0);
+  const double kick = 0.5 * (scene.world->body(1).v.squaredNorm() - (scene.world->body(1).v - Vec3(0, 0, 3)).squaredNorm());
+  scene.world->step(1.0 / 60.0);
+  const auto created = watch.check(scene);
+  ASSERT_TRUE(created);
+  EXPECT_NEAR(created->created_J, kick, 0.05 * kick);
+  EXPECT_TRUE(created->over_frame);
+  EXPECT_NE(energyCreatedMessage(*created).find("energy created at t = 5.01667 s"), std::string::npos)
+      << energyCreatedMessage(*created);
+}
+
+}  // namespace
+}  // namespace reeve

@@ -48,13 +48,13 @@ void walkRun(const Cable& cable, int j, bool loop, Visit visit) {
 bool hasFriction(const Link& link) { return link.mu > 0.0 && std::isfinite(link.mu); }
 
 // World point of a body-local anchor as the last solve left it (before
-// this substep's integration), or now if `now`. A tangent point on a
-// rolling link was just found anew for the turned body: at the old centre
-// with the new turn it is where the old tangent point was (exactly for a
-// circle, which a turn about its centre leaves in place).
-Vec3 pointAt(const BodyState& body, const Link& link, const Vec3& local, bool now) {
-  if (now) return body.toWorld(local);
-  return body.x_prev + (link.rolls() ? body.q : body.q_prev) * local;
+// this substep's integration), or now if `now`. On a rolling link too: the
+// anchors are those the last update found, which turned with the body
+// through the solve and no further. (Taken at this substep's turn instead,
+// a slipping wrap on a hinged wheel measured its slip less the wheel's
+// next turn, stuck and slipped by turns, and created energy: issue 28.)
+Vec3 pointAt(const BodyState& body, const Vec3& local, bool now) {
+  return now ? body.toWorld(local) : body.x_prev + body.q_prev * local;
 }
 
 }  // namespace
@@ -79,9 +79,7 @@ void CableSystem::settleRuns(Cable& cable, double h) {
     const CableJoint& span = cable.joints[k];
     const BodyState& a = world_.body(cable.links[k].body);
     const BodyState& b = world_.body(cable.links[span.to].body);
-    const Link& from = cable.links[k];
-    const Link& to = cable.links[span.to];
-    return (pointAt(b, to, span.local_b, h == 0.0) - pointAt(a, from, span.local_a, h == 0.0)).norm();
+    return (pointAt(b, span.local_b, h == 0.0) - pointAt(a, span.local_a, h == 0.0)).norm();
   };
   forEachRun(cable, [&](int j, bool loop) {
     double rest = 0.0, length = 0.0, weighed = 0.0;
@@ -106,7 +104,14 @@ void CableSystem::settleRuns(Cable& cable, double h) {
       before += span.rest_length;
       span.rest_length = weighted ? rest * share(k) / weighed : rest * spanLengthSolved(k) / length;
       after += span.rest_length;
-      if (h > 0.0 && !endsRun(cable, j, loop, k)) cable.links[span.to].slip_speed = (before - after) / h;
+      if (h == 0.0 || endsRun(cable, j, loop, k)) return;
+      Link& link = cable.links[span.to];
+      link.slip_speed = (before - after) / h;
+      // The work friction took out over the last substep: the slip times
+      // the tension it gained across the link (the energy ledger; never a
+      // credit where friction pushed the slip along).
+      if (hasFriction(link))
+        friction_loss_ += std::max(0.0, (cable.joints[span.to].weight - span.weight) * tension * (before - after));
     });
   });
 }

@@ -21,6 +21,7 @@ EnergyLedger energyLedger(const Scene& scene) {
   e.winch_work_J = scene.cables->winchWork();
   e.damping_J = world.damping_loss;
   e.contact_J = world.contact_loss;
+  e.friction_J = scene.cables->frictionLoss();
   return e;
 }
 

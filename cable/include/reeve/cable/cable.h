@@ -328,6 +328,12 @@ class CableSystem {
   /// the solve times the pull that solve held it with (negative paying out
   /// under load: a winch braking).
   double winchWork() const;
+  /// Work (J) cable friction took out since the system was made (the
+  /// energy ledger): per substep, at each slipping friction link, the cable
+  /// that slid over it times the tension it gained across it, as the last
+  /// solve left them, where that is a loss (friction that pushed the slip
+  /// along is not credited: the ledger shows its energy as created).
+  double frictionLoss() const { return friction_loss_; }
 
  private:
   /// turn_[b]: how far (rad, unwrapped) body b turned about its cable
@@ -383,6 +389,7 @@ class CableSystem {
   bool solve_turn_counted_ = false;     // the last update was by hand, after the solve
   std::optional<CableBreach> breach_;   // firstBreach()
   double winch_work_ = 0.0;             // J, winchWork() but the last substep's
+  double friction_loss_ = 0.0;          // J, frictionLoss()
 };
 
 }  // namespace reeve

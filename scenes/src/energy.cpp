@@ -50,6 +50,7 @@ std::optional<EnergyCreated> EnergyWatch::check(const Scene& scene) {
   last_ = now;
   peak_kinetic_elastic_ = std::max(peak_kinetic_elastic_, now.kinetic_J + now.elastic_J);
   const double scale = peak_kinetic_elastic_ + std::abs(now.work_J()) + now.dissipated_J() + potential_scale_J_;
+  scale_J_ = scale;
   const SolverSettings& settings = scene.world->settings();
   const double allowed = energyTolerance(1.0 / (scene.frame_rate_hz * settings.substeps)) * scale;
   std::optional<EnergyCreated> created;

@@ -63,6 +63,9 @@ class EnergyWatch {
   std::optional<EnergyCreated> check(const Scene& scene);
   /// The ledger of the last check (or of the start).
   const EnergyLedger& ledger() const { return last_; }
+  /// The energy scale (J) of the last check, of which the tolerance is a
+  /// fraction.
+  double scale_J() const { return scale_J_; }
   /// balance now minus at the start (J): the energy neither put in nor
   /// measured as taken out; <= 0 unless energy was created.
   double residual_J() const { return last_.balance_J() - start_balance_; }
@@ -72,6 +75,7 @@ class EnergyWatch {
   double peak_kinetic_elastic_ = 0.0;
   double start_balance_ = 0.0;
   double lowest_balance_ = 0.0;
+  double scale_J_ = 0.0;
   EnergyLedger last_;
 };
 

@@ -2,6 +2,9 @@
 // (warnings.h, predictedSecondsPerSimulatedSecond).
 #include "reeve/scene/warnings.h"
 
+#include <cstddef>
+#include <vector>
+
 namespace reeve {
 namespace {
 
@@ -15,6 +18,32 @@ constexpr double kCableJointSubstep_s = 0.9e-6;
 constexpr double kDirectRowIteration_s = 50e-9;
 constexpr double kGaussSeidelRowIteration_s = 160e-9;
 constexpr double kContactBodyIteration_s = 1.2e-6;
+// The direct solver's matrix couples every two rows on one body: k rows
+// on a body fill k^2 entries and factor like a dense k x k block (k^3 / 3
+// multiply-adds). Negligible along a chain (k of 2 to 6), it is what a
+// thousand joints between two bodies cost (issue 29: 7,000 rows on two
+// bodies took 4 GB and over 10 s a substep, a fuzzer's find).
+constexpr double kDirectPairIteration_s = 20e-9;
+constexpr double kDirectFlop_s = 1e-9;
+
+// Rows of the direct solver per dynamic body: each joint's rows and each
+// cable joint's one row count on both of its bodies.
+std::vector<double> rowsPerBody(const Scene& scene) {
+  const World& world = *scene.world;
+  std::vector<double> rows(static_cast<std::size_t>(world.bodyCount()), 0.0);
+  const auto add = [&](BodyId a, BodyId b, double count) {
+    for (const BodyId id : {a, b})
+      if (id != kWorldBody && world.bodyMass(id) > 0.0) rows[static_cast<std::size_t>(id)] += count;
+  };
+  for (const HingeJoint& j : world.hinges()) add(j.a, j.b, 5.0);
+  for (const PrismaticJoint& j : world.prismatics()) add(j.a, j.b, 5.0);
+  for (const SphericalJoint& j : world.sphericals()) add(j.a, j.b, 3.0);
+  for (const FixedJoint& j : world.fixedJoints()) add(j.a, j.b, 6.0);
+  for (const Cable& cable : scene.cables->cables())
+    for (std::size_t j = 0; j < cable.joints.size(); ++j)
+      add(cable.links[j].body, cable.links[static_cast<std::size_t>(cable.joints[j].to)].body, 1.0);
+  return rows;
+}
 
 }  // namespace
 
@@ -27,11 +56,14 @@ double predictedSecondsPerSimulatedSecond(const Scene& scene) {
                       3.0 * static_cast<double>(world.sphericals().size()) +
                       6.0 * static_cast<double>(world.fixedJoints().size());
   const double colliding = world.hasContacts() ? static_cast<double>(world.bodyCount()) : 0.0;
-  const double row_iteration =
-      settings.solver == SolverKind::Direct ? kDirectRowIteration_s : kGaussSeidelRowIteration_s;
+  const bool direct = settings.solver == SolverKind::Direct;
+  double coupled = 0.0;  // the direct solver's work on rows that share a body
+  if (direct)
+    for (const double k : rowsPerBody(scene)) coupled += kDirectPairIteration_s * k * k + kDirectFlop_s * k * k * k / 3.0;
+  const double row_iteration = direct ? kDirectRowIteration_s : kGaussSeidelRowIteration_s;
   const double substep = kBodySubstep_s * world.bodyCount() + kCableJointSubstep_s * cable_joints +
                          static_cast<double>(settings.iterations) *
-                             (row_iteration * rows + kContactBodyIteration_s * colliding);
+                             (row_iteration * rows + coupled + kContactBodyIteration_s * colliding);
   return scene.frame_rate_hz * static_cast<double>(settings.substeps) * substep;
 }
 

@@ -1,6 +1,7 @@
 // Cables that break (beyond the paper): a span pulled past the cable's
 // breaking tension parts, and the free ends it leaves run off whatever
 // cannot hold them.
+#include <algorithm>
 #include <cmath>
 
 #include "links.h"
@@ -26,22 +27,40 @@ bool holdsFreeEnd(const Link& link) {
 }  // namespace
 
 void CableSystem::breakOverloaded(Cable& cable, int c, double time_s, double h) {
-  // The last solve's tensions (lambda / h^2, times a span's capstan weight
-  // in a run with friction): the hardest pulled span past the limit parts.
+  // A run's path pulls with at most the breaking tension (buildRuns): a
+  // run the last solve held at it and still could not keep to its length
+  // (less the stretch its compliance allows at that tension) asked for
+  // more than the cable bears, and its hardest pulled span (weight 1)
+  // parts. It passed at most the breaking tension x h of impulse in that
+  // substep, as a real cable does; solved uncapped, it passed all the
+  // impulse the solve asked for and the bodies lost most of their speed
+  // (issue 28, item 13). Lengths are those the last solve left.
   int worst = -1;
-  double worst_tension = cable.breaking_tension;
+  double worst_excess = 0.0;  // m past what the run could stretch: the most overloaded run parts
   for (int j = 0; j < static_cast<int>(cable.joints.size()); ++j) {
     const CableJoint& joint = cable.joints[j];
-    if (!cable.links[j].active || joint.parted) continue;
-    const double t = -world_.path(cable.joints[joint.run].path).lambda / (h * h) * joint.weight;
-    if (t > worst_tension) {
-      worst = j;
-      worst_tension = t;
+    if (!cable.links[j].active || joint.parted || joint.run != j) continue;  // each run once, at its start
+    const PathConstraint& path = world_.path(joint.path);
+    if (!path.enabled || -path.lambda < cable.breaking_tension * h * h * (1.0 - 1e-9)) continue;
+    double length = 0.0;
+    for (std::size_t i = 0; i + 1 < path.points.size(); ++i) {
+      const BodyState& a = world_.body(path.points[i].body);
+      const BodyState& b = world_.body(path.points[i + 1].body);
+      length += ((b.x_prev + b.q_prev * path.points[i + 1].local) - (a.x_prev + a.q_prev * path.points[i].local)).norm();
     }
+    const double excess = length - path.rest_length - path.compliance * cable.breaking_tension;
+    if (excess <= std::max(worst_excess, 1e-9 * std::max(1.0, path.rest_length))) continue;  // held at its rating
+    worst_excess = excess;
+    worst = j;  // the run's hardest pulled span: the heaviest capstan weight
+    for (int k = 0; k < static_cast<int>(cable.joints.size()); ++k)
+      if (cable.joints[k].run == j && !cable.joints[k].parted && cable.links[k].active &&
+          cable.joints[k].weight > cable.joints[worst].weight)
+        worst = k;
   }
   if (worst < 0) return;
   part(cable, worst, 0.5);
-  events_.push_back({CableEvent::Kind::Break, time_s - h, c, worst, cable.links[worst].orientation, worst_tension});
+  events_.push_back(
+      {CableEvent::Kind::Break, time_s - h, c, worst, cable.links[worst].orientation, cable.breaking_tension});
   releaseFreeEnds(cable, c, time_s);
   buildRuns(cable);  // the parted span leaves its run before anything reads it
 }

@@ -199,11 +199,15 @@ void CableSystem::buildRuns(Cable& cable) {
     }
     path.rest_length = rest + chords;
     path.compliance = cable.compliance_per_m * stretch;
-    path.max_tension = std::numeric_limits<double>::infinity();
+    // A cable pulls with at most its breaking tension (its heaviest span,
+    // weight 1): past it, it parts (breakOverloaded) having passed no more.
+    path.max_tension = cable.breaking_tension;
     path.enabled = true;
   });
-  if (cable.winch && !cable.joints[winchSpan(cable).second].parted)  // its pull is limited
-    world_.path(cable.joints[cable.joints[winchSpan(cable).second].run].path).max_tension = cable.winch->max_pull;
+  if (cable.winch && !cable.joints[winchSpan(cable).second].parted) {  // its pull is limited
+    PathConstraint& reeled = world_.path(cable.joints[cable.joints[winchSpan(cable).second].run].path);
+    reeled.max_tension = std::min(reeled.max_tension, cable.winch->max_pull);
+  }
 }
 
 double CableSystem::wrapAngle(const Cable& cable, int k) const {

@@ -180,5 +180,44 @@ TEST(Winch, FollowsItsScheduleFromEachCommandsTime) {
   EXPECT_THROW(c.cables.setWinch(c.cable, w), std::invalid_argument);
 }
 
+TEST(Winch, HaulingACompliantCableBetweenTwoStaticAnchorsStretchesItToTheClosedForm) {
+  // Issue 28, item 8: 2 m of cable (compliance 2e-3 m/N for the whole, so
+  // 1e-3 per metre) between two static anchors, 0.3 m reeled in at 0.3
+  // m/s: 1.7 m of rest length stretched 0.3 m pulls 0.3 / 1.7e-3 = 176.5 N,
+  // holding 0.3^2 / (2 x 1.7e-3) = 26.5 J, which the winch put in (with the
+  // strain of the cable it reeled). The direct solver left the span out of
+  // its system, nothing in it moving: 0 N, and the energy from nowhere.
+  for (const Budget& b : test::kFourBudgets) {
+    SCOPED_TRACE(name(b));
+    World world;
+    world.settings().solver = b.solver;
+    world.settings().substeps = b.substeps;
+    world.settings().iterations = b.iterations;
+    CableSystem cables(world);
+    BodyDef post;
+    post.is_static = true;
+    post.shape = Shape::box(Vec3::Constant(0.05));
+    const BodyId a = world.addBody(post);
+    post.position = Vec3(2.0, 0.0, 0.0);
+    const BodyId c2 = world.addBody(post);
+    CableDef def;
+    def.links = {LinkDef::attachment(a, Vec3::Zero()), LinkDef::attachment(c2, Vec3::Zero())};
+    def.compliance = 2e-3;
+    const int cable = cables.addCable(def);
+    WinchDef w;
+    w.target_stored = 0.3;
+    w.max_speed = 0.3;
+    cables.setWinch(cable, w);
+    for (int f = 0; f < 90; ++f) world.step(1.0 / 60.0);
+    const double alpha = 1e-3 * 1.7, tension = 0.3 / alpha;
+    EXPECT_NEAR(cables.restLength(cable, 0), 1.7, 1e-12);
+    EXPECT_NEAR(cables.tension(cable, 0), tension, 1e-9 * tension);
+    EXPECT_NEAR(cables.winchPull(cable), tension, 1e-9 * tension);
+    const double elastic = 0.5 * 0.3 * 0.3 / alpha;
+    EXPECT_NEAR(world.energy().elastic, elastic, 1e-9 * elastic);
+    EXPECT_GE(cables.winchWork(), elastic);  // the winch put it in: nothing made
+  }
+}
+
 }  // namespace
 }  // namespace reeve

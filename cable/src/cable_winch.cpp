@@ -49,7 +49,10 @@ void CableSystem::setWinch(int c, const WinchDef& winch) {
 
 double CableSystem::winchWork() const {
   double work = winch_work_;
-  for (int c = 0; c < static_cast<int>(cables_.size()); ++c) work += cables_[c].reeled * winchPull(c);
+  for (int c = 0; c < static_cast<int>(cables_.size()); ++c) {
+    const double pull = winchPull(c);
+    work += cables_[c].reeled * pull * (1.0 + cables_[c].compliance_per_m * std::max(0.0, pull));
+  }
   return work;
 }
 
@@ -80,7 +83,8 @@ void CableSystem::reel(Cable& cable, double start_s, double h) {
   // poses that solve left (the anchors are still its anchors).
   const PathConstraint& path = world_.path(cable.joints[span.run].path);
   const double pull = -path.lambda / (h * h) * span.weight;  // N, what the last solve pulled with
-  winch_work_ += pull * cable.reeled;
+  // Cable reeled in stretched by the pull: its rest length x (1 + strain).
+  winch_work_ += pull * cable.reeled * (1.0 + cable.compliance_per_m * std::max(0.0, pull));
   cable.reeled = 0.0;
   if (std::isfinite(winch.max_pull) && -path.lambda >= winch.max_pull * h * h * (1.0 - 1e-9)) {
     double length = 0.0;

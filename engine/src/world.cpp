@@ -459,6 +459,17 @@ void World::solvePositions(double h) {
     bool weighted = false;
     for (const PathConstraint& p : paths_) weighted |= p.enabled && !p.weights.empty();
     direct_->prepare(*this, h);
+    // A row that nothing moves (a cable between two static anchors) is not
+    // in the direct system, but a compliant one still pulls: with w = 0 one
+    // visit sets its tension to stretch / compliance (issue 28, item 8; it
+    // read 0, and friction links beside it decided on that 0).
+    for (PathConstraint& p : paths_)
+      if (p.enabled && p.weights.empty() && p.compliance > 0.0 &&
+          std::none_of(p.points.begin(), p.points.end(), [&](const PathPoint& q) { return body(q.body).moves(); }))
+        solvePathConstraint(p, table, p.compliance * inv_h2, h);
+    for (DistanceConstraint& c : distances_)
+      if (c.enabled && c.compliance > 0.0 && !body(c.a).moves() && !body(c.b).moves())
+        solveDistanceConstraint(c, body(c.a), body(c.b), c.compliance * inv_h2);
     for (int it = 0; it < settings_.iterations; ++it) {
       const bool moved = direct_->iterate(*this, h);
       if (!moved && manifolds_.empty() && !weighted) break;  // converged: the rest would do nothing

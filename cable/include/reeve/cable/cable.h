@@ -325,8 +325,9 @@ class CableSystem {
   double winchPull(int c) const;
   /// Work (J) the winches put into the machine since the system was made
   /// (issue 28's energy ledger): per substep, the cable reeled in before
-  /// the solve times the pull that solve held it with (negative paying out
-  /// under load: a winch braking).
+  /// the solve (as stretched by that pull: rest length x (1 + strain))
+  /// times the pull that solve held it with (negative paying out under
+  /// load: a winch braking).
   double winchWork() const;
   /// Work (J) cable friction took out since the system was made (the
   /// energy ledger): per substep, at each slipping friction link, the cable

@@ -286,6 +286,21 @@ TEST_F(Cli, AThousandJointsOnTwoBodiesAreWarnedOfBeforeTheRun) {
   EXPECT_GT(std::stod(m[1]), 3600.0);  // an hour of computing per simulated second, at least
 }
 
+TEST_F(Cli, AWheelCarriedFurtherThanItsSizeInASubstepIsSaidToBeTheCause) {
+  // The fuzzer's fourth finding: gear_1_to_4 with gravity 184,539 m/s^2
+  // sideways and the small wheel hinged 1 m off its centre. Integration
+  // carries it 3.2 m in the first substep, so the belt's update sees it
+  // unwrapped (-1 m of cable stored on it). Not a diverged solve (it did not
+  // turn): the run says what moved and how far.
+  const std::string scene = std::string(REEVE_FUZZ_REGRESSIONS_DIR) + "/gear_belt_at_18000_g.json";
+  const Result r = reeve("run " + scene + " --frames 3 --substeps 4 --iterations 4");
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_NE(r.err.find("cable 'belt': link 0 stores a negative length of cable"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("body 'small' moved 3.2 m in that substep, more than its own size (0.255 m)"),
+            std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("The solve diverged"), std::string::npos) << r.err;
+}
+
 TEST_F(Cli, ASpoolThatRunsOutOfCableStopsTheRunSayingSo) {
   // The fuzzer's second finding: gear_1_to_4 with the small hub's rope
   // given no stored cable. The weight pays 1e-5 m out of it in the first

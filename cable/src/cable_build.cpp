@@ -159,8 +159,11 @@ int CableSystem::addCable(const CableDef& def) {
     if (last_q_.size() <= static_cast<size_t>(link.body)) {
       last_q_.resize(link.body + 1, Quat::Identity());
       turn_.resize(link.body + 1, 0.0);
+      last_x_.resize(link.body + 1, Vec3::Zero());
+      move_.resize(link.body + 1, 0.0);
     }
     last_q_[link.body] = world_.body(link.body).q;
+    last_x_[link.body] = world_.body(link.body).x;
   }
   cable.total_length = total;
   cables_.push_back(std::move(cable));

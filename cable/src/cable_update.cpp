@@ -9,6 +9,7 @@
 #include "link_geometry.h"
 #include "links.h"
 #include "reeve/cable/cable.h"
+#include "reeve/engine/collide.h"
 
 namespace reeve {
 namespace {
@@ -42,6 +43,8 @@ void CableSystem::measureTurns(double h) {
     const double expected = (h * body.omega + solved).dot(n);
     turn_[b] = expected + std::remainder(twist - expected, 2.0 * std::numbers::pi);
     last_q_[b] = body.q;
+    move_[b] = (body.x - last_x_[b]).norm();
+    last_x_[b] = body.x;
   }
   // An update by hand between steps (h = 0) has counted the last solve's
   // turn; the next substep's must not count it again.
@@ -68,11 +71,18 @@ void CableSystem::update(double time_s, double h) {
   if (breach_) return;  // the first one says what went wrong
   if (auto b = findBreach()) {
     b->time_s = time_s;
-    for (const BodyId body : rolling_bodies_)
+    for (const BodyId body : rolling_bodies_) {
       if (b->fastest < 0 || std::abs(turn_[body]) > std::abs(b->fastest_turn)) {
         b->fastest = body;
         b->fastest_turn = turn_[body];
       }
+      const double radius = boundingRadius(world_.bodyDef(body).shape);
+      if (b->farthest < 0 || move_[body] / radius > b->farthest_move / b->farthest_radius) {
+        b->farthest = body;
+        b->farthest_move = move_[body];
+        b->farthest_radius = radius;
+      }
+    }
     breach_ = std::move(b);
   }
 }

@@ -70,10 +70,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     scene->world->step(1.0 / scene->frame_rate_hz);
     if (scene->world->firstNonFinite()) return 0;  // `reeve run` stops here, naming it
     if (const auto& breach = scene->cables->firstBreach()) {
-      // `reeve run` stops here too, blaming a spool that ran out or else a
-      // diverged solve; with no wheel turning even half a turn in the
-      // substep the second blame would be wrong.
-      if (!breach->spool_ran_out && std::abs(breach->fastest_turn) < std::numbers::pi) {
+      // `reeve run` stops here too, blaming a spool that ran out, a wheel
+      // carried further than its size in the substep, or else a diverged
+      // solve; with no wheel turning even half a turn the last blame would
+      // be wrong.
+      if (!breach->spool_ran_out && std::abs(breach->fastest_turn) < std::numbers::pi &&
+          breach->farthest_move <= breach->farthest_radius) {
         std::fprintf(stderr, "fuzz_scene: cable bookkeeping broke with no wheel turning fast: %s\n",
                      breach->what.c_str());
         std::abort();

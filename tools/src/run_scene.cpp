@@ -64,6 +64,15 @@ std::string breachMessage(const CableBreach& breach, const World& world) {
   if (breach.spool_ran_out)
     return message + ". Its rolling end ran out of cable: it holds only the stored_m it was given. Give it "
                      "more, or make it a \"hybrid\" link, which ties the cable where it runs out";
+  if (breach.farthest >= 0 && breach.farthest_move > breach.farthest_radius) {
+    char move[32], radius[32];
+    std::snprintf(move, sizeof move, "%.3g", breach.farthest_move);
+    std::snprintf(radius, sizeof radius, "%.3g", breach.farthest_radius);
+    return message + "; body " + bodyName(world, breach.farthest) + " moved " + move +
+           " m in that substep, more than its own size (" + radius +
+           " m): the cable's tangents cannot follow a wheel that jumps that far. Nothing of that frame was "
+           "written. Try more substeps, or check the loads (gravity, applied forces) for one far too large";
+  }
   if (breach.fastest >= 0)
     message += "; body " + bodyName(world, breach.fastest) + " turned " + turn + " rad in that substep";
   return message +

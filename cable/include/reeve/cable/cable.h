@@ -239,6 +239,13 @@ struct CableBreach {
   bool spool_ran_out = false;
   BodyId fastest = -1;        ///< the rolling body that turned furthest in that update
   double fastest_turn = 0.0;  ///< its turn in that update (rad, signed)
+  /// The rolling body that moved furthest since the update before, for its
+  /// size: its move (m) and its bounding radius (m). A wheel carried
+  /// further than its own size in one substep (18,000 g on a pendulum)
+  /// leaves the tangents nothing to follow, as one turned past half a turn.
+  BodyId farthest = -1;
+  double farthest_move = 0.0;
+  double farthest_radius = 0.0;
 };
 
 /// All cables of a World. Registers a substep hook on construction that
@@ -387,6 +394,8 @@ class CableSystem {
   std::vector<BodyId> rolling_bodies_;  // bodies with a rolling or hybrid link
   std::vector<Quat> last_q_;            // per body: orientation at the last update
   std::vector<double> turn_;            // per body, rad (measureTurns)
+  std::vector<Vec3> last_x_;            // per body: position at the last update
+  std::vector<double> move_;            // per body, m since the last update (measureTurns)
   bool solve_turn_counted_ = false;     // the last update was by hand, after the solve
   std::optional<CableBreach> breach_;   // firstBreach()
   double winch_work_ = 0.0;             // J, winchWork() but the last substep's

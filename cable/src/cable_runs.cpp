@@ -204,7 +204,12 @@ void CableSystem::buildRuns(Cable& cable) {
     path.max_tension = cable.breaking_tension;
     path.enabled = true;
   });
-  if (cable.winch && !cable.joints[winchSpan(cable).second].parted) {  // its pull is limited
+  // A winch's pull is limited while its drum holds cable to pay out under
+  // the load (it stalls: reel()); an empty drum holds the cable's tied end
+  // whatever the pull (issue 28, item 4: capped, the inextensible span
+  // stretched from nothing, 1.9 m in 1 s under 10 kg at 60 N).
+  if (cable.winch && !cable.joints[winchSpan(cable).second].parted &&
+      cable.links[winchSpan(cable).first].stored > 0.0) {
     PathConstraint& reeled = world_.path(cable.joints[cable.joints[winchSpan(cable).second].run].path);
     reeled.max_tension = std::min(reeled.max_tension, cable.winch->max_pull);
   }

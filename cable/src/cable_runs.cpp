@@ -138,8 +138,19 @@ void CableSystem::switchSlips(Cable& cable, double h) {
     // The last solve's tensions: its lambdas over this substep's h (the
     // World's lastSubstep() is not set until its first step ends).
     const int p = previousActive(cable, k);
+    // An inextensible run that nothing moves (a winch's span between a
+    // static drum and a pinhole) cannot be solved: stretched, it pulls as
+    // hard as anything pulls against it, and slips over the link towards
+    // itself (issue 28, item 6: read as 0 N, the link slipped the other
+    // way, paying the winch's cable out to the load, which the path then
+    // flung up at up to 10 m/s).
     const auto tension = [&](int j) {
-      return -world_.path(cable.joints[cable.joints[j].run].path).lambda / (h * h) * cable.joints[j].weight;
+      const PathConstraint& path = world_.path(cable.joints[cable.joints[j].run].path);
+      if (path.compliance == 0.0 && world_.pathLength(cable.joints[cable.joints[j].run].path) > path.rest_length &&
+          std::none_of(path.points.begin(), path.points.end(),
+                       [&](const PathPoint& q) { return world_.body(q.body).moves(); }))
+        return std::numeric_limits<double>::infinity();
+      return -path.lambda / (h * h) * cable.joints[j].weight;
     };
     const double in = tension(p), out = tension(k);
     const double bound = std::exp(link.mu * wrapAngle(cable, k));

@@ -83,16 +83,19 @@ void CableSystem::reel(Cable& cable, double start_s, double h) {
   // poses that solve left (the anchors are still its anchors).
   const PathConstraint& path = world_.path(cable.joints[span.run].path);
   const double pull = -path.lambda / (h * h) * span.weight;  // N, what the last solve pulled with
+  double length = 0.0;  // the run's, as that solve left it
+  for (std::size_t i = 0; i + 1 < path.points.size(); ++i) {
+    const BodyState& a = world_.body(path.points[i].body);
+    const BodyState& b = world_.body(path.points[i + 1].body);
+    length += ((b.x_prev + b.q_prev * path.points[i + 1].local) - (a.x_prev + a.q_prev * path.points[i].local)).norm();
+  }
   // Cable reeled in stretched by the pull: its rest length x (1 + strain).
+  // Reeled against a run that solve could not pull (a span between static
+  // bodies behind a stuck friction link), it is still to be paid for by
+  // the solve that takes the stretch up.
   winch_work_ += pull * cable.reeled * (1.0 + cable.compliance_per_m * std::max(0.0, pull));
-  cable.reeled = 0.0;
+  if (pull > 0.0 || length <= path.rest_length) cable.reeled = 0.0;
   if (std::isfinite(winch.max_pull) && -path.lambda >= winch.max_pull * h * h * (1.0 - 1e-9)) {
-    double length = 0.0;
-    for (std::size_t i = 0; i + 1 < path.points.size(); ++i) {
-      const BodyState& a = world_.body(path.points[i].body);
-      const BodyState& b = world_.body(path.points[i + 1].body);
-      length += ((b.x_prev + b.q_prev * path.points[i + 1].local) - (a.x_prev + a.q_prev * path.points[i].local)).norm();
-    }
     const double given = std::min(std::max(0.0, length - path.rest_length), drum.stored);
     span.rest_length += given;
     drum.stored -= given;
@@ -106,7 +109,7 @@ void CableSystem::reel(Cable& cable, double start_s, double h) {
   in = std::clamp(in, -drum.stored, span.rest_length);
   span.rest_length -= in;
   drum.stored += in;
-  cable.reeled = in;
+  cable.reeled += in;
 }
 
 }  // namespace reeve

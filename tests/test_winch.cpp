@@ -9,6 +9,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "reeve/cable/cable.h"
 #include "solver_budgets.h"
@@ -181,6 +182,26 @@ TEST(Winch, FollowsItsScheduleFromEachCommandsTime) {
   EXPECT_THROW(c.cables.setWinch(c.cable, w), std::invalid_argument);
 }
 
+// A World at budget `b` under `gravity` (m/s^2).
+World budgetWorld(const Budget& b, const Vec3& gravity) {
+  World world;
+  world.settings().gravity = gravity;
+  world.settings().solver = b.solver;
+  world.settings().substeps = b.substeps;
+  world.settings().iterations = b.iterations;
+  return world;
+}
+
+// Two static posts, at the origin and 2 m along x.
+std::pair<BodyId, BodyId> twoPosts(World& world) {
+  BodyDef post;
+  post.is_static = true;
+  post.shape = Shape::box(Vec3::Constant(0.05));
+  const BodyId first = world.addBody(post);
+  post.position = Vec3(2.0, 0.0, 0.0);
+  return {first, world.addBody(post)};
+}
+
 TEST(Winch, HaulingACompliantCableBetweenTwoStaticAnchorsStretchesItToTheClosedForm) {
   // Issue 28, item 8: 2 m of cable (compliance 2e-3 m/N for the whole, so
   // 1e-3 per metre) between two static anchors, 0.3 m reeled in at 0.3
@@ -190,17 +211,9 @@ TEST(Winch, HaulingACompliantCableBetweenTwoStaticAnchorsStretchesItToTheClosedF
   // its system, nothing in it moving: 0 N, and the energy from nowhere.
   for (const Budget& b : test::kFourBudgets) {
     SCOPED_TRACE(name(b));
-    World world;
-    world.settings().solver = b.solver;
-    world.settings().substeps = b.substeps;
-    world.settings().iterations = b.iterations;
+    World world = budgetWorld(b, Vec3::Zero());
     CableSystem cables(world);
-    BodyDef post;
-    post.is_static = true;
-    post.shape = Shape::box(Vec3::Constant(0.05));
-    const BodyId a = world.addBody(post);
-    post.position = Vec3(2.0, 0.0, 0.0);
-    const BodyId c2 = world.addBody(post);
+    const auto [a, c2] = twoPosts(world);
     CableDef def;
     def.links = {LinkDef::attachment(a, Vec3::Zero()), LinkDef::attachment(c2, Vec3::Zero())};
     def.compliance = 2e-3;
@@ -284,18 +297,9 @@ TEST(Winch, HaulingAndPayingOutThroughAFrictionPinholeHoldTheCapstanRatio) {
     for (const double speed : {0.2, -0.2}) {
       if (speed < 0.0 && b.substeps > 1) continue;
       SCOPED_TRACE(name(b) + ", " + std::to_string(speed) + " m/s");
-      World world;
-      world.settings().gravity = Vec3(0.0, -g, 0.0);
-      world.settings().solver = b.solver;
-      world.settings().substeps = b.substeps;
-      world.settings().iterations = b.iterations;
+      World world = budgetWorld(b, Vec3(0.0, -g, 0.0));
       CableSystem cables(world);
-      BodyDef post;
-      post.is_static = true;
-      post.shape = Shape::box(Vec3::Constant(0.05));
-      const BodyId pin = world.addBody(post);
-      post.position = Vec3(2.0, 0.0, 0.0);
-      const BodyId drum = world.addBody(post);
+      const auto [pin, drum] = twoPosts(world);
       BodyDef def;
       def.shape = Shape::box(Vec3::Constant(0.05));
       def.mass = 10.0;

@@ -245,6 +245,34 @@ TEST_F(Cli, ADivergedSolveThatBreaksTheCableBookkeepingStopsTheRun) {
   }
 }
 
+TEST_F(Cli, RestLengthsThatAFrictionlessPinholeSharesOutAreWarnedOf) {
+  // Issue 28, item 10: spans of 2 m and 4 m through a frictionless pinhole,
+  // given rest lengths of 3 and 3 m. The cable slides through the hole, so
+  // the run shares its 6 m in proportion to the lengths and the first CSV
+  // row reads 2 and 4: said at load now, not silently.
+  const std::string scene = write("pinhole.json", R"({"name": "resplit", "duration_s": 0.1, "solver": {"substeps": 10},
+    "bodies": [{"name": "wall", "static": true, "shape": {"type": "box", "half_extents_m": [0.05, 0.05, 0.05]}, "position_m": [-2, 0, 0]},
+               {"name": "post", "static": true, "shape": {"type": "box", "half_extents_m": [0.05, 0.05, 0.05]}, "position_m": [0, 0, 0]},
+               {"name": "load", "shape": {"type": "box", "half_extents_m": [0.05, 0.05, 0.05]}, "mass_kg": 1, "position_m": [0, -4, 0]}],
+    "cables": [{"name": "rope", "rest_length_m": [3, 3], "links": [
+      {"body": "wall", "type": "attachment", "point_m": [0, 0, 0]},
+      {"body": "post", "type": "pinhole", "point_m": [0, 0, 0]},
+      {"body": "load", "type": "attachment", "point_m": [0, 0, 0]}]}]})");
+  const Result v = reeve("validate " + scene);
+  EXPECT_EQ(v.code, 0) << v.err;
+  EXPECT_NE(v.err.find("pinhole.json: /cables/0/rest_length_m: cable 'rope' slides through its frictionless pinholes "
+                       "or wraps, so the spans joined there share one rest length in proportion to their lengths: "
+                       "[3, 3] is read as [2, 4] (the sum, 6 m, kept)"),
+            std::string::npos)
+      << v.err;
+  const Result r = reeve("run " + scene + " --frames 1 --csv " + path("out.csv"));
+  EXPECT_EQ(r.code, 0) << r.err;
+  const std::string csv = test::slurp(path("out.csv"));
+  const std::size_t row = csv.find('\n') + 1;
+  // t = 0: time, the load's position, then tension, rest length and length of each span.
+  EXPECT_EQ(csv.compare(row, 20, "0,0,-4,0,0,2,2,0,4,4"), 0) << csv;
+}
+
 // Issue 27: the schema allows 1e10 iterations a frame, and validate said
 // "ok" to a run of days. Settings whose predicted cost passes a minute per
 // simulated second are warned of (exit status unchanged), with the

@@ -152,6 +152,11 @@ int CableSystem::addCable(const CableDef& def) {
     joint.path = world_.addPath(std::move(path));
   }
   syncRuns(cable);
+  for (int j = 0; j < joints && !def.rest_lengths.empty(); ++j)
+    if (std::abs(cable.joints[j].rest_length - def.rest_lengths[j]) > 1e-9 * std::max(1.0, def.rest_lengths[j])) {
+      cable.given_rest_lengths = def.rest_lengths;  // re-shared by its runs
+      break;
+    }
   for (const Link& link : cable.links) {
     if (link.type != LinkType::Rolling && link.type != LinkType::Hybrid) continue;
     if (std::find(rolling_bodies_.begin(), rolling_bodies_.end(), link.body) == rolling_bodies_.end())

@@ -1,6 +1,7 @@
 // What loads but will likely not run as its author meant (warnings.h).
 #include <algorithm>
 #include <cstdio>
+#include <string>
 
 #include "reeve/scene/warnings.h"
 
@@ -22,6 +23,29 @@ std::vector<SceneWarning> sceneWarnings(const Scene& scene) {
                     cable.name.c_str(), j, stretch, rest);
       warnings.push_back({"/cables/" + std::to_string(c) + "/rest_length_m/" + std::to_string(j), text});
     }
+  }
+  for (int c = 0; c < static_cast<int>(cables.cables().size()); ++c) {
+    const Cable& cable = cables.cables()[c];
+    if (cable.given_rest_lengths.empty()) continue;
+    // Spans joined through a frictionless pinhole or wrap share one rest
+    // length: only its sum holds, in proportion to their lengths.
+    std::string given, read;
+    double sum = 0.0;
+    for (std::size_t j = 0; j < cable.joints.size(); ++j) {
+      char a[32], b[32];
+      std::snprintf(a, sizeof a, "%s%.6g", j ? ", " : "", cable.given_rest_lengths[j]);
+      std::snprintf(b, sizeof b, "%s%.6g", j ? ", " : "", cable.joints[j].rest_length);
+      given += a;
+      read += b;
+      sum += cable.joints[j].rest_length;
+    }
+    char text[512];
+    std::snprintf(text, sizeof text,
+                  "cable '%s' slides through its frictionless pinholes or wraps, so the spans joined there share "
+                  "one rest length in proportion to their lengths: [%s] is read as [%s] (the sum, %.6g m, kept); "
+                  "give \"mu\" to hold a split",
+                  cable.name.c_str(), given.c_str(), read.c_str(), sum);
+    warnings.push_back({"/cables/" + std::to_string(c) + "/rest_length_m", text});
   }
   const double cost = predictedSecondsPerSimulatedSecond(scene);
   if (cost > kSlowSceneWarning_s) {

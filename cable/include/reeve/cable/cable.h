@@ -224,6 +224,11 @@ struct Cable {
   // m the winch reeled in before the last solve, whose pull (known once
   // that solve is done) times it is the winch's work (winchWork).
   double reeled = 0.0;
+  /// The rest lengths CableDef::rest_lengths gave (m, per joint), kept only
+  /// where spans joined through a frictionless pinhole or wrap share one
+  /// rest length in proportion to their lengths and so read otherwise at
+  /// load (issue 28, item 10: a scene warning says so); else empty.
+  std::vector<double> given_rest_lengths;
   double breaking_tension = std::numeric_limits<double>::infinity();  // N
   bool broken = false;  // a span has parted
 };

@@ -41,6 +41,10 @@ double predictedSecondsPerSimulatedSecond(const Scene& scene);
 ///   in at once, and a direct solve that must turn wheels radians to do it
 ///   can diverge (CableSystem::firstBreach). The fuzzer's first finding
 ///   was one.
+/// - rest lengths given for spans that a frictionless pinhole or wrap
+///   joins into one run (at "/cables/N/rest_length_m"): the run shares
+///   its rest length in proportion to the spans' lengths, so they read
+///   otherwise than given (their sum kept; issue 28, item 10).
 /// - solver settings (at "/solver") that predict more than
 ///   kSlowSceneWarning_s per simulated second, with the prediction.
 std::vector<SceneWarning> sceneWarnings(const Scene& scene);

@@ -334,5 +334,35 @@ TEST(Winch, HaulingAndPayingOutThroughAFrictionPinholeHoldTheCapstanRatio) {
     }
 }
 
+TEST(Winch, AnOverloadedWinchPayingOutBrakesAtItsMaximumPullOnceTheLoadCatchesUp) {
+  // Issue 28, item 5, turned round: 10 kg held by a 60 N winch (1 m of
+  // cable on its drum), then told to pay out at 0.2 m/s. The load falls
+  // freely into the slack paid out until it has fallen as far as the drum
+  // gave (g t^2 / 2 = 0.2 t: t_c = 0.0408 s, 0.4 m/s), then the winch
+  // cannot brake it to 0.2 m/s with 60 N and stalls: 3.81 m/s^2 on from
+  // there, so 2.15 m/s at 0.5 s, pulling 60 N. (Read over the whole 0.5 s
+  // as one acceleration, that is 4.3 m/s^2: the free fall, not a weak brake.)
+  for (const Budget& b : test::kFourBudgets) {
+    SCOPED_TRACE(name(b));
+    Crane c(10.0, b.solver, b.substeps, b.iterations);
+    WinchDef w;
+    w.max_pull = 1e5;
+    w.speed = 1.0;
+    w.max_speed = 1.0;
+    w.schedule = {{1.0, 0.0, std::nullopt}};
+    c.cables.setWinch(c.cable, w);
+    c.run(1.5);
+    w = WinchDef{};
+    w.max_pull = 60.0;
+    w.speed = -0.2;
+    c.cables.setWinch(c.cable, w);
+    c.run(0.5);
+    const double t_c = 2.0 * 0.2 / kG, h = 1.0 / (60.0 * b.substeps);
+    const double v = kG * t_c + (kG - 6.0) * (0.5 - t_c);
+    EXPECT_NEAR(-c.world.body(c.load).v.y(), v, 2.0 * kG * h);  // the catch-up falls on a substep
+    EXPECT_NEAR(c.cables.winchPull(c.cable), 60.0, 1e-6);
+  }
+}
+
 }  // namespace
 }  // namespace reeve

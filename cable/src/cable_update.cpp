@@ -3,13 +3,13 @@
 // through pinholes and sliding wraps are in cable_runs.cpp.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <utility>
 
 #include "link_geometry.h"
 #include "links.h"
 #include "reeve/cable/cable.h"
-#include "reeve/engine/collide.h"
 
 namespace reeve {
 namespace {
@@ -76,7 +76,12 @@ void CableSystem::update(double time_s, double h) {
         b->fastest = body;
         b->fastest_turn = turn_[body];
       }
-      const double radius = boundingRadius(world_.bodyDef(body).shape);
+      // Its size for the tangents: the smallest of its cable sections (the
+      // radius of a circle of the same perimeter).
+      double radius = std::numeric_limits<double>::infinity();
+      for (const Cable& c : cables_)
+        for (const Link& link : c.links)
+          if (link.body == body && link.rolls()) radius = std::min(radius, link.section.perimeter() / (2.0 * std::numbers::pi));
       if (b->farthest < 0 || move_[body] / radius > b->farthest_move / b->farthest_radius) {
         b->farthest = body;
         b->farthest_move = move_[body];

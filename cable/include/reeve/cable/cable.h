@@ -245,7 +245,8 @@ struct CableBreach {
   BodyId fastest = -1;        ///< the rolling body that turned furthest in that update
   double fastest_turn = 0.0;  ///< its turn in that update (rad, signed)
   /// The rolling body that moved furthest since the update before, for its
-  /// size: its move (m) and its bounding radius (m). A wheel carried
+  /// size: its move (m) and its size for the tangents (m: the radius of a
+  /// circle as long round as its smallest cable section). A wheel carried
   /// further than its own size in one substep (18,000 g on a pendulum)
   /// leaves the tangents nothing to follow, as one turned past half a turn.
   BodyId farthest = -1;

@@ -233,6 +233,22 @@ TEST(Winch, HaulingACompliantCableBetweenTwoStaticAnchorsStretchesItToTheClosedF
   }
 }
 
+// Hauls 1 m onto the drum at 1 m/s (a pull no start can stall), holds it
+// 0.5 s, then caps the winch at `max_pull` N commanding `speed` m/s.
+void haulOneMetreThenCap(Crane& c, double max_pull, double speed) {
+  WinchDef w;
+  w.max_pull = 1e5;
+  w.speed = 1.0;
+  w.max_speed = 1.0;
+  w.schedule = {{1.0, 0.0, std::nullopt}};
+  c.cables.setWinch(c.cable, w);
+  c.run(1.5);
+  w = WinchDef{};
+  w.max_pull = max_pull;
+  w.speed = speed;
+  c.cables.setWinch(c.cable, w);
+}
+
 TEST(Winch, AnOverloadedWinchPaysOutWhatItHoldsAndAnEmptyDrumHolds) {
   // Issue 28, item 4: 10 kg on a winch of 60 N at most. On an empty drum
   // it cannot pay out: the tied end holds the load at 98.1 N (capped, the
@@ -255,17 +271,9 @@ TEST(Winch, AnOverloadedWinchPaysOutWhatItHoldsAndAnEmptyDrumHolds) {
     EXPECT_NEAR(empty.cables.length(empty.cable, 0), empty.cables.restLength(empty.cable, 0), 1e-9);
 
     Crane c(10.0, b.solver, b.substeps, b.iterations);
-    w.max_pull = 1e5;  // the haul's start (1 m/s in one substep) must not stall it
-    w.speed = 1.0;
-    w.max_speed = 1.0;
-    w.schedule = {{1.0, 0.0, std::nullopt}};  // 1 m in, then hold
-    c.cables.setWinch(c.cable, w);
-    c.run(1.5);
+    haulOneMetreThenCap(c, 60.0, 0.0);
     ASSERT_NEAR(c.stored(), 1.0, 1e-9);
     const double y0 = c.world.body(c.load).x.y();
-    w = WinchDef{};
-    w.max_pull = 60.0;
-    c.cables.setWinch(c.cable, w);
     const double a = kG - 60.0 / 10.0, h = 1.0 / (60.0 * b.substeps);
     double worst_stretch = 0.0;
     for (int f = 0; f < 30; ++f) {  // 0.5 s of the 0.72 s the drum lasts
@@ -345,17 +353,7 @@ TEST(Winch, AnOverloadedWinchPayingOutBrakesAtItsMaximumPullOnceTheLoadCatchesUp
   for (const Budget& b : test::kFourBudgets) {
     SCOPED_TRACE(name(b));
     Crane c(10.0, b.solver, b.substeps, b.iterations);
-    WinchDef w;
-    w.max_pull = 1e5;
-    w.speed = 1.0;
-    w.max_speed = 1.0;
-    w.schedule = {{1.0, 0.0, std::nullopt}};
-    c.cables.setWinch(c.cable, w);
-    c.run(1.5);
-    w = WinchDef{};
-    w.max_pull = 60.0;
-    w.speed = -0.2;
-    c.cables.setWinch(c.cable, w);
+    haulOneMetreThenCap(c, 60.0, -0.2);
     c.run(0.5);
     const double t_c = 2.0 * 0.2 / kG, h = 1.0 / (60.0 * b.substeps);
     const double v = kG * t_c + (kG - 6.0) * (0.5 - t_c);

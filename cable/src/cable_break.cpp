@@ -42,12 +42,7 @@ void CableSystem::breakOverloaded(Cable& cable, int c, double time_s, double h) 
     if (!cable.links[j].active || joint.parted || joint.run != j) continue;  // each run once, at its start
     const PathConstraint& path = world_.path(joint.path);
     if (!path.enabled || -path.lambda < cable.breaking_tension * h * h * (1.0 - 1e-9)) continue;
-    double length = 0.0;
-    for (std::size_t i = 0; i + 1 < path.points.size(); ++i) {
-      const BodyState& a = world_.body(path.points[i].body);
-      const BodyState& b = world_.body(path.points[i + 1].body);
-      length += ((b.x_prev + b.q_prev * path.points[i + 1].local) - (a.x_prev + a.q_prev * path.points[i].local)).norm();
-    }
+    const double length = solvedLength(world_, path);
     const double excess = length - path.rest_length - path.compliance * cable.breaking_tension;
     if (excess <= std::max(worst_excess, 1e-9 * std::max(1.0, path.rest_length))) continue;  // held at its rating
     worst_excess = excess;

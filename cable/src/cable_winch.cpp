@@ -83,12 +83,7 @@ void CableSystem::reel(Cable& cable, double start_s, double h) {
   // poses that solve left (the anchors are still its anchors).
   const PathConstraint& path = world_.path(cable.joints[span.run].path);
   const double pull = -path.lambda / (h * h) * span.weight;  // N, what the last solve pulled with
-  double length = 0.0;  // the run's, as that solve left it
-  for (std::size_t i = 0; i + 1 < path.points.size(); ++i) {
-    const BodyState& a = world_.body(path.points[i].body);
-    const BodyState& b = world_.body(path.points[i + 1].body);
-    length += ((b.x_prev + b.q_prev * path.points[i + 1].local) - (a.x_prev + a.q_prev * path.points[i].local)).norm();
-  }
+  const double length = solvedLength(world_, path);  // the run's, as that solve left it
   // Cable reeled in stretched by the pull: its rest length x (1 + strain).
   // Reeled against a run that solve could not pull (a span between static
   // bodies behind a stuck friction link), it is still to be paid for by

@@ -16,4 +16,14 @@ int previousActive(const Cable& cable, int k) {
   return 0;
 }
 
+double solvedLength(const World& world, const PathConstraint& path) {
+  double length = 0.0;
+  for (std::size_t i = 0; i + 1 < path.points.size(); ++i) {
+    const BodyState& a = world.body(path.points[i].body);
+    const BodyState& b = world.body(path.points[i + 1].body);
+    length += ((b.x_prev + b.q_prev * path.points[i + 1].local) - (a.x_prev + a.q_prev * path.points[i].local)).norm();
+  }
+  return length;
+}
+
 }  // namespace reeve

@@ -18,6 +18,10 @@ inline bool isEnd(const Cable& cable, int k) {
   return !cable.closed && (k == 0 || k + 1 == static_cast<int>(cable.links.size()));
 }
 
+/// Length (m) of `path` as the last solve left it: its points at the poses
+/// before this substep's integration (x_prev, q_prev).
+double solvedLength(const World& world, const PathConstraint& path);
+
 /// The in-plane part (m) of a body-local anchor on a rolling link.
 inline Vec2 planePoint(const Vec3& local) { return Vec2(local.x(), local.y()); }
 

@@ -611,19 +611,22 @@ TEST(FixedJoint, ForceEqualsTheWeightOfTheLowerBody) {
 }
 
 TEST(HingeDrive, ACappedMotorOnAWheelMovesItsRopeAtTheClosedFormBothWays) {
-  // Issue 28, item 7: a disc of radius 0.1 m (1 kg, or 1e-6 and 1e3 times
-  // that) on a hinge to the world, a velocity drive asking 100 rad/s with at
-  // most tau N m, and a no-slip rope over it to boxes of 1 and 1.2 kg. The
-  // motor turns at its cap, so a = (tau / r - 0.2 g) / (2.2 + I / r^2): with
-  // tau = 0.5 the heavy box rises at 1.125 m/s^2 (1 kg disc); with tau = 0.1
-  // the load overpowers the motor and drives it backwards (a = -0.356). The
-  // direct solver's first pass, with the drive uncapped, slackened the light
-  // side and kept it slack once the drive was capped: the light box fell
-  // free and the ledger showed 31 J made in 1 s.
+  // Issue 28, item 7: a disc of radius 0.1 m (1 kg; or 1e-6 and 1e6 kg, a
+  // wheel/load mass ratio of 1e-6 and 1e6) on a hinge to the world, a
+  // velocity drive asking 100 rad/s with at most tau N m, and a no-slip rope
+  // over it to boxes of 1 and 1.2 kg. The motor turns at its cap, so
+  // a = (tau / r - 0.2 g) / (2.2 + M / 2): with tau = 0.5 the heavy box
+  // rises at 1.125 m/s^2 (1 kg disc); with tau = 0.1 the load overpowers the
+  // motor and drives it backwards (a = -0.356). The direct solver's first
+  // pass, with the drive uncapped, slackened the light side and kept it
+  // slack once the drive was capped: the light box fell free and the ledger
+  // showed 31 J made in 1 s. Gauss-Seidel does not converge on a wheel 1e-6
+  // of its loads (README) and is not asked to here.
   constexpr double r = 0.1, g = 9.81;
   for (const test::Budget& b : test::kFourBudgets)
-    for (const double disc : {1e-6, 1.0, 1e3})
+    for (const double disc : {1e-6, 1.0, 1e6})
       for (const double tau : {0.5, 0.1}) {
+        if (b.solver == SolverKind::GaussSeidel && disc < 1e-3) continue;
         SCOPED_TRACE(test::name(b) + ", disc " + std::to_string(disc) + " kg, cap " + std::to_string(tau) + " N m");
         SolverSettings settings;
         settings.solver = b.solver;
@@ -638,13 +641,13 @@ TEST(HingeDrive, ACappedMotorOnAWheelMovesItsRopeAtTheClosedFormBothWays) {
         HingeDef hinge(wheel, kWorldBody, Vec3::Zero(), Vec3::UnitZ());
         hinge.drive.mode = HingeDrive::Mode::Velocity;
         hinge.drive.target = 100.0;
-        hinge.drive.max_torque = tau * disc;  // the torque scales with the disc, the loads too
+        hinge.drive.max_torque = tau;
         world.addHinge(hinge);
         def.shape = Shape::box(Vec3::Constant(0.05));
-        def.mass = disc;
+        def.mass = 1.0;
         def.position = Vec3(-r, -2.0, 0.0);
         const BodyId light = world.addBody(def);
-        def.mass = 1.2 * disc;
+        def.mass = 1.2;
         def.position = Vec3(r, -2.0, 0.0);
         const BodyId heavy = world.addBody(def);
         CableDef rope;
@@ -653,15 +656,15 @@ TEST(HingeDrive, ACappedMotorOnAWheelMovesItsRopeAtTheClosedFormBothWays) {
         cables.addCable(rope);
         const double start = world.energy().kinetic + world.energy().gravity;
         for (int f = 0; f < 60; ++f) world.step(1.0 / 60.0);
-        const double a = (tau / r - 0.2 * g) / (2.2 + 0.5);
+        const double a = (tau / r - 0.2 * g) / (2.2 + disc / 2.0);
         // Of g: Gauss-Seidel turns the disc by first-order corrections
         // (1e-4), and with one sweep a frame (1 x 1) is unconverged (1.5e-3).
         const double tolerance =
             b.solver == SolverKind::Direct ? 1e-7 : (b.substeps * b.iterations == 1 ? 2e-3 : 1e-4);
         EXPECT_NEAR(world.body(heavy).v.y(), a, tolerance * g);
-        EXPECT_NEAR(cables.tension(0, 0), disc * (g - a), tolerance * disc * g);
+        EXPECT_NEAR(cables.tension(0, 0), g - a, tolerance * g);
         const WorldEnergy e = world.energy();
-        EXPECT_LE(e.kinetic + e.gravity - start, e.drive_work + 1e-9 * disc);  // nothing made
+        EXPECT_LE(e.kinetic + e.gravity - start, e.drive_work + 1e-9);  // nothing made
       }
 }
 

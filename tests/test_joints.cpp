@@ -339,6 +339,8 @@ TEST(HingeJoint, AddHingeRejectsBadLimitsAndDrives) {
   EXPECT_THROW(world.addHinge(def), std::invalid_argument);
   def.limit = {};
   def.drive = {HingeDrive::Mode::Angle, 4.0, 1.0};
+  EXPECT_NO_THROW(world.addHinge(def));  // an angle past a half turn (issue 28: any number of turns)
+  def.drive = {HingeDrive::Mode::Angle, std::numeric_limits<double>::infinity(), 1.0};
   EXPECT_THROW(world.addHinge(def), std::invalid_argument);
   def.drive = {HingeDrive::Mode::Velocity, 1.0, std::nan("")};
   EXPECT_THROW(world.addHinge(def), std::invalid_argument);

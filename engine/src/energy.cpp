@@ -1,7 +1,6 @@
 // The World's side of the energy ledger (energy.h; DESIGN.md, "Energy
 // ledger").
 #include <cmath>
-#include <numbers>
 
 #include "reeve/engine/world.h"
 
@@ -53,7 +52,7 @@ WorldEnergy World::energy() const {
     const HingeJoint& j = hinges_[id];
     e.elastic += jointElastic(j.compliance, j.impulse_point, j.impulse_axis, h);
     if (j.drive.mode == HingeDrive::Mode::Angle && j.drive.stiffness > 0.0) {
-      const double error = std::remainder(hingeAngle(id) - j.drive.target, 2.0 * std::numbers::pi);
+      const double error = hingeAngle(id) - j.drive.target;  // through whole turns
       e.elastic += 0.5 * j.drive.stiffness * error * error;
     }
   }

@@ -60,7 +60,7 @@ void prepareHingeJoint(HingeJoint& j, const BodyState& a, const BodyState& b, do
   joint_rows::DriveSpec drive{kindOf(j.drive.mode), j.drive.target, j.drive.max_torque, j.drive.stiffness,
                               j.drive.damping};
   if (drive.kind == joint_rows::DriveKind::None) {
-    joint_rows::prepareCoordinate(j.angle, drive, 0.0, 0.0, true, h);
+    joint_rows::prepareCoordinate(j.angle, drive, 0.0, 0.0, h);
     return;
   }
   // An angle drive brakes in time for the inertia of both bodies about the
@@ -68,20 +68,22 @@ void prepareHingeJoint(HingeJoint& j, const BodyState& a, const BodyState& b, do
   const Vec3 u = a.q * j.frame.axis_a;
   const double inverse_inertia = joint_rows::inverseInertiaAbout(a, j.frame.anchor_a, u) +
                                  joint_rows::inverseInertiaAbout(b, j.frame.anchor_b, u);
-  const double start = hingeAngle(j, a.q_prev, b.q_prev);
+  // The angle at the substep's start, through whole turns: a target of
+  // 8 rad is 8 rad, not 8 - 2 pi.
+  const double start = hingeAngleTotal(j, a.q_prev, b.q_prev);
   if (j.drive.isTrapezoidalSpring()) {
     // The trapezoidal rule: torque -k (e_+ + 2 e_0 + e_-) / 4 over the
     // substep, a row of stiffness k / 4 whose error is moved by the known
     // 2 e_0 + e_- (joint_rows::DriveSpec::error_offset). Before the first
     // substep, e_- from the bodies' relative spin.
-    const double e0 = wrapAngle(start - j.drive.target);
+    const double e0 = start - j.drive.target;
     const double e_minus = std::isnan(j.spring_previous) ? e0 - h * u.dot(a.omega - b.omega)
-                                                         : wrapAngle(j.spring_previous - j.drive.target);
+                                                         : j.spring_previous - j.drive.target;
     j.spring_previous = start;
     drive.stiffness *= 0.25;
     drive.error_offset = 2.0 * e0 + e_minus;
   }
-  joint_rows::prepareCoordinate(j.angle, drive, start, inverse_inertia, true, h);
+  joint_rows::prepareCoordinate(j.angle, drive, start, inverse_inertia, h);
 }
 
 void solveHingeJoint(HingeJoint& j, BodyState& a, BodyState& b, double h) {
@@ -146,6 +148,15 @@ void joint_rows::hingeRowSet(HingeJoint& j, const BodyState& a, const BodyState&
   dir.tail<3>() = a.q * j.frame.axis_a;
   addCoordinateRows(j.angle, j.limit, j.drive.mode != HingeDrive::Mode::None, true, hingeAngle(j, a.q, b.q),
                     turned(a, b, dir.tail<3>(), h), dir, out);
+}
+
+double hingeAngleTotal(const HingeJoint& j, const Quat& q_a, const Quat& q_b) {
+  return j.angle_total + wrapAngle(hingeAngle(j, q_a, q_b) - j.angle_total);
+}
+
+void trackHingeAngle(HingeJoint& j, const BodyState& a, const BodyState& b, double h) {
+  const double estimate = j.angle_total + h * (a.q * j.frame.axis_a).dot(a.omega - b.omega);
+  j.angle_total = estimate + wrapAngle(hingeAngle(j, a.q, b.q) - estimate);
 }
 
 JointWrench hingeWrench(const HingeJoint& j, double h) {

@@ -123,7 +123,7 @@ Vec3 alignment(const Vec3& from, const Vec3& to) {
 }
 
 void prepareCoordinate(JointCoordinate& c, const DriveSpec& drive, double start,
-                       double inverse_inertia, bool angle, double h) {
+                       double inverse_inertia, double h) {
   c.lambda_lower = c.lambda_upper = c.lambda_drive = 0.0;
   c.start = start;
   c.drive_step = 0.0;
@@ -134,7 +134,7 @@ void prepareCoordinate(JointCoordinate& c, const DriveSpec& drive, double start,
     case DriveKind::None: break;
     case DriveKind::Velocity: c.drive_step = drive.target * h; break;
     case DriveKind::Position: {
-      const double e = angle ? wrapAngle(drive.target - start) : drive.target - start;
+      const double e = drive.target - start;  // an angle's start counted through whole turns
       if (drive.stiffness > 0.0) {  // a spring: XPBD, damped (joint_rows.h)
         const double k_eff = drive.stiffness + drive.damping / h;
         c.drive_step = (e - drive.error_offset) * drive.stiffness / k_eff;
@@ -173,3 +173,17 @@ JointFrame makeJointFrame(const Vec3& anchor, const Vec3& axis, const BodyState&
 }
 
 }  // namespace reeve::joint_rows
+
+namespace reeve {
+
+double scheduledTarget(const std::vector<DriveKeyframe>& schedule, double t) {
+  const auto after = std::upper_bound(schedule.begin(), schedule.end(), t,
+                                      [](double time, const DriveKeyframe& k) { return time < k.time; });
+  if (after == schedule.begin()) return schedule.front().target;
+  if (after == schedule.end()) return schedule.back().target;
+  const DriveKeyframe& k0 = *(after - 1);
+  const double s = (t - k0.time) / (after->time - k0.time);
+  return k0.target + s * (after->target - k0.target);
+}
+
+}  // namespace reeve

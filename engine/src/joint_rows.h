@@ -112,8 +112,8 @@ struct DriveSpec {
 /// (from the bodies' x_prev, q_prev) and the change `drive_step` the drive
 /// asks for:
 ///   velocity drive, target v* (rad/s or m/s):  drive_step = v* h;
-///   position drive, target x* (rad or m): with e = x* - start (wrapped
-///   for angles) and a_max = max_effort x `inverse_inertia` (the joint's
+///   position drive, target x* (rad or m): with e = x* - start (an
+///   angle's start counted through whole turns: HingeJoint::angle_total) and a_max = max_effort x `inverse_inertia` (the joint's
 ///   largest acceleration), the drive asks for the largest speed from which
 ///   it can still stop at x*,  v = sign(e) min(|e| / h, sqrt(2 a_max |e|)),
 ///   and drive_step = v h. Unlimited effort gives v = e / h: x* at once.
@@ -136,7 +136,7 @@ struct DriveSpec {
 ///   = -k (e_+ + 2 e_0 + e_-) / 4 - c (x - start) / h.
 /// max_drive_lambda = max_effort h^2 (infinite when unlimited).
 void prepareCoordinate(JointCoordinate& c, const DriveSpec& drive, double start,
-                       double inverse_inertia, bool angle, double h);
+                       double inverse_inertia, double h);
 
 /// C of a coordinate's drive row at coordinate `value` (solveCoordinateRows).
 /// An angle is known only up to whole turns, so its change since the

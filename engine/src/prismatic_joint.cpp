@@ -59,7 +59,7 @@ void preparePrismaticJoint(PrismaticJoint& j, const BodyState& a, const BodyStat
   joint_rows::DriveSpec drive{kindOf(j.drive.mode), j.drive.target, j.drive.max_force, j.drive.stiffness,
                               j.drive.damping};
   if (drive.kind == joint_rows::DriveKind::None) {
-    joint_rows::prepareCoordinate(j.slide, drive, 0.0, 0.0, false, h);
+    joint_rows::prepareCoordinate(j.slide, drive, 0.0, 0.0, h);
     return;
   }
   // The orientation is locked, so a position drive brakes in time for the
@@ -82,7 +82,7 @@ void preparePrismaticJoint(PrismaticJoint& j, const BodyState& a, const BodyStat
     drive.stiffness *= 0.25;
     drive.error_offset = 2.0 * e0 + e_minus;
   }
-  joint_rows::prepareCoordinate(j.slide, drive, start, a.inv_mass + b.inv_mass, false, h);
+  joint_rows::prepareCoordinate(j.slide, drive, start, a.inv_mass + b.inv_mass, h);
 }
 
 void solvePrismaticJoint(PrismaticJoint& j, BodyState& a, BodyState& b, double h) {

@@ -42,12 +42,18 @@ void checkLimit(const char* kind, const JointLimit& limit, double bound) {
     reject(kind, "angle limits must lie within [-pi, pi] rad");
 }
 
-void checkDrive(const char* kind, double target, double max_effort, double target_bound, double until) {
+void checkDrive(const char* kind, double target, double max_effort, double until,
+                const std::vector<DriveKeyframe>& schedule) {
   if (!std::isfinite(target)) reject(kind, "the drive target must be finite");
   // isnan first: an ordered comparison with NaN raises FE_INVALID.
   if (std::isnan(until) || until <= 0.0) reject(kind, "the drive's end time (until) must be > 0 s");
-  if (std::abs(target) > target_bound) reject(kind, "an angle drive target must lie within [-pi, pi] rad");
   if (std::isnan(max_effort)) reject(kind, "the drive's maximum force or torque must be a number");
+  for (std::size_t k = 0; k < schedule.size(); ++k) {
+    if (!std::isfinite(schedule[k].time) || !std::isfinite(schedule[k].target))
+      reject(kind, "the drive schedule's times and targets must be finite");
+    if (k > 0 && !(schedule[k].time > schedule[k - 1].time))
+      reject(kind, "the drive schedule's times must increase strictly");
+  }
 }
 
 // A drive's spring (HingeDrive, PrismaticDrive): stiffness and damping
@@ -253,8 +259,7 @@ HingeId World::addHinge(const HingeDef& def) {
   checkVector("hinge", "anchor", def.anchor, false);
   checkCompliance("hinge", def.compliance);
   checkLimit("hinge", def.limit, kPi);
-  checkDrive("hinge", def.drive.target, def.drive.max_torque,
-             def.drive.mode == HingeDrive::Mode::Angle ? kPi : kAny, def.drive.until);
+  checkDrive("hinge", def.drive.target, def.drive.max_torque, def.drive.until, def.drive.schedule);
   checkSpring("hinge", def.drive.stiffness, def.drive.damping, def.drive.mode == HingeDrive::Mode::Angle,
               def.drive.integration == HingeDrive::Integration::Trapezoidal);
   rotors_dirty_ = true;
@@ -268,7 +273,7 @@ PrismaticId World::addPrismatic(const PrismaticDef& def) {
   checkVector("prismatic joint", "anchor", def.anchor, false);
   checkCompliance("prismatic joint", def.compliance);
   checkLimit("prismatic joint", def.limit, kAny);
-  checkDrive("prismatic joint", def.drive.target, def.drive.max_force, kAny, def.drive.until);
+  checkDrive("prismatic joint", def.drive.target, def.drive.max_force, def.drive.until, def.drive.schedule);
   checkSpring("prismatic joint", def.drive.stiffness, def.drive.damping,
               def.drive.mode == PrismaticDrive::Mode::Position,
               def.drive.integration == PrismaticDrive::Integration::Trapezoidal);
@@ -301,7 +306,7 @@ FixedId World::addFixed(const FixedDef& def) {
 
 double World::hingeAngle(HingeId id) const {
   const HingeJoint& j = hinges_.at(id);
-  return reeve::hingeAngle(j, body(j.a).q, body(j.b).q);
+  return hingeAngleTotal(j, body(j.a).q, body(j.b).q);
 }
 
 double World::hingeDriveTorque(HingeId id) const {
@@ -373,7 +378,7 @@ void World::step(double dt) {
   interrupted_ = false;
   const double h = dt / settings_.substeps;
   for (int s = 0; s < settings_.substeps && !interrupted_; ++s) {
-    releaseDrives(h);
+    updateDrives(h);
     integrate(h);
     if (!non_finite_) checkFinite(time_ + h, false, h);  // born before any constraint spreads it
     for (auto& hook : hooks_) hook(*this, h);
@@ -385,6 +390,7 @@ void World::step(double dt) {
     }
     solvePositions(h);
     updateVelocities(h);
+    for (HingeJoint& j : hinges_) trackHingeAngle(j, body(j.a), body(j.b), h);
     addWork(h);
     if (contacts) {
       // SCA 2020, Alg. 2 line 24: the velocity pass of the contacts, with
@@ -408,14 +414,24 @@ void World::step(double dt) {
   last_h_ = h;
 }
 
-void World::releaseDrives(double h) {
-  // Half a substep early, so that rounding in time_ cannot keep a drive one
-  // substep too long.
-  const double now = time_ + 0.5 * h;
-  for (HingeJoint& j : hinges_)
-    if (j.drive.mode != HingeDrive::Mode::None && now >= j.drive.until) j.drive = HingeDrive{};
-  for (PrismaticJoint& j : prismatics_)
-    if (j.drive.mode != PrismaticDrive::Mode::None && now >= j.drive.until) j.drive = PrismaticDrive{};
+void World::updateDrives(double h) {
+  // Released half a substep early, so that rounding in time_ cannot keep a
+  // drive one substep too long. A scheduled velocity is the ramp's value at
+  // the substep's middle (its mean over the substep), a scheduled position
+  // the value at its end (where the solve puts the joint): a ramp is then
+  // followed exactly.
+  const double middle = time_ + 0.5 * h, end = time_ + h;
+  for (HingeJoint& j : hinges_) {
+    HingeDrive& d = j.drive;
+    if (d.mode != HingeDrive::Mode::None && middle >= d.until) d = HingeDrive{};
+    if (!d.schedule.empty()) d.target = scheduledTarget(d.schedule, d.mode == HingeDrive::Mode::Velocity ? middle : end);
+  }
+  for (PrismaticJoint& j : prismatics_) {
+    PrismaticDrive& d = j.drive;
+    if (d.mode != PrismaticDrive::Mode::None && middle >= d.until) d = PrismaticDrive{};
+    if (!d.schedule.empty())
+      d.target = scheduledTarget(d.schedule, d.mode == PrismaticDrive::Mode::Velocity ? middle : end);
+  }
 }
 
 void World::integrate(double h) {

@@ -32,6 +32,24 @@ double finiteTarget(double target) {
   return target;
 }
 
+// (t_s, target) pairs as a drive schedule: finite, times strictly
+// increasing, at least one (HingeDrive::schedule).
+std::vector<DriveKeyframe> keyframes(const std::vector<std::pair<double, double>>& points) {
+  if (points.empty()) throw py::value_error("schedule: expected at least one (t_s, target) pair, got none");
+  std::vector<DriveKeyframe> out;
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const auto [t, target] = points[k];
+    if (!std::isfinite(t) || !std::isfinite(target) || t < 0.0)
+      throw py::value_error("schedule[" + std::to_string(k) + "]: expected a time >= 0 s and a target, both finite");
+    if (k > 0 && !(t > out.back().time))
+      throw py::value_error("schedule[" + std::to_string(k) + "]: expected a time after the previous keyframe's " +
+                            py::repr(py::float_(out.back().time)).cast<std::string>() + " s, got " +
+                            py::repr(py::float_(t)).cast<std::string>());
+    out.push_back({t, target});
+  }
+  return out;
+}
+
 // Force and torque rows, shape (n, 3) each.
 std::pair<py::array_t<double>, py::array_t<double>> wrenches(const std::vector<JointWrench>& all) {
   const int n = static_cast<int>(all.size());
@@ -116,7 +134,8 @@ void bindJoints(py::module_& m) {
             for (int i = 0; i < n; ++i) out.mutable_at(i) = v.world().hingeAngle(i);
             return out;
           },
-          "Angle of body relative to other (rad, in (-pi, pi]), 0 when loaded, shape (n,).")
+          "Angle of body relative to other (rad), 0 when loaded, counted through whole turns (2 pi after a turn), "
+          "shape (n,).")
       .def_property_readonly(
           "forces_N", [](const HingesView& v) { return wrenches(hingeWrenches(v.world())).first; },
           "Force each hinge exerted on its body (N, world), shape (n, 3).")
@@ -154,10 +173,24 @@ void bindJoints(py::module_& m) {
             if (d.mode == HingeDrive::Mode::None)
               throw py::value_error("hinge " + std::to_string(i) + " has no drive (or its until_s has passed)");
             d.target = finiteTarget(target);
+            d.schedule.clear();
           },
           py::arg("hinge"), py::arg("target"),
-          "Sets hinge `hinge`'s drive target from the next step on: rad/s for a velocity drive, rad for an angle "
-          "drive or spring. ValueError if it has no drive.")
+          "Sets hinge `hinge`'s drive target from the next step on: rad/s for a velocity drive, rad (any number of "
+          "turns) for an angle drive or spring; a schedule it had ends. ValueError if it has no drive.")
+      .def(
+          "set_drive_schedule",
+          [](HingesView& v, int hinge, const std::vector<std::pair<double, double>>& schedule) {
+            const int i = checkedIndex(hinge, static_cast<int>(v.world().hinges().size()), "hinge");
+            HingeDrive& d = v.world().hinge(i).drive;
+            if (d.mode == HingeDrive::Mode::None)
+              throw py::value_error("hinge " + std::to_string(i) + " has no drive (or its until_s has passed)");
+            d.schedule = keyframes(schedule);
+          },
+          py::arg("hinge"), py::arg("schedule"),
+          "Makes hinge `hinge`'s drive target follow `schedule`, (t_s, target) pairs in simulated time, t_s "
+          "strictly increasing: linear between them, held before the first and after the last (scenes/README.md, "
+          "\"schedule\"). ValueError if it has no drive or the schedule is not valid.")
       .def("__repr__",
            [](const HingesView& v) { return "<reeve.Hinges: " + std::to_string(v.world().hinges().size()) + ">"; });
 
@@ -203,10 +236,11 @@ void bindJoints(py::module_& m) {
             if (d.mode == PrismaticDrive::Mode::None)
               throw py::value_error("joint " + std::to_string(k) + " has no drive (or its until_s has passed)");
             d.target = finiteTarget(target);
+            d.schedule.clear();
           },
           py::arg("joint"), py::arg("target"),
           "Sets prismatic joint `joint`'s drive target from the next step on: m/s for a velocity drive, m for a "
-          "position drive or spring. ValueError for another joint type or no drive.")
+          "position drive or spring; a schedule it had ends. ValueError for another joint type or no drive.")
       .def("__repr__", [](const JointsView& v) {
         return "<reeve.Joints: " + std::to_string(v.scene().joint_kinds.size()) + ">";
       });

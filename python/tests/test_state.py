@@ -142,6 +142,33 @@ def test_drive_targets_set_between_steps_drive_hinges_and_slides(scenes):
         hinges.set_drive_target(2, 0.0)
 
 
+def test_a_drive_schedule_ramps_a_wheel_and_its_angle_counts_whole_turns(scenes):
+    # joints.json's wheel (I = 0.4 kg m^2, motor of at most 2 N m: 5 rad/s^2)
+    # ramped from rest to 2 rad/s over 1 s, then held: it turns 1 rad in the
+    # ramp and 2 rad a second after, 7 rad by 4 s: past a whole turn, where
+    # an angle in (-pi, pi] would read 0.72.
+    scene = reeve.load(scenes / "joints.json")
+    hinges = scene.hinges
+    hinges.set_drive_schedule(0, [(0.0, 0.0), (1.0, 2.0)])
+    wheel = scene.bodies.index("wheel")
+    scene.step(60)
+    h = 1.0 / (60 * scene.settings.substeps)
+    assert scene.bodies.angular_velocities_rad_per_s[wheel, 2] == pytest.approx(2.0 * (1.0 - h / 2), rel=1e-6)
+    assert hinges.drive_targets[0] == pytest.approx(2.0 * (1.0 - h / 2))
+    assert hinges.drive_torques_N_m[0] == pytest.approx(0.4 * 2.0, rel=1e-3)  # I alpha
+    scene.step(180)
+    assert hinges.angles_rad[0] == pytest.approx(7.0, abs=1e-6)
+    hinges.set_drive_target(0, 0.0)  # the schedule ends: the motor brakes at 5 rad/s^2
+    scene.step(30)
+    assert scene.bodies.angular_velocities_rad_per_s[wheel, 2] == pytest.approx(0.0, abs=1e-9)
+    with pytest.raises(ValueError, match="after the previous keyframe's 1.0 s"):
+        hinges.set_drive_schedule(0, [(0.0, 0.0), (1.0, 2.0), (1.0, 3.0)])
+    with pytest.raises(ValueError, match="at least one"):
+        hinges.set_drive_schedule(0, [])
+    with pytest.raises(ValueError, match="finite"):
+        hinges.set_drive_schedule(0, [(0.0, float("nan"))])
+
+
 def test_slip_speeds_and_slipping_follow_the_cable_over_a_frictionless_drum(scenes):
     # capstan.json's ideal pulley: 1 kg and 1.2 kg over a drum with mu 0, so
     # the cable slides over it at the boxes' speed, forward (towards the

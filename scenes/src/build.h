@@ -57,7 +57,8 @@ JointLimit angleLimit(const nlohmann::json& limit, const std::string& pointer,
                       const std::string& source);
 
 /// The hinge drive at `pointer` (build_joints.cpp): velocity or angle mode,
-/// an angle target in [-pi, pi]; max_torque_N_m omitted means unlimited;
+/// exactly one of a constant target and a schedule (keyframe times strictly
+/// increasing; an angle any number of turns); max_torque_N_m omitted means unlimited;
 /// an angle drive's damping_N_m_s_per_rad only with stiffness_N_m_per_rad
 /// (a torsional spring; omitted: a rigid drive).
 HingeDrive hingeDrive(const nlohmann::json& drive, const std::string& pointer,

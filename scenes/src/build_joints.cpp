@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <tuple>
 #include <utility>
+#include <vector>
 
 #include "build.h"
 #include "describe.h"
@@ -70,6 +71,32 @@ void driveSpring(const json& drive, const std::string& pointer, const char* stif
   trapezoidal = drive.value("integration", std::string("implicit")) == "trapezoidal";
 }
 
+// A drive's target at `pointer`, under `key`, or its "schedule" of
+// {"t_s", key} keyframes (exactly one of the two), into `target` and
+// `schedule`. Keyframe times strictly increasing.
+void driveTarget(const json& drive, const std::string& pointer, const std::string& key, double& target,
+                 std::vector<DriveKeyframe>& schedule, const std::string& source) {
+  const auto constant = drive.find(key);
+  const auto keyframes = drive.find("schedule");
+  if ((constant == drive.end()) == (keyframes == drive.end()))
+    throw SceneError(source, pointer, "exactly one of \"" + key + "\" (a constant target) and \"schedule\"",
+                     constant == drive.end() ? "neither" : "both");
+  if (constant != drive.end()) {
+    target = constant->get<double>();
+    return;
+  }
+  for (std::size_t k = 0; k < keyframes->size(); ++k) {
+    const json& point = (*keyframes)[k];
+    const DriveKeyframe keyframe{point.at("t_s").get<double>(), point.at(key).get<double>()};
+    if (k > 0 && !(keyframe.time > schedule.back().time))
+      throw SceneError(source, pointer + "/schedule/" + std::to_string(k) + "/t_s",
+                       "a time after the previous keyframe's " + number(schedule.back().time) + " s",
+                       literal(point.at("t_s")));
+    schedule.push_back(keyframe);
+  }
+  target = scheduledTarget(schedule, 0.0);
+}
+
 // Passes World's own refusals on as a SceneError at the joint (the checks
 // above should leave none).
 template <class Add>
@@ -98,7 +125,8 @@ void addPrismatic(const json& j, const std::string& path, const BodyNames& names
   if (const auto drive = j.find("drive"); drive != j.end()) {
     const bool velocity = drive->at("mode") == "velocity";
     def.drive.mode = velocity ? PrismaticDrive::Mode::Velocity : PrismaticDrive::Mode::Position;
-    def.drive.target = drive->at(velocity ? "target_m_per_s" : "target_m").get<double>();
+    driveTarget(*drive, path + "/drive", velocity ? "target_m_per_s" : "target_m", def.drive.target,
+                def.drive.schedule, source);
     def.drive.max_force = drive->value("max_force_N", 0.0);  // omitted: unlimited
     def.drive.until = drive->value("until_s", def.drive.until);  // omitted: always
     if (!velocity) {
@@ -162,10 +190,10 @@ HingeDrive hingeDrive(const json& drive, const std::string& pointer, const std::
   HingeDrive result;
   if (drive.at("mode") == "velocity") {
     result.mode = HingeDrive::Mode::Velocity;
-    result.target = drive.at("target_rad_per_s").get<double>();
+    driveTarget(drive, pointer, "target_rad_per_s", result.target, result.schedule, source);
   } else {
     result.mode = HingeDrive::Mode::Angle;
-    result.target = angleIn(drive.at("target_rad"), pointer + "/target_rad", source);
+    driveTarget(drive, pointer, "target_rad", result.target, result.schedule, source);  // any number of turns
     bool trapezoidal = false;
     driveSpring(drive, pointer, "stiffness_N_m_per_rad", "damping_N_m_s_per_rad", result.stiffness,
                 result.damping, trapezoidal, source);

@@ -288,7 +288,7 @@ TEST(JointErrors, HingeDampingWithoutStiffness) {
 TEST(JointErrors, StiffnessOnAHingeVelocityDrive) {
   expectError(jointsWith(R"("max_torque_N_m": 1.5)", R"("max_torque_N_m": 1.5, "stiffness_N_m_per_rad": 30)"),
               "/hinges/0/drive/stiffness_N_m_per_rad",
-              "no property \"stiffness_N_m_per_rad\" (allowed: mode, target_rad_per_s, max_torque_N_m, until_s)",
+              "no property \"stiffness_N_m_per_rad\" (allowed: mode, target_rad_per_s, schedule, max_torque_N_m, until_s)",
               "\"stiffness_N_m_per_rad\"");
 }
 
@@ -310,7 +310,7 @@ TEST(JointErrors, PrismaticDampingWithoutStiffness) {
 TEST(JointErrors, StiffnessOnAPrismaticVelocityDrive) {
   expectError(jointsWith(R"("max_force_N": 30)", R"("max_force_N": 30, "stiffness_N_per_m": 400)"),
               "/joints/0/drive/stiffness_N_per_m",
-              "no property \"stiffness_N_per_m\" (allowed: mode, target_m_per_s, max_force_N, until_s)",
+              "no property \"stiffness_N_per_m\" (allowed: mode, target_m_per_s, schedule, max_force_N, until_s)",
               "\"stiffness_N_per_m\"");
 }
 
@@ -332,7 +332,7 @@ TEST(JointErrors, UnknownSpringIntegration) {
 TEST(JointErrors, IntegrationOnAHingeVelocityDrive) {
   expectError(jointsWith(R"("max_torque_N_m": 1.5})", R"("max_torque_N_m": 1.5, "integration": "trapezoidal"})"),
               "/hinges/0/drive/integration",
-              "no property \"integration\" (allowed: mode, target_rad_per_s, max_torque_N_m, until_s)",
+              "no property \"integration\" (allowed: mode, target_rad_per_s, schedule, max_torque_N_m, until_s)",
               "\"integration\"");
 }
 
@@ -369,9 +369,44 @@ TEST(JointErrors, HingeLimitOutsideAHalfTurn) {
               "/hinges/1/limit/lower_rad", "an angle in [-pi, pi] rad", "-4");
 }
 
-TEST(JointErrors, AngleTargetOutsideAHalfTurn) {
-  expectError(jointsWith(R"("target_rad": 0.25)", R"("target_rad": 3.5)"),
-              "/hinges/1/drive/target_rad", "an angle in [-pi, pi] rad", "3.5");
+TEST(JointScene, AnAngleTargetMayBeManyTurns) {
+  // Counted through whole turns (issue 28): 8 rad is past a whole turn.
+  const Scene scene = parseScene(jointsWith(R"("target_rad": 0.25)", R"("target_rad": 8)"), "test.json");
+  EXPECT_EQ(scene.world->hinge(1).drive.target, 8.0);
+}
+
+TEST(JointScene, ADriveScheduleLoads) {
+  const Scene scene = parseScene(
+      jointsWith(R"("target_rad": 0.25)", R"("schedule": [{"t_s": 0, "target_rad": 0}, {"t_s": 2, "target_rad": 8}])"),
+      "test.json");
+  const HingeDrive& d = scene.world->hinge(1).drive;
+  ASSERT_EQ(d.schedule.size(), 2u);
+  EXPECT_EQ(d.schedule[1].time, 2.0);
+  EXPECT_EQ(d.schedule[1].target, 8.0);
+  EXPECT_EQ(d.target, 0.0);  // the schedule's value at t = 0
+}
+
+TEST(JointErrors, DriveTargetAndSchedule) {
+  expectError(jointsWith(R"("target_rad": 0.25)", R"("target_rad": 0.25, "schedule": [{"t_s": 0, "target_rad": 1}])"),
+              "/hinges/1/drive", "exactly one of \"target_rad\" (a constant target) and \"schedule\"", "both");
+}
+
+TEST(JointErrors, DriveWithoutTarget) {
+  expectError(jointsWith(R"("target_m_per_s": 0.5, )", ""), "/joints/0/drive",
+              "exactly one of \"target_m_per_s\"", "neither");
+}
+
+TEST(JointErrors, DriveScheduleTimesGoBack) {
+  expectError(jointsWith(R"("target_rad_per_s": 10)",
+                         R"("schedule": [{"t_s": 0, "target_rad_per_s": 0}, {"t_s": 1, "target_rad_per_s": 5}, )"
+                         R"({"t_s": 1, "target_rad_per_s": 6}])"),
+              "/hinges/0/drive/schedule/2/t_s", "a time after the previous keyframe's 1 s", "1");
+}
+
+TEST(JointErrors, DriveScheduleKeyframeOfAnotherMode) {
+  // A velocity drive's keyframe names target_rad_per_s: the schema says so.
+  expectError(jointsWith(R"("target_rad_per_s": 10)", R"("schedule": [{"t_s": 0, "target_rad": 1}])"),
+              "/hinges/0/drive/schedule/0/target_rad", "(allowed: t_s, target_rad_per_s)", "target_rad");
 }
 
 TEST(JointErrors, SwingLimitAboveAHalfTurn) {
@@ -422,7 +457,7 @@ TEST(JointErrors, PrismaticWithoutAxis) {
 TEST(JointErrors, VelocityDriveWithAnAngleTarget) {
   expectError(jointsWith(R"("target_rad_per_s": 10,)", R"("target_rad": 1,)"),
               "/hinges/0/drive/target_rad",
-              "no property \"target_rad\" (allowed: mode, target_rad_per_s, max_torque_N_m, until_s)",
+              "no property \"target_rad\" (allowed: mode, target_rad_per_s, schedule, max_torque_N_m, until_s)",
               "\"target_rad\"");
 }
 

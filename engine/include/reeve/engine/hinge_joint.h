@@ -5,6 +5,7 @@
 #pragma once
 
 #include <limits>
+#include <vector>
 
 #include "reeve/engine/body.h"
 #include "reeve/engine/joint_common.h"
@@ -13,14 +14,17 @@ namespace reeve {
 
 /// A motor on a hinge's angle (a relative to b about the axis).
 /// Velocity: turns at `target` rad/s; Angle: turns to and holds `target`
-/// rad (in [-pi, pi]), braking in time for the inertia about the hinge.
+/// rad, braking in time for the inertia about the hinge. An angle target
+/// is counted through whole turns (HingeJoint::angle_total): 8 rad is a
+/// drum turned on past a whole turn, not -4.57 rad.
 /// Either way with at most `max_torque` N m (<= 0 or infinity: unlimited,
 /// a rigid drive), so a loaded or inert hinge spins up at torque / inertia
 /// rather than snapping to its target (formulas above solveHingeJoint).
 ///
 /// An Angle drive with `stiffness` > 0 is a torsional spring instead: the
-/// torque on a is -stiffness (theta - target) - damping dtheta/dt, theta -
-/// target wrapped to (-pi, pi], still within max_torque. It is one
+/// torque on a is -stiffness (theta - target) - damping dtheta/dt, theta
+/// counted through whole turns (a spring wound twice pulls back twice as
+/// far), still within max_torque. It is one
 /// compliant row (Macklin, Müller, Chentanez, *XPBD*, MIG 2016:
 /// alpha = 1 / stiffness, and the damping as its eq. 26 with beta~ =
 /// damping h^2), implicit in both, so stable at any stiffness and substep.
@@ -54,6 +58,10 @@ struct HingeDrive {
   // (World::time(), to half a substep) and is then removed (mode None), as
   // a hand letting go; infinity: always.
   double until = std::numeric_limits<double>::infinity();
+  // Non-empty: `target` follows this schedule (World sets it each substep:
+  // a velocity at the substep's middle, an angle at its end, so a ramp is
+  // followed exactly); times strictly increasing, targets finite.
+  std::vector<DriveKeyframe> schedule = {};
 
   /// A spring integrated by the trapezoidal rule.
   bool isTrapezoidalSpring() const {
@@ -96,6 +104,10 @@ struct HingeJoint {
   // angle; the impulse of the point rows on body a at the anchor (kg m),
   // and the angular impulse of the axis, limit and drive rows on a (kg m^2).
   JointCoordinate angle;
+  // The hinge angle now (rad), counted through whole turns: 0 when made,
+  // 2 pi after a turn (trackHingeAngle). Drives aim at it; limits use the
+  // angle in (-pi, pi].
+  double angle_total = 0.0;
   Vec3 impulse_point = Vec3::Zero();
   Vec3 impulse_axis = Vec3::Zero();
   // A trapezoidal spring's angle at the start of the previous substep
@@ -121,6 +133,18 @@ void solveHingeJoint(HingeJoint& joint, BodyState& a, BodyState& b, double h);
 /// Angle (rad, in (-pi, pi]) of a relative to b about the axis, 0 when the
 /// hinge was made; from orientations q_a, q_b (world).
 double hingeAngle(const HingeJoint& joint, const Quat& q_a, const Quat& q_b);
+
+/// Brings `joint.angle_total` to the end of a substep of `h` s, after the
+/// velocities are read out: the whole turns from the relative angular
+/// velocity (h omega is the substep's turn, however many turns), the rest
+/// from the poses. Right while the speed changes by less than pi / h in a
+/// substep.
+void trackHingeAngle(HingeJoint& joint, const BodyState& a, const BodyState& b, double h);
+
+/// The hinge angle (rad) counted through whole turns from the current
+/// poses: `joint.angle_total` moved to the nearest angle the poses give
+/// (a pose set between steps moves it by less than half a turn).
+double hingeAngleTotal(const HingeJoint& joint, const Quat& q_a, const Quat& q_b);
 
 /// Force and torque the hinge exerted on body a over the last substep of
 /// `h` s (JointWrench).

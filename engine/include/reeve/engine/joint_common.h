@@ -12,6 +12,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <vector>
 
 #include "reeve/engine/math.h"
 
@@ -50,6 +51,18 @@ struct JointWrench {
 inline bool isUnlimited(double max_effort) {
   return !(max_effort > 0.0) || std::isinf(max_effort);
 }
+
+/// One point of a drive's schedule: from `time` (s, simulated) the drive
+/// aims at `target` (its unit: rad/s or rad, m/s or m).
+struct DriveKeyframe {
+  double time = 0.0;
+  double target = 0.0;
+};
+
+/// A drive's target at time `t` (s) under `schedule` (times strictly
+/// increasing, at least one point): linear between keyframes, the first's
+/// target before it and the last's after it (a ramp, then a hold).
+double scheduledTarget(const std::vector<DriveKeyframe>& schedule, double t);
 
 /// Per-substep solver state of a joint coordinate with limit and drive rows
 /// (a hinge's angle, a prismatic joint's slide, a spherical joint's twist).

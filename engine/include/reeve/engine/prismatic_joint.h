@@ -5,6 +5,7 @@
 #pragma once
 
 #include <limits>
+#include <vector>
 
 #include "reeve/engine/body.h"
 #include "reeve/engine/joint_common.h"
@@ -37,6 +38,9 @@ struct PrismaticDrive {
   // s, > 0: the drive acts until then and is removed, as a hinge's
   // (HingeDrive::until); infinity: always.
   double until = std::numeric_limits<double>::infinity();
+  // Non-empty: `target` follows this schedule, as a hinge drive's
+  // (HingeDrive::schedule).
+  std::vector<DriveKeyframe> schedule = {};
 
   /// A spring integrated by the trapezoidal rule.
   bool isTrapezoidalSpring() const {

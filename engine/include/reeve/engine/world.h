@@ -99,10 +99,11 @@ class World {
   BodyId addBody(const BodyDef& def);
   /// Adds a hinge from the current poses; throws std::invalid_argument for
   /// unknown or identical bodies, a zero axis, a negative compliance, a
-  /// limit with lower > upper or outside [-pi, pi], an angle drive target
-  /// outside [-pi, pi], a negative drive stiffness or damping, either on a
-  /// velocity drive, damping without stiffness, or anything not finite
-  /// (but an infinite max torque).
+  /// limit with lower > upper or outside [-pi, pi], a negative drive
+  /// stiffness or damping, either on a velocity drive, damping without
+  /// stiffness, a drive schedule whose times do not increase strictly, or
+  /// anything not finite (but an infinite max torque). An angle drive's
+  /// target may be any number of turns (HingeDrive).
   HingeId addHinge(const HingeDef& def);
   /// Adds a prismatic joint from the current poses; throws
   /// std::invalid_argument as addHinge (limits in m, any finite range).
@@ -201,7 +202,8 @@ class World {
   HingeJoint& hinge(HingeId id) { return hinges_.at(id); }
   const HingeJoint& hinge(HingeId id) const { return hinges_.at(id); }
   JointWrench hingeWrench(HingeId id) const { return reeve::hingeWrench(hinges_.at(id), last_h_); }
-  /// Hinge angle (rad, in (-pi, pi]) of body a relative to b, 0 when added.
+  /// Hinge angle (rad) of body a relative to b, 0 when added, counted
+  /// through whole turns (2 pi after one turn; HingeJoint::angle_total).
   double hingeAngle(HingeId id) const;
   /// Torque (N m) the hinge's drive put on body a about the axis over the
   /// last substep: lambda_drive / h^2; for a spring, -stiffness (angle -
@@ -279,9 +281,9 @@ class World {
   bool rotorHingeChanged() const;
   /// The hinge wrenches of rotors, which have no hinge rows (direct solver).
   void rotorWrenches(double h);
-  /// Removes the drives whose `until` has come (HingeDrive::until), at the
-  /// start of a substep of h s.
-  void releaseDrives(double h);
+  /// At the start of a substep of h s: removes the drives whose `until`
+  /// has come (HingeDrive::until) and sets scheduled drives' targets.
+  void updateDrives(double h);
   void integrate(double h);
   void solvePositions(double h);
   /// The interrupt flag is raised (setInterruptFlag); read, not cleared.

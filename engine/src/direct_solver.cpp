@@ -33,6 +33,10 @@ constexpr int kMaxPasses = 8;
 int jointRowCount(int bilateral, bool driven, bool limited) { return bilateral + (driven ? 1 : 0) + (limited ? 2 : 0); }
 
 bool moves(const World& world, BodyId id) { return world.body(id).moves(); }
+// A row lists the bodies it moves and the kinematic ones it pushes on: a
+// kinematic body's entries weigh nothing (W = 0) and couple no rows, but
+// record the impulse it took (the work it does: World::addKinematicWork).
+bool listed(const World& world, BodyId id) { return moves(world, id) || world.body(id).kinematic; }
 
 }  // namespace
 
@@ -40,8 +44,8 @@ void DirectSolver::describe(World& world, std::vector<int>& sig) const {
   sig.clear();
   const auto joint = [&](Source source, int index, BodyId a, BodyId b, int rows) {
     if (!moves(world, a) && !moves(world, b)) return;
-    sig.insert(sig.end(), {static_cast<int>(source), index, rows, moves(world, a) ? a : kWorldBody,
-                           moves(world, b) ? b : kWorldBody});
+    sig.insert(sig.end(), {static_cast<int>(source), index, rows, listed(world, a) ? a : kWorldBody,
+                           listed(world, b) ? b : kWorldBody});
   };
   for (int i = 0; i < static_cast<int>(world.hinges().size()); ++i) {
     const HingeJoint& j = world.hinges()[i];
@@ -73,9 +77,9 @@ void DirectSolver::describe(World& world, std::vector<int>& sig) const {
     const std::size_t head = sig.size();
     sig.insert(sig.end(), {static_cast<int>(Source::Path), i, 1});
     for (const PathPoint& point : p.points)
-      if (moves(world, point.body) && std::find(sig.begin() + head + 3, sig.end(), point.body) == sig.end())
+      if (listed(world, point.body) && std::find(sig.begin() + head + 3, sig.end(), point.body) == sig.end())
         sig.push_back(point.body);
-    if (sig.size() == head + 3) {
+    if (std::none_of(sig.begin() + head + 3, sig.end(), [&](int id) { return moves(world, id); })) {
       sig.resize(head);  // nothing in it moves
       continue;
     }
@@ -127,7 +131,7 @@ void DirectSolver::build(World& world) {
   std::vector<std::vector<int>> on_body(bodies_.size());
   for (int r = 0; r < n; ++r)
     for (int e = rows_[r].first_entry; e < rows_[r].first_entry + rows_[r].entry_count; ++e)
-      on_body[entries_[e].body].push_back(e);
+      if (!world.body(bodies_[entries_[e].body]).kinematic) on_body[entries_[e].body].push_back(e);
   std::vector<Eigen::Triplet<double>> triplets;
   for (const auto& list : on_body)
     for (const int e1 : list)
@@ -378,7 +382,7 @@ int DirectSolver::evaluateJoint(World& world, int r, double h) {
   const int count = set.bilateral.count + set.clamped_count;
   assert(r + count <= static_cast<int>(rows_.size()));
   assert(rows_[r + count - 1].source == first.source && rows_[r + count - 1].index == first.index);
-  const bool a_moves = world.body(a).moves(), b_moves = world.body(b).moves();
+  const bool a_moves = listed(world, a), b_moves = listed(world, b);
   for (int k = 0; k < count; ++k, ++r) {
     const bool bilateral = k < set.bilateral.count;
     const int c = k - set.bilateral.count;

@@ -71,6 +71,12 @@ WorldEnergy World::energy() const {
   return e;
 }
 
+double World::kinematicWork(BodyId id, double h) const {
+  if (id == kWorldBody || !bodies_[id].kinematic) return 0.0;
+  const BodyState& b = bodies_[id];
+  return -(b.impulse.dot(b.v) + b.angular_impulse.dot(b.omega)) / h;
+}
+
 void World::addWork(double h) {
   const double inv_h2 = 1.0 / (h * h);
   // A motor drive's torque (lambda_drive / h^2, on a about the axis) times

@@ -226,7 +226,8 @@ void World::refreshRotors() {
   for (const HingeJoint& j : hinges_) {
     const bool a_moves = j.a != kWorldBody && mass_[j.a] > 0.0;
     const bool b_moves = j.b != kWorldBody && mass_[j.b] > 0.0;
-    if (a_moves == b_moves || j.compliance != 0.0) continue;
+    // Not on a kinematic body: that carries the axle along.
+    if (a_moves == b_moves || j.compliance != 0.0 || body(j.a).kinematic || body(j.b).kinematic) continue;
     const BodyId id = a_moves ? j.a : j.b;
     const Vec3 anchor = a_moves ? j.frame.anchor_a : j.frame.anchor_b;
     const Vec3 axis = (a_moves ? j.frame.axis_a : j.frame.axis_b).normalized();
@@ -399,11 +400,16 @@ void World::step(double dt) {
       for (const ContactManifold& m : manifolds_) {
         const Contact& c = contacts_[m.first];
         const double before = kineticEnergy(c.a) + kineticEnergy(c.b);
+        const double driven = kinematicWork(c.a, h) + kinematicWork(c.b, h);
         solveContactVelocities(m, contacts_.data(), body(c.a), body(c.b), h, rest_speed);
-        // Only a loss is credited: a pass that added energy shows in the balance.
-        flows_.contact_loss += std::max(0.0, before - kineticEnergy(c.a) - kineticEnergy(c.b));
+        // What a kinematic body put in (a conveyor dragging a box) is work,
+        // not a loss. Only a loss is credited: a pass that added energy
+        // shows in the balance.
+        const double put_in = kinematicWork(c.a, h) + kinematicWork(c.b, h) - driven;
+        flows_.contact_loss += std::max(0.0, before + put_in - kineticEnergy(c.a) - kineticEnergy(c.b));
       }
     }
+    for (BodyId id = 0; id < bodyCount(); ++id) flows_.kinematic_work += kinematicWork(id, h);
     if (settings_.solver == SolverKind::Direct) rotorWrenches(h);
     limitSpeeds();  // last, so no later pass can push past the guard
     if (!non_finite_) checkFinite(time_ + h, true, h);
@@ -436,7 +442,21 @@ void World::updateDrives(double h) {
 
 void World::integrate(double h) {
   const Vec3 g = settings_.gravity;
-  for (BodyState& b : bodies_) {
+  for (BodyId id = 0; id < bodyCount(); ++id) {
+    BodyState& b = bodies_[id];
+    if (b.kinematic) {
+      // Its motion's velocities at the substep's middle, so that a ramp
+      // moves it by exactly the ramp's integral.
+      const MotionKeyframe m = motionAt(defs_[id].motion, time_ + 0.5 * h);
+      b.x_prev = b.x;
+      b.q_prev = b.q;
+      b.v = m.velocity;
+      b.omega = m.angular_velocity;
+      b.x += h * b.v;
+      rotateExactly(b.q, h * b.omega);
+      b.q_pred = b.q;
+      continue;
+    }
     if (!b.moves()) continue;
     if (b.isRotor()) {  // no gravity, no gyroscopic torque: it turns about its axle
       b.x_prev = b.x;

@@ -58,6 +58,9 @@ BodyId movingBody(const View& v, const BodyKey& key, const char* what) {
   const BodyId id = bodyOf(v, key);
   if (v.world().bodyDef(id).is_static)
     throw py::value_error(std::string(what) + ": body '" + v.world().bodyDef(id).name + "' is static");
+  if (v.world().body(id).kinematic)
+    throw py::value_error(std::string(what) + ": body '" + v.world().bodyDef(id).name +
+                          "' is kinematic (its \"motion\" sets its velocities, and no force moves it)");
   return id;
 }
 
@@ -124,6 +127,15 @@ void bindBodies(py::module_& m) {
           },
           "Whether each body is static (bool), shape (n,).")
       .def_property_readonly(
+          "kinematic",
+          [](const BodiesView& v) {
+            const int n = v.world().bodyCount();
+            py::array_t<bool> out(n);
+            for (int b = 0; b < n; ++b) out.mutable_at(b) = v.world().body(b).kinematic;
+            return out;
+          },
+          "Whether each body is kinematic (bool), shape (n,): moved by its \"motion\", whatever pushes on it.")
+      .def_property_readonly(
           "applied_forces_N",
           [](const BodiesView& v) { return rows3(v, [](const BodyState& b, BodyId) { return b.applied_force; }); },
           "The forces set with set_applied_force (N, world), shape (n, 3).")
@@ -160,7 +172,7 @@ void bindBodies(py::module_& m) {
                 finite3(vel, "linear_velocity_m_per_s");
           },
           py::arg("body"), py::arg("velocity_m_per_s"),
-          "Sets the velocity of a body's centre of mass (m/s, world). ValueError for a static body.")
+          "Sets the velocity of a body's centre of mass (m/s, world). ValueError for a static or kinematic body.")
       .def(
           "set_angular_velocity",
           [](BodiesView& v, const BodyKey& body, const std::array<double, 3>& w) {
@@ -168,7 +180,7 @@ void bindBodies(py::module_& m) {
                 finite3(w, "angular_velocity_rad_per_s");
           },
           py::arg("body"), py::arg("angular_velocity_rad_per_s"),
-          "Sets a body's angular velocity (rad/s, world). ValueError for a static body.")
+          "Sets a body's angular velocity (rad/s, world). ValueError for a static or kinematic body.")
       .def(
           "set_applied_force",
           [](BodiesView& v, const BodyKey& body, const std::array<double, 3>& f) {

@@ -155,6 +155,7 @@ py::dict energy(const PyScene& s) {
   d["drive_work_J"] = e.drive_work_J;
   d["load_work_J"] = e.load_work_J;
   d["winch_work_J"] = e.winch_work_J;
+  d["kinematic_work_J"] = e.kinematic_work_J;
   d["work_J"] = e.work_J();
   d["damping_J"] = e.damping_J;
   d["contact_J"] = e.contact_J;
@@ -291,7 +292,8 @@ void bindScene(py::module_& m) {
       .def("energy", &energy,
            "The energy ledger now (issue 28; DESIGN.md, \"Energy ledger\"), a dict of floats in J: kinetic_J, "
            "potential_J (gravity, 0 at the origin), elastic_J (compliant cables, joints, springs), total_J (their "
-           "sum); since the scene was loaded: drive_work_J, load_work_J, winch_work_J, work_J (their sum), "
+           "sum); since the scene was loaded: drive_work_J, load_work_J, winch_work_J, kinematic_work_J, work_J (their "
+           "sum), "
            "damping_J, contact_J, friction_J (cable friction), dissipated_J (their sum); residual_J = total - total as loaded - work + "
            "dissipated: <= 0 (the integrator's own losses) unless energy was created. step() warns "
            "(RuntimeWarning) in a frame that created energy, as `reeve run` does.")

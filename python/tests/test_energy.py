@@ -39,3 +39,30 @@ def test_step_warns_where_a_frame_created_energy(scenes):
     with pytest.warns(RuntimeWarning, match="energy created at t = "):
         scene.step(60)
     assert scene.energy()["residual_J"] > 0.0
+
+
+
+def test_a_kinematic_wheel_hauls_and_pays_out_and_the_ledger_counts_its_work(atwood_dict):
+    # atwood.json's wheel (r = 0.3 m) made kinematic, turning at 0.4 rad/s
+    # counter-clockwise: the rope, which cannot slip, hauls the heavy box
+    # (2 kg, right) up at r w = 0.12 m/s and pays the light one (1 kg, left)
+    # out as fast, whatever their weights. The wheel's work on each side is
+    # m g times its rise plus m v^2 (the heavy box's jerk to v; the light
+    # box falls free until the rope catches it at 2 v): 1.2204 J in 1 s.
+    d = atwood_dict
+    wheel = d["bodies"][0]
+    del wheel["mass_kg"]
+    wheel["motion"] = [{"t_s": 0, "angular_velocity_rad_per_s": [0, 0, 0.4]}]
+    scene = reeve.load(d)
+    assert scene.bodies.kinematic.tolist() == [True, False, False]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # no energy created
+        scene.step(60)
+    v = 0.3 * 0.4
+    assert scene.bodies.positions_m[2, 1] == pytest.approx(-3.5 + v, abs=1e-9)
+    assert scene.bodies.positions_m[1, 1] == pytest.approx(-3.5 - v, abs=1e-9)
+    e = scene.energy()
+    assert e["kinematic_work_J"] == pytest.approx(2.0 * G * v + 2.0 * v * v - 1.0 * G * v + 1.0 * v * v, rel=1e-6)
+    assert e["residual_J"] <= 1e-9
+    with pytest.raises(ValueError, match="kinematic"):
+        scene.bodies.set_angular_velocity(0, [0, 0, 1])

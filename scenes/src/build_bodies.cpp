@@ -86,17 +86,34 @@ BodyNames addBodies(const nlohmann::json& bodies, World& world, const std::strin
     def.collides = b.value("collides", false);
     const bool has_density = b.contains("density_kg_per_m3");
     const bool has_mass = b.contains("mass_kg");
-    if (def.is_static) {
+    const auto motion = b.find("motion");
+    const bool kinematic = motion != b.end();
+    if (kinematic && def.is_static)
+      fail("motion", "no motion for a static body (it never moves; omit \"static\" for a kinematic body)",
+           literal(*motion));
+    if (def.is_static || kinematic) {
+      const std::string why = kinematic ? " for a kinematic body (its motion moves it)" : " for a static body (it never moves)";
       for (const char* key : {"density_kg_per_m3", "mass_kg"})
-        if (b.contains(key))
-          fail(key, "no density or mass for a static body (it never moves)", literal(b.at(key)));
+        if (b.contains(key)) fail(key, "no density or mass" + why, literal(b.at(key)));
       for (const char* key : {"linear_velocity_m_per_s", "angular_velocity_rad_per_s"})
-        if (b.contains(key))
-          fail(key, "no velocity for a static body (it never moves)", literal(b.at(key)));
+        if (b.contains(key)) fail(key, "no velocity" + why, literal(b.at(key)));
       for (const char* key : {"linear_damping_per_s", "angular_damping_per_s"})
-        if (b.contains(key))
-          fail(key, "no damping for a static body (it never moves)", literal(b.at(key)));
-    } else {
+        if (b.contains(key)) fail(key, "no damping" + why, literal(b.at(key)));
+    }
+    if (kinematic) {
+      for (std::size_t k = 0; k < motion->size(); ++k) {
+        const nlohmann::json& point = (*motion)[k];
+        MotionKeyframe m;
+        m.time = point.at("t_s").get<double>();
+        m.velocity = vec3(point.value("velocity_m_per_s", nlohmann::json::array({0, 0, 0})));
+        m.angular_velocity = vec3(point.value("angular_velocity_rad_per_s", nlohmann::json::array({0, 0, 0})));
+        if (k > 0 && !(m.time > def.motion.back().time))
+          throw SceneError(source, path + "/motion/" + std::to_string(k) + "/t_s",
+                           "a time after the previous keyframe's " + number(def.motion.back().time) + " s",
+                           literal(point.at("t_s")));
+        def.motion.push_back(m);
+      }
+    } else if (!def.is_static) {
       if (has_density == has_mass)
         fail("", "exactly one of density_kg_per_m3 or mass_kg for a dynamic body",
              has_mass ? "both" : "neither");
@@ -111,7 +128,7 @@ BodyNames addBodies(const nlohmann::json& bodies, World& world, const std::strin
       def.linear_damping = b.value("linear_damping_per_s", 0.0);
       def.angular_damping = b.value("angular_damping_per_s", 0.0);
     }
-    if (!def.is_static) {
+    if (!def.is_static && !kinematic) {
       // Mass and moments of inertia whose squares (energies, the solver's
       // products of them) stay finite and non-zero in double precision
       // (every number in the file is at most 1e153: magnitudes.h):

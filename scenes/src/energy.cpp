@@ -19,6 +19,7 @@ EnergyLedger energyLedger(const Scene& scene) {
   e.drive_work_J = world.drive_work;
   e.load_work_J = world.load_work;
   e.winch_work_J = scene.cables->winchWork();
+  e.kinematic_work_J = world.kinematic_work;
   e.damping_J = world.damping_loss;
   e.contact_J = world.contact_loss;
   e.friction_J = scene.cables->frictionLoss();

@@ -19,7 +19,7 @@ TEST(SchemaErrors, UnknownFieldListsTheAllowedOnes) {
               "no property \"colour\" (allowed: name, shape, density_kg_per_m3, mass_kg, "
               "position_m, orientation, static, linear_velocity_m_per_s, "
               "angular_velocity_rad_per_s, linear_damping_per_s, angular_damping_per_s, "
-              "static_friction, dynamic_friction, restitution, collides)",
+              "static_friction, dynamic_friction, restitution, collides, motion)",
               "\"colour\"");
 }
 

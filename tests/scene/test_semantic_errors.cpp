@@ -64,6 +64,39 @@ TEST(SemanticErrors, StaticBodyWithMass) {
               "no density or mass for a static body", "2");
 }
 
+TEST(SemanticErrors, KinematicBodyWithMass) {
+  expectError(baseWith(R"("mass_kg": 2,)", R"("mass_kg": 2, "motion": [{"t_s": 0}],)"), "/bodies/1/mass_kg",
+              "no density or mass for a kinematic body (its motion moves it)", "2");
+}
+
+TEST(SemanticErrors, StaticBodyWithAMotion) {
+  expectError(baseWith(R"("density_kg_per_m3": 1000,)", R"("static": true, "motion": [{"t_s": 0}],)"),
+              "/bodies/0/motion", "no motion for a static body", "[{\"t_s\":0}]");
+}
+
+TEST(SemanticErrors, MotionTimesGoBack) {
+  expectError(baseWith(R"("density_kg_per_m3": 1000,)",
+                       R"("motion": [{"t_s": 1}, {"t_s": 2, "angular_velocity_rad_per_s": [0, 0, 1]}, {"t_s": 2}],)"),
+              "/bodies/0/motion/2/t_s", "a time after the previous keyframe's 2 s", "2");
+}
+
+TEST(SceneKinematic, AWheelTurnedAtOneRadianASecondHaulsOneSideAndPaysOutTheOther) {
+  // kBase's wheel (r = 0.5 m) made kinematic, turning counter-clockwise at
+  // 1 rad/s: the rope over it, which cannot slip, hauls the ball up on the
+  // right at r omega = 0.5 m/s and pays the crate out on the left as fast
+  // (the crate falls free at first and is caught).
+  Scene scene = parseScene(baseWith(R"("density_kg_per_m3": 1000,)",
+                                    R"("motion": [{"t_s": 0, "angular_velocity_rad_per_s": [0, 0, 1]}],)"),
+                           "test.json");
+  World& world = *scene.world;
+  ASSERT_TRUE(world.body(0).kinematic);
+  for (int f = 0; f < 60; ++f) world.step(1.0 / 60.0);
+  EXPECT_NEAR(world.body(2).x.y(), -2.0 + 0.5, 1e-9);
+  EXPECT_NEAR(world.body(1).x.y(), -2.0 - 0.5, 1e-9);
+  EXPECT_NEAR(world.body(0).omega.z(), 1.0, 1e-15);
+  EXPECT_NEAR(world.hingeAngle(0), 1.0, 1e-12);
+}
+
 TEST(SemanticErrors, StaticBodyWithVelocity) {
   expectError(baseWith(R"("density_kg_per_m3": 1000,)",
                        R"("static": true, "angular_velocity_rad_per_s": [0, 0, 1],)"),

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "reeve/engine/contact_material.h"
 #include "reeve/engine/math.h"
@@ -14,9 +15,20 @@ namespace reeve {
 using BodyId = int;
 inline constexpr BodyId kWorldBody = -1;
 
+/// One point of a kinematic body's motion: from `time` (s, simulated) its
+/// centre moves at `velocity` (m/s, world) and it turns at
+/// `angular_velocity` (rad/s, world), both linear in time up to the next
+/// keyframe and held after the last.
+struct MotionKeyframe {
+  double time = 0.0;
+  Vec3 velocity = Vec3::Zero();
+  Vec3 angular_velocity = Vec3::Zero();
+};
+
 /// What a user asks for. Exactly one of `density` (kg/m^3) or `mass` (kg)
 /// is used: `mass` when positive, else density x volume. Static bodies
-/// ignore both and never move.
+/// ignore both and never move; kinematic ones (a `motion`) ignore both and
+/// move as told.
 struct BodyDef {
   std::string name;
   Shape shape;
@@ -38,6 +50,11 @@ struct BodyDef {
   /// Contact with the ground plane does not need it: a World's ground
   /// touches every dynamic body.
   bool collides = false;
+  /// Non-empty: a kinematic body, moved along this schedule (times strictly
+  /// increasing, values finite) whatever pushes on it: infinite mass to the
+  /// solver, its velocity seen by cables, joints and contacts, the work it
+  /// does counted by the energy ledger (World::step). Not with is_static.
+  std::vector<MotionKeyframe> motion = {};
 };
 
 /// Solver state of one body (Müller et al. 2020, Alg. 2). Static bodies
@@ -82,6 +99,9 @@ struct BodyState {
   Vec3 impulse = Vec3::Zero();
   Vec3 angular_impulse = Vec3::Zero();
   Vec3 solve_turn = Vec3::Zero();
+  // Moved by its BodyDef::motion, not by forces: zero inverse mass and
+  // inertia, as a static body, but v and omega are its motion's.
+  bool kinematic = false;
 
   /// World point of the body-local point `local`.
   Vec3 toWorld(const Vec3& local) const { return x + q * local; }
@@ -95,9 +115,14 @@ struct BodyState {
   /// rotor's real mass).
   double mass() const { return inv_mass > 0.0 ? 1.0 / inv_mass : 0.0; }
   bool isRotor() const { return rotor_axis.squaredNorm() > 0.0; }
-  /// False for static bodies only.
+  /// False for static and kinematic bodies: whether constraints move it.
   bool moves() const { return inv_mass > 0.0 || isRotor(); }
 };
+
+/// A kinematic body's velocities at time `t` (s) under `motion` (non-empty,
+/// times increasing): linear between keyframes, the first's before it and
+/// the last's after it. The returned keyframe's time is `t`.
+MotionKeyframe motionAt(const std::vector<MotionKeyframe>& motion, double t);
 
 /// Bounds on a dynamic body's mass (kg) and principal moments of inertia
 /// (kg m^2): products of three of them (the inertia's determinant, which

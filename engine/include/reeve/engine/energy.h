@@ -33,6 +33,11 @@ struct WorldEnergy {
   /// Work of the applied forces and torques (BodyState::applied_force,
   /// applied_torque): per substep F . dx + tau . w h.
   double load_work = 0.0;
+  /// Work of the kinematic bodies (BodyDef::motion) on the rest: per
+  /// substep, minus the impulse the constraints and contacts gave each,
+  /// dotted with its velocity, over h (a drum swept round paying out
+  /// against a load puts in T r omega h).
+  double kinematic_work = 0.0;
   /// Kinetic energy taken out by body damping (exactly: before and after
   /// each substep's decay), >= 0.
   double damping_loss = 0.0;

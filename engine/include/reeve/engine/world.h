@@ -294,6 +294,11 @@ class World {
   void addWork(double h);
   /// Kinetic energy (J) of body `id` now.
   double kineticEnergy(BodyId id) const;
+  /// Work (J) kinematic body `id` has done on the rest over the substep of
+  /// h s so far: -(impulse . v + angular_impulse . omega) / h, the
+  /// impulses the constraints and contacts gave it (BodyState); 0 for any
+  /// other body.
+  double kinematicWork(BodyId id, double h) const;
   void limitSpeeds();
   // Records the first non-finite body state (and, with `tensions`, distance
   // constraint tension) at the end of the substep ending at `end_s`.

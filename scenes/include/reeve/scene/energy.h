@@ -19,14 +19,15 @@ struct EnergyLedger {
   double drive_work_J = 0.0;  ///< motor drives on hinges and prismatic joints
   double load_work_J = 0.0;   ///< applied forces and torques
   double winch_work_J = 0.0;  ///< winches reeling in (negative paying out under load)
+  double kinematic_work_J = 0.0;  ///< kinematic bodies (a motion) pushing and pulling on the rest
   double damping_J = 0.0;     ///< taken out by body damping
   double contact_J = 0.0;     ///< taken out by the contacts' velocity pass
   double friction_J = 0.0;    ///< taken out by cable friction (CableSystem::frictionLoss)
 
   /// kinetic + potential + elastic.
   double total_J() const { return kinetic_J + potential_J + elastic_J; }
-  /// Everything the actuators put in: drives, loads, winches.
-  double work_J() const { return drive_work_J + load_work_J + winch_work_J; }
+  /// Everything the actuators put in: drives, loads, winches, kinematic bodies.
+  double work_J() const { return drive_work_J + load_work_J + winch_work_J + kinematic_work_J; }
   /// Everything measured as taken out: damping, contacts, cable friction.
   double dissipated_J() const { return damping_J + contact_J + friction_J; }
   /// total - work + dissipated: constant for an exact integrator; it falls

@@ -1,0 +1,200 @@
+// Kinematic bodies (issue 28): moved along a prescribed motion whatever
+// pushes on them, infinite mass to the solver, their velocity seen by
+// cables, joints and contacts, their work counted by the energy ledger.
+// Closed forms at the energy ledger's four budgets, both solvers.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+#include "reeve/cable/cable.h"
+#include "reeve/engine/world.h"
+
+#include "solver_budgets.h"
+
+namespace reeve {
+namespace {
+
+constexpr double kG = 9.81;
+
+World worldWith(const test::Budget& b) {
+  SolverSettings s;
+  s.solver = b.solver;
+  s.substeps = b.substeps;
+  s.iterations = b.iterations;
+  s.gravity = Vec3(0.0, -kG, 0.0);
+  return World(s);
+}
+
+void run(World& world, int frames) {
+  for (int f = 0; f < frames; ++f) world.step(1.0 / 60.0);
+}
+
+BodyId addLoad(World& world, double mass, const Vec3& at) {
+  BodyDef def;
+  def.shape = Shape::box(Vec3::Constant(0.05));
+  def.mass = mass;
+  def.position = at;
+  return world.addBody(def);
+}
+
+// The ledger's balance: total - work + losses (scenes' EnergyLedger, here
+// from the World alone: no winch, no friction).
+double balance(const WorldEnergy& e) {
+  return e.kinetic + e.gravity + e.elastic - e.drive_work - e.load_work - e.kinematic_work + e.damping_loss +
+         e.contact_loss;
+}
+
+TEST(Kinematic, ADrumSweptAtConstantSpeedPaysOutROmega) {
+  // A kinematic drum of radius r = 0.2 m turned at omega = -2 or +2 rad/s
+  // about z, a rope wound on it (5 m stored) down to m kg: the drum pays out
+  // (or hauls in) r |omega| = 0.4 m/s whatever the load, the rope holds
+  // m g, the stored cable changes by r omega t, and the drum's work is
+  // m g times the load's rise. Both directions, loads 1e-3 to 1e3 kg.
+  constexpr double r = 0.2;
+  for (const test::Budget& b : test::kFourBudgets)
+    for (const double omega : {-2.0, 2.0})
+      for (const double m : {1e-3, 1.0, 1e3}) {
+        SCOPED_TRACE(test::name(b) + ", omega " + std::to_string(omega) + ", load " + std::to_string(m) + " kg");
+        World world = worldWith(b);
+        CableSystem cables(world);
+        BodyDef drum;
+        drum.shape = Shape::cylinder(r, 0.05);
+        drum.motion = {{0.0, Vec3::Zero(), Vec3(0.0, 0.0, omega)}};
+        const BodyId d = world.addBody(drum);
+        const BodyId load = addLoad(world, m, Vec3(r, -3.0, 0.0));
+        LinkDef spool = LinkDef::rolling(d, -1);
+        spool.stored = 5.0;
+        CableDef rope;
+        rope.links = {spool, LinkDef::attachment(load, Vec3(0.0, 0.05, 0.0))};
+        cables.addCable(rope);
+        const double start = balance(world.energy());
+        run(world, 60);
+        const double t = 1.0, speed = r * omega;  // > 0: hauling, the load rises
+        EXPECT_NEAR(world.body(d).omega.z(), omega, 1e-15);
+        EXPECT_NEAR(cables.cables()[0].links[0].stored, 5.0 + speed * t, 1e-9);
+        EXPECT_NEAR(world.body(load).x.y(), -3.0 + speed * t, 1e-9);
+        EXPECT_NEAR(world.body(load).v.y(), speed, 1e-9);
+        EXPECT_NEAR(cables.tension(0, 0), m * kG, 1e-6 * m * kG);
+        const WorldEnergy e = world.energy();
+        // The drum's work is the load's rise times its weight, and the
+        // start's m v^2 either way: hauling, the jerk to v in the first
+        // substep (half of it lost); paying out, the load falls free for
+        // 2 v / g while the drum pays out 2 v^2 / g unloaded (m g of it not
+        // braked: +2 m v^2), until the rope catches it at 2 v and brakes it
+        // to v (-m v^2).
+        const double rise = m * kG * speed * t;
+        EXPECT_NEAR(e.kinematic_work, rise + m * speed * speed, 1e-6 * std::abs(rise));
+        EXPECT_LE(balance(e) - start, 1e-9 * std::abs(rise));  // nothing made
+      }
+}
+
+TEST(Kinematic, AHandLiftsALoadAndTurnedRoundLowersIt) {
+  // A kinematic hand (no mass) rising at 1 m/s for 1 s, holding, then
+  // lowering at 1 m/s, with a 2 kg load on a rigid rope: the load follows
+  // it exactly, the rope holds m g but for the jerks, and the hand's work
+  // nets to the kinetic energy the jerks took out, never more.
+  for (const test::Budget& b : test::kFourBudgets) {
+    SCOPED_TRACE(test::name(b));
+    World world = worldWith(b);
+    CableSystem cables(world);
+    BodyDef hand;
+    hand.shape = Shape::box(Vec3::Constant(0.1));
+    hand.motion = {{0.0, Vec3(0.0, 1.0, 0.0), Vec3::Zero()},
+                   {1.0, Vec3(0.0, 1.0, 0.0), Vec3::Zero()},
+                   {1.0 + 1e-9, Vec3::Zero(), Vec3::Zero()},
+                   {2.0, Vec3::Zero(), Vec3::Zero()},
+                   {2.0 + 1e-9, Vec3(0.0, -1.0, 0.0), Vec3::Zero()}};
+    const BodyId h = world.addBody(hand);
+    const BodyId load = addLoad(world, 2.0, Vec3(0.0, -2.0, 0.0));
+    CableDef rope;
+    rope.links = {LinkDef::attachment(h, Vec3::Zero()), LinkDef::attachment(load, Vec3(0.0, 0.05, 0.0))};
+    cables.addCable(rope);
+    const WorldEnergy start = world.energy();
+    run(world, 30);
+    EXPECT_NEAR(world.body(h).x.y(), 0.5, 1e-12);
+    EXPECT_NEAR(world.body(load).x.y(), -1.5, 1e-9);
+    EXPECT_NEAR(cables.tension(0, 0), 2.0 * kG, 1e-6);
+    run(world, 150);  // 3 s: up 1 m, held, down 1 m
+    EXPECT_NEAR(world.body(h).x.y(), 0.0, 1e-9);
+    const WorldEnergy e = world.energy();
+    EXPECT_NEAR(world.body(load).x.y(), -2.0, 1e-9);  // back where it started, the rope taut
+    EXPECT_NEAR(world.body(load).v.y(), -1.0, 1e-9);
+    // The hand put in at least the kinetic energy the load has now (the
+    // rest went in the jerks and the snatch when it stopped), and the
+    // balance never rose.
+    EXPECT_GE(e.kinematic_work, e.kinetic - 1e-9);
+    EXPECT_LE(balance(e) - balance(start), 1e-9);
+  }
+}
+
+TEST(Kinematic, AWheelHingedToACarriageIsCarriedAndPendulumsSwingAsAtRest) {
+  // A carriage moving at a constant 3 m/s sideways is an inertial frame: a
+  // wheel hinged at its centre goes along (with the direct solver not a
+  // rotor: its axle moves), and a pendulum hinged to it swings with the
+  // period of one hinged at rest, 2 pi sqrt(L / g) for a small point-like
+  // bob.
+  for (const test::Budget& b : test::kFourBudgets) {
+    if (b.substeps == 1) continue;  // a pendulum's period wants substeps
+    SCOPED_TRACE(test::name(b));
+    World world = worldWith(b);
+    BodyDef carriage;
+    carriage.shape = Shape::box(Vec3(0.5, 0.1, 0.1));
+    carriage.motion = {{0.0, Vec3(3.0, 0.0, 0.0), Vec3::Zero()}};
+    const BodyId c = world.addBody(carriage);
+    BodyDef def;
+    def.shape = Shape::cylinder(0.2, 0.05);
+    def.mass = 1.0;
+    def.position = Vec3(0.3, 0.0, 0.0);
+    def.linear_velocity = Vec3(3.0, 0.0, 0.0);  // at rest in the carriage's frame
+    const BodyId wheel = world.addBody(def);
+    world.addHinge(HingeDef(wheel, c, Vec3(0.3, 0.0, 0.0), Vec3::UnitZ()));
+    def.shape = Shape::sphere(0.001);
+    def.position = Vec3(-0.3 + 1.0 * std::sin(0.05), -1.0 * std::cos(0.05), 0.0);
+    const BodyId bob = world.addBody(def);
+    DistanceConstraint rod;
+    rod.a = c;
+    rod.b = bob;
+    rod.local_a = Vec3(-0.3, 0.0, 0.0);
+    rod.rest_length = 1.0;
+    rod.unilateral = false;
+    world.addDistance(rod);
+    // Zero crossings of the bob relative to its pivot, rising.
+    const double period = 2.0 * std::numbers::pi * std::sqrt(1.0 / kG);
+    double first = -1.0, last = -1.0, before = world.body(bob).x.x() - (world.body(c).x.x() - 0.3);
+    int crossings = 0;
+    for (int f = 1; f <= 240; ++f) {
+      world.step(1.0 / 60.0);
+      const double rel = world.body(bob).x.x() - (world.body(c).x.x() - 0.3);
+      if (before < 0.0 && rel >= 0.0) {
+        const double t = (f - rel / (rel - before)) / 60.0;
+        if (first < 0.0) first = t;
+        last = t;
+        ++crossings;
+      }
+      before = rel;
+    }
+    EXPECT_NEAR(world.body(wheel).x.x(), 0.3 + 3.0 * 4.0, 1e-6);
+    EXPECT_NEAR(world.body(wheel).v.x(), 3.0, 1e-6);
+    ASSERT_GE(crossings, 2);
+    EXPECT_NEAR((last - first) / (crossings - 1), period, 0.01 * period);
+  }
+}
+
+TEST(Kinematic, WorldRefusesABadMotion) {
+  World world;
+  BodyDef def;
+  def.shape = Shape::sphere(0.1);
+  def.motion = {{0.0, Vec3::Zero(), Vec3::Zero()}, {0.0, Vec3::Zero(), Vec3::Zero()}};
+  EXPECT_THROW(world.addBody(def), std::invalid_argument);
+  def.motion = {{0.0, Vec3(std::nan(""), 0.0, 0.0), Vec3::Zero()}};
+  EXPECT_THROW(world.addBody(def), std::invalid_argument);
+  def.motion = {{0.0, Vec3::Zero(), Vec3::Zero()}};
+  def.is_static = true;
+  EXPECT_THROW(world.addBody(def), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace reeve

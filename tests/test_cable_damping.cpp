@@ -293,7 +293,8 @@ TEST(CableDamping, TheLedgerCreditsWhatTheDampingTookAndNeverRises) {
       const WorldEnergy e = rig.world.energy();
       const double h = substep(b), went = start - (e.kinetic + e.gravity + e.elastic);
       EXPECT_NEAR(went, lost, 1e-6 * lost);  // settled
-      const double credited = e.cable_damping_loss, share = h * o.w0() * o.w0() / (2.0 * o.sigma() + h * o.w0() * o.w0());
+      const double credited = e.cable_damping_loss;
+      const double share = h * o.w0() * o.w0() / (2.0 * o.sigma() + h * o.w0() * o.w0());
       EXPECT_LE(credited, went * (1.0 + 1e-9));
       EXPECT_GE(credited, went * (1.0 - 1.5 * share));
       std::printf("  %-24s %s: credited %.6f J of %.6f J lost (uncredited %.4f, about %.4f expected)\n",

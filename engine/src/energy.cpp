@@ -117,7 +117,8 @@ void World::addConstraintDampingLoss(double h) {
     const PathConstraint& p = paths_[id];
     if (!p.enabled || p.damping == 0.0 || p.compliance == 0.0) continue;
     const double length = pathLength(id);
-    flows_.cable_damping_loss += dampingLoss(p.compliance, p.lambda, length - p.rest_length, true, length - p.start_length, h);
+    flows_.cable_damping_loss +=
+        dampingLoss(p.compliance, p.lambda, length - p.rest_length, true, length - p.start_length, h);
   }
 }
 

@@ -373,7 +373,7 @@ TEST(CableDamping, ACableJerkedFasterThanItsDashpotBearsParts) {
   // v0^2 / (2 (50 / m - g)) = 0.0125 m, a quarter of the 0.05 m stretch
   // that takes. Implicit Euler pulls in the first substep with
   //   T1 = (k h + b) v1,  v1 = (v0 + g h) / (1 + (k h + b) h / m):
-  // 96 N at 32 substeps a frame and 87 N at 10, so it parts then; 46 N at
+  // 96 N at 32 substeps a frame and 88 N at 10, so it parts then; 46 N at
   // one (the load's speed at the substep's end is what the dashpot
   // feels, and that has all but gone), so it holds.
   const Oscillator o{1.0, 1e3, 100.0};

@@ -288,7 +288,7 @@ TEST_F(Cli, TheEnergyLedgerIsInTheCsvAndEnergyCreatedIsAWarningOrWithStrictAnErr
   const std::size_t kinetic = column("energy.kinetic_J"), residual = column("energy.residual_J");
   for (const char* name : {"energy.potential_J", "energy.elastic_J", "energy.drive_work_J", "energy.load_work_J",
                            "energy.winch_work_J", "energy.kinematic_work_J", "energy.damping_J", "energy.contact_J",
-                           "energy.friction_J"})
+                           "energy.friction_J", "energy.cable_damping_J"})
     column(name);
   std::vector<std::string> row;
   while (pos < table.size()) {

@@ -29,7 +29,7 @@ TEST(Correction, RigidDistanceIsMetInOneStepAndConservesMomentum) {
   DistanceConstraint c;
   c.unilateral = false;
   c.rest_length = 1.0;
-  solveDistanceConstraint(c, a, b, 0.0);
+  solveDistanceConstraint(c, a, b, 0.0, 1.0 / 60.0);
   EXPECT_NEAR((b.x - a.x).norm(), 1.0, 1e-14);
   // Arms through the centres: no rotation, and m_a dx_a + m_b dx_b = 0.
   EXPECT_NEAR((1.0 * a.x + 3.0 * (b.x - Vec3(2, 0, 0))).norm(), 0.0, 1e-14);
@@ -63,7 +63,7 @@ TEST(Correction, StaticBodiesDoNotMove) {
   BodyState b = freeBox(1.0, Vec3(0.1, 0.1, 0.1), Vec3(0, -2, 0));
   DistanceConstraint c;
   c.rest_length = 1.0;
-  solveDistanceConstraint(c, wall, b, 0.0);
+  solveDistanceConstraint(c, wall, b, 0.0, 1.0 / 60.0);
   EXPECT_EQ(wall.x, Vec3::Zero());
   EXPECT_NEAR(b.x.y(), -1.0, 1e-14);
 }

@@ -34,7 +34,10 @@ void CableSystem::breakOverloaded(Cable& cable, int c, double time_s, double h) 
   // parts. It passed at most the breaking tension x h of impulse in that
   // substep, as a real cable does; solved uncapped, it passed all the
   // impulse the solve asked for and the bodies lost most of their speed
-  // (issue 28, item 13). Lengths are those the last solve left.
+  // (issue 28, item 13). Lengths are those the last solve left. A damped
+  // run pulls with its dashpot too: what that solve left undone is its
+  // damped row's, (C + gamma dC) / (1 + gamma) - compliance' T (correction.h:
+  // dampedRow), dC since its start length, still the path's.
   int worst = -1;
   double worst_excess = 0.0;  // m past what the run could stretch: the most overloaded run parts
   for (int j = 0; j < static_cast<int>(cable.joints.size()); ++j) {
@@ -43,7 +46,9 @@ void CableSystem::breakOverloaded(Cable& cable, int c, double time_s, double h) 
     const PathConstraint& path = world_.path(joint.path);
     if (!path.enabled || -path.lambda < cable.breaking_tension * h * h * (1.0 - 1e-9)) continue;
     const double length = solvedLength(world_, path);
-    const double excess = length - path.rest_length - path.compliance * cable.breaking_tension;
+    const double gamma = path.compliance * path.damping / h;
+    const double excess = (length - path.rest_length + gamma * (length - path.start_length) -
+                           path.compliance * cable.breaking_tension) / (1.0 + gamma);
     if (excess <= std::max(worst_excess, 1e-9 * std::max(1.0, path.rest_length))) continue;  // held at its rating
     worst_excess = excess;
     worst = j;  // the run's hardest pulled span: the heaviest capstan weight

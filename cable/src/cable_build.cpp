@@ -67,6 +67,8 @@ int CableSystem::addCable(const CableDef& def) {
   if (!def.rest_lengths.empty() && static_cast<int>(def.rest_lengths.size()) != joints)
     fail("rest_lengths needs one value per joint (" + std::to_string(joints) + ")");
   if (!(def.compliance >= 0.0)) fail("compliance must be >= 0");
+  if (!std::isfinite(def.damping) || def.damping < 0.0) fail("damping must be finite and >= 0");
+  if (def.damping > 0.0 && def.compliance == 0.0) fail("damping needs compliance > 0 (a rigid cable does not stretch)");
   if (std::isnan(def.breaking_tension) || def.breaking_tension <= 0.0) fail("the breaking tension must be > 0");
 
   Cable cable;
@@ -146,6 +148,7 @@ int CableSystem::addCable(const CableDef& def) {
   }
   for (int j = 0; j < joints; ++j) total += cable.links[j].active ? cable.joints[j].rest_length : 0.0;
   cable.compliance_per_m = total > 0.0 ? def.compliance / total : 0.0;
+  cable.damping_times_m = total > 0.0 ? def.damping * total : 0.0;
   for (CableJoint& joint : cable.joints) {
     PathConstraint path;
     path.points.resize(2);  // filled by buildRuns()

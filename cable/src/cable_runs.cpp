@@ -175,8 +175,10 @@ void CableSystem::buildRuns(Cable& cable) {
     path.weights.clear();
     path.points.push_back({cable.links[j].body, cable.joints[j].local_a});
     double rest = 0.0, chords = 0.0, w = 1.0, heaviest = 1.0;
+    path.fed = 0.0;
     walkRun(cable, j, loop, [&](int k) {
       CableJoint& span = cable.joints[k];
+      if (cable.winch && k == winchSpan(cable).second) path.fed = cable.fed;
       const Link& to = cable.links[span.to];
       span.run = j;
       span.weight = w;
@@ -210,6 +212,9 @@ void CableSystem::buildRuns(Cable& cable) {
     }
     path.rest_length = rest + chords;
     path.compliance = cable.compliance_per_m * stretch;
+    // Its spans' dashpots in series, each pulled with its weight's share:
+    // the path's length changes by T sum w_i L_i / damping_times_m per s.
+    path.damping = stretch > 0.0 ? cable.damping_times_m / stretch : 0.0;
     // A cable pulls with at most its breaking tension (its heaviest span,
     // weight 1): past it, it parts (breakOverloaded) having passed no more.
     path.max_tension = cable.breaking_tension;

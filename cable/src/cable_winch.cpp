@@ -74,6 +74,7 @@ void CableSystem::reel(Cable& cable, double start_s, double h) {
   const auto [k, j] = winchSpan(cable);
   Link& drum = cable.links[k];
   CableJoint& span = cable.joints[j];
+  cable.fed = 0.0;
   if (span.parted) {  // the cable broke: nothing left to reel
     cable.reeled = 0.0;
     return;
@@ -94,6 +95,7 @@ void CableSystem::reel(Cable& cable, double start_s, double h) {
     const double given = std::min(std::max(0.0, length - path.rest_length), drum.stored);
     span.rest_length += given;
     drum.stored -= given;
+    cable.fed += given;
     winch_work_ -= pull * given;
   }
   // This substep's command: cable reeled in (> 0), within what the span
@@ -105,6 +107,7 @@ void CableSystem::reel(Cable& cable, double start_s, double h) {
   span.rest_length -= in;
   drum.stored += in;
   cable.reeled += in;
+  cable.fed -= in * (1.0 + cable.compliance_per_m * std::max(0.0, pull));  // stretched as it pulled
 }
 
 }  // namespace reeve

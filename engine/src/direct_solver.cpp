@@ -8,6 +8,7 @@
 #include <Eigen/SparseCore>
 
 #include "joint_row_sets.h"
+#include "reeve/engine/correction.h"
 #include "reeve/engine/world.h"
 
 namespace reeve {
@@ -195,7 +196,8 @@ void DirectSolver::prepare(World& world, double h) {
     build(world);
   }
   // What stays put over the substep: inverse masses, rotors' axles (they
-  // turn about them), and the paths' compliance, bounds and lambdas.
+  // turn about them), and the paths' bounds and lambdas (their compliance
+  // term with their value, evaluatePath: damping changes it).
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     BodyState& b = world.body(bodies_[i]);
     BodyFrame& f = frames_[i];
@@ -204,7 +206,6 @@ void DirectSolver::prepare(World& world, double h) {
     f.inv_axial = b.isRotor() ? b.rotor_axis.dot(b.inv_inertia * b.rotor_axis) : 0.0;
     f.axle = b.q * b.rotor_axis;
   }
-  const double inv_h2 = 1.0 / (h * h);
   for (std::size_t r = 0; r < rows_.size(); ++r) {
     const Row& row = rows_[r];
     if (row.source != Source::Path && row.source != Source::Distance) continue;
@@ -212,12 +213,10 @@ void DirectSolver::prepare(World& world, double h) {
     lo_[r] = -kInf;
     if (row.source == Source::Path) {
       PathConstraint& p = world.path(row.index);
-      alpha_[r] = p.compliance * inv_h2;
       mirror_[r] = &p.lambda;
       if (std::isfinite(p.max_tension)) lo_[r] = -p.max_tension * h * h;  // a winch's pull, at most
     } else {
       DistanceConstraint& c = world.distance(row.index);
-      alpha_[r] = c.compliance * inv_h2;
       mirror_[r] = &c.lambda;
       unilateral = c.unilateral;
     }
@@ -280,24 +279,39 @@ void DirectSolver::evaluateSpan(const World& world, int r, const PathPoint& p0, 
   C_[r] = l;  // minus the rest length, by the caller
 }
 
-void DirectSolver::evaluatePath(const World& world, int r) {
+void DirectSolver::evaluatePath(const World& world, int r, double h) {
   // C = sum of segment lengths - rest, dC/dp_i = u_{i-1} - u_i (a distance
   // constraint is a two-point path, pull-only if unilateral).
   const Row& row = rows_[r];
+  double compliance, damping, start_length;
   if (row.source == Source::Path) {
     const PathConstraint& p = world.path(row.index);
     if (p.points.size() == 2) evaluateSpan(world, r, p.points[0], p.points[1]);
     else evaluateRun(world, r, p.points.data(), p.points.size());
     C_[r] -= p.rest_length;
+    compliance = p.compliance, damping = p.damping, start_length = p.start_length - p.rest_length;
   } else {
     const DistanceConstraint& c = world.distance(row.index);
     evaluateSpan(world, r, PathPoint{c.a, c.local_a}, PathPoint{c.b, c.local_b});
     C_[r] -= c.rest_length;
+    compliance = c.compliance, damping = c.damping, start_length = c.start_length - c.rest_length;
   }
   // Taut (C >= 0: a cable exactly at its rest length touches too), or
   // already pulling: in the active set.
   const bool unilateral = hi_[r] == 0.0;
   state_[r] = !unilateral || C_[r] >= 0.0 || lambda_[r] < 0.0 || pulled_[r] ? State::Free : State::Off;
+  // Damping (correction.h: dampedRow) on a row in the set, as Gauss-Seidel
+  // damps a row taut or pulling; its gradient is C's, so the system keeps
+  // its matrix J W J^T and only C and alpha~ change. start_length is the
+  // start's C here: dC = C - (start length - rest length).
+  const double alpha_tilde = compliance / (h * h);
+  if (damping == 0.0 || state_[r] != State::Free) {
+    alpha_[r] = alpha_tilde;
+    return;
+  }
+  const DampedRow damped = dampedRow(C_[r], alpha_tilde, alpha_tilde * h * damping, C_[r] - start_length);
+  C_[r] = damped.C;
+  alpha_[r] = damped.alpha_tilde;
 }
 
 void DirectSolver::evaluateRun(const World& world, int r, const PathPoint* points, std::size_t count) {
@@ -467,7 +481,7 @@ void DirectSolver::evaluate(World& world, double h) {
   const int n = static_cast<int>(rows_.size());
   for (int r = 0; r < n;) {
     if (rows_[r].source == Source::Path || rows_[r].source == Source::Distance) {
-      evaluatePath(world, r);
+      evaluatePath(world, r, h);
       ++r;
     } else {
       r += evaluateJoint(world, r, h);

@@ -87,7 +87,9 @@ class DirectSolver {
   /// Every free row meets its equation C + alpha~ lambda = 0 to within
   /// `tolerance` (m or rad), or is held at a bound it presses against.
   bool converged(double tolerance) const;
-  void evaluatePath(const World& world, int row);
+  /// A path's or distance constraint's row in a substep of `h` s: C, alpha~
+  /// (both damped, when it is, and in the set) and its state.
+  void evaluatePath(const World& world, int row, double h);
   /// The length (in C_) and gradients of a two-point path, and of a longer
   /// one (a run through pinholes or sliding wraps). Weighted paths (cable
   /// friction) are not rows: their forces are not along their length's

@@ -1,5 +1,6 @@
 // The World's side of the energy ledger (energy.h; DESIGN.md, "Energy
 // ledger").
+#include <algorithm>
 #include <cmath>
 
 #include "reeve/engine/world.h"
@@ -22,6 +23,17 @@ double jointElastic(double compliance, const Vec3& linear, const Vec3& angular, 
 double stretchElastic(double compliance, double stretch, bool unilateral) {
   if (compliance == 0.0 || (unilateral && stretch <= 0.0)) return 0.0;
   return 0.5 * stretch * stretch / compliance;
+}
+
+// What a damped row of compliance alpha (m/N) took out over a substep of h
+// s: its tension beyond the spring's (N), -lambda / h^2 - C / alpha, times
+// the length's change dL (m). A converged row pulls with C / alpha + beta
+// dL / h, so this is beta dL^2 / h; a pull-only row the clamp released
+// while it shortened gives up its spring's energy to nothing, also counted.
+// Only a loss is credited.
+double dampingLoss(double compliance, double lambda, double stretch, bool unilateral, double dL, double h) {
+  const double spring = unilateral ? std::max(0.0, stretch) / compliance : stretch / compliance;
+  return std::max(0.0, (-lambda / (h * h) - spring) * dL);
 }
 
 }  // namespace
@@ -96,6 +108,22 @@ void World::addWork(double h) {
     if (!b.moves()) continue;
     if (b.applied_force.squaredNorm() > 0.0) flows_.load_work += b.applied_force.dot(b.x - b.x_prev);
     if (b.applied_torque.squaredNorm() > 0.0) flows_.load_work += b.applied_torque.dot(b.omega) * h;
+  }
+}
+
+void World::addConstraintDampingLoss(double h) {
+  for (const DistanceConstraint& c : distances_) {
+    if (!c.enabled || c.damping == 0.0 || c.compliance == 0.0) continue;
+    const double length = currentLength(c, body(c.a), body(c.b));
+    flows_.cable_damping_loss +=
+        dampingLoss(c.compliance, c.lambda, length - c.rest_length, c.unilateral, length - c.start_length, h);
+  }
+  for (PathId id = 0; id < pathCount(); ++id) {
+    const PathConstraint& p = paths_[id];
+    if (!p.enabled || p.damping == 0.0 || p.compliance == 0.0) continue;
+    const double length = pathLength(id);
+    flows_.cable_damping_loss +=
+        dampingLoss(p.compliance, p.lambda, length - p.rest_length, true, length - p.start_length, h);
   }
 }
 

@@ -4,6 +4,8 @@
 #include <cassert>
 #include <vector>
 
+#include "reeve/engine/correction.h"
+
 namespace reeve {
 namespace {
 
@@ -64,8 +66,9 @@ void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double a
       w += bi.inv_mass * grad[i].dot(force[j]) + ti.dot(bi.applyInvInertia(arm[j].cross(force[j])));
     }
   }
-  if (!(w + alpha_tilde > 0.0)) return;
-  double dl = (-C - alpha_tilde * path.lambda) / (w + alpha_tilde);
+  const DampedRow row = dampedRow(C, alpha_tilde, alpha_tilde * h * path.damping, length - path.start_length);
+  if (!(w + row.alpha_tilde > 0.0)) return;
+  double dl = (-row.C - row.alpha_tilde * path.lambda) / (w + row.alpha_tilde);
   dl = std::clamp(path.lambda + dl, -path.max_tension * h * h, 0.0) - path.lambda;
   path.lambda += dl;
   for (size_t i = 0; i < n; ++i) {
@@ -77,6 +80,15 @@ void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double a
     b.angular_impulse += dl * arm[i].cross(force[i]);
     b.solve_turn += turn;
   }
+}
+
+double pathStartLength(const PathConstraint& path, const BodyTable& bodies) {
+  double length = 0.0;
+  for (size_t i = 0; i + 1 < path.points.size(); ++i) {
+    const PathPoint &p = path.points[i], &q = path.points[i + 1];
+    length += (bodies(q.body).toWorldAtSubstepStart(q.local) - bodies(p.body).toWorldAtSubstepStart(p.local)).norm();
+  }
+  return length;
 }
 
 }  // namespace reeve

@@ -393,6 +393,7 @@ void World::step(double dt) {
     updateVelocities(h);
     for (HingeJoint& j : hinges_) trackHingeAngle(j, body(j.a), body(j.b), h);
     addWork(h);
+    addConstraintDampingLoss(h);
     if (contacts) {
       // SCA 2020, Alg. 2 line 24: the velocity pass of the contacts, with
       // restitution off below 2 |g| h.
@@ -488,6 +489,12 @@ void World::solvePositions(double h) {
   for (PathConstraint& p : paths_) p.lambda = 0.0;
   for (BodyState& b : bodies_) b.impulse = b.angular_impulse = b.solve_turn = Vec3::Zero();
   const BodyTable table{bodies_.data(), &world_frame_};
+  // The damping's dC is the length's change since the substep's start,
+  // with the anchors the substep hook has just set.
+  for (DistanceConstraint& c : distances_)
+    if (c.damping > 0.0) c.start_length = startLength(c, body(c.a), body(c.b));
+  for (PathConstraint& p : paths_)
+    if (p.damping > 0.0) p.start_length = pathStartLength(p, table) + p.fed;
   if (settings_.solver == SolverKind::Direct) {
     // Weighted paths (cable friction) pull along J_f, not along their
     // length's gradient J_c: a non-symmetric row the LDL^T solve cannot
@@ -505,7 +512,7 @@ void World::solvePositions(double h) {
         solvePathConstraint(p, table, p.compliance * inv_h2, h);
     for (DistanceConstraint& c : distances_)
       if (c.enabled && c.compliance > 0.0 && !body(c.a).moves() && !body(c.b).moves())
-        solveDistanceConstraint(c, body(c.a), body(c.b), c.compliance * inv_h2);
+        solveDistanceConstraint(c, body(c.a), body(c.b), c.compliance * inv_h2, h);
     for (int it = 0; it < settings_.iterations; ++it) {
       const bool moved = direct_->iterate(*this, h);
       if (!moved && manifolds_.empty() && !weighted) break;  // converged: the rest would do nothing
@@ -532,7 +539,7 @@ void World::solvePositions(double h) {
     for (SphericalJoint& j : sphericals_) solveSphericalJoint(j, body(j.a), body(j.b), h);
     for (FixedJoint& j : fixeds_) solveFixedJoint(j, body(j.a), body(j.b), h);
     for (DistanceConstraint& c : distances_)
-      solveDistanceConstraint(c, body(c.a), body(c.b), c.compliance * inv_h2);
+      solveDistanceConstraint(c, body(c.a), body(c.b), c.compliance * inv_h2, h);
     for (PathConstraint& p : paths_) solvePathConstraint(p, table, p.compliance * inv_h2, h);
     for (ContactManifold& m : manifolds_) {
       const Contact& c = contacts_[m.first];

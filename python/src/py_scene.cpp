@@ -160,6 +160,7 @@ py::dict energy(const PyScene& s) {
   d["damping_J"] = e.damping_J;
   d["contact_J"] = e.contact_J;
   d["friction_J"] = e.friction_J;
+  d["cable_damping_J"] = e.cable_damping_J;
   d["dissipated_J"] = e.dissipated_J();
   d["residual_J"] = e.balance_J() - s.start_balance_J;
   return d;
@@ -293,8 +294,8 @@ void bindScene(py::module_& m) {
            "The energy ledger now (issue 28; DESIGN.md, \"Energy ledger\"), a dict of floats in J: kinetic_J, "
            "potential_J (gravity, 0 at the origin), elastic_J (compliant cables, joints, springs), total_J (their "
            "sum); since the scene was loaded: drive_work_J, load_work_J, winch_work_J, kinematic_work_J, work_J (their "
-           "sum), "
-           "damping_J, contact_J, friction_J (cable friction), dissipated_J (their sum); residual_J = total - total as loaded - work + "
+           "sum), damping_J, contact_J, friction_J (cable friction), cable_damping_J, dissipated_J (their sum); "
+           "residual_J = total - total as loaded - work + "
            "dissipated: <= 0 (the integrator's own losses) unless energy was created. step() warns "
            "(RuntimeWarning) in a frame that created energy, as `reeve run` does.")
       .def("_run", &run, py::arg("frames"), py::arg("csv"), py::arg("png_dir"), py::arg("video"), py::arg("events"),

@@ -204,6 +204,13 @@ void addCables(const nlohmann::json& cables, const BodyNames& names, CableSystem
                            literal(rest->at(j)));
     }
     def.compliance = cable.value("compliance_m_per_N", 0.0);
+    if (const auto damping = cable.find("damping_N_s_per_m"); damping != cable.end()) {
+      def.damping = damping->get<double>();
+      if (def.damping > 0.0 && def.compliance == 0.0)
+        throw SceneError(source, path + "/damping_N_s_per_m",
+                         "no damping without compliance_m_per_N > 0 (a rigid cable does not stretch)",
+                         literal(*damping));
+    }
     def.breaking_tension = cable.value("breaking_tension_N", def.breaking_tension);
     std::optional<WinchDef> winch;
     if (const auto w = cable.find("winch"); w != cable.end())

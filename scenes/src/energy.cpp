@@ -23,6 +23,7 @@ EnergyLedger energyLedger(const Scene& scene) {
   e.damping_J = world.damping_loss;
   e.contact_J = world.contact_loss;
   e.friction_J = scene.cables->frictionLoss();
+  e.cable_damping_J = world.cable_damping_loss;
   return e;
 }
 

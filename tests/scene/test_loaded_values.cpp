@@ -60,6 +60,23 @@ TEST(LoadedValues, ComplianceIsOfTheWholeCable) {
   EXPECT_NEAR(s.cables->cables()[0].compliance_per_m, 0.01 / total, 1e-15);
 }
 
+TEST(LoadedValues, DampingIsOfTheWholeCableAndSharedInSeries) {
+  // Dashpots in series: a span of rest length L of a cable of total length
+  // L0 gets damping x L0 / L (N s/m), so compliance x damping is the same
+  // in every span.
+  const Scene s = parseScene(with(kBelt, R"("compliance_m_per_N": 0.01,)",
+                                  R"("compliance_m_per_N": 0.01, "damping_N_s_per_m": 3,)"),
+                             "belt.json");
+  const double total = 2.5 + 2.0 + 2.0 * pi * 0.3;
+  const Cable& belt = s.cables->cables()[0];
+  EXPECT_NEAR(s.world->path(belt.joints[0].path).damping, 3.0 * total / 2.5, 1e-12);
+  EXPECT_NEAR(s.world->path(belt.joints[1].path).damping, 3.0 * total / 2.0, 1e-12);
+  for (const CableJoint& span : belt.joints) {
+    const PathConstraint& p = s.world->path(span.path);
+    EXPECT_NEAR(p.compliance * p.damping, 0.01 * 3.0, 1e-15);
+  }
+}
+
 TEST(LoadedValues, OpenCableIsNotClosed) {
   const Scene s = parseScene(baseWith(R"({"name": "rope",)", R"({"name": "rope", "closed": false,)"),
                              "open.json");

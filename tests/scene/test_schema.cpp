@@ -129,6 +129,8 @@ TEST(SceneSchema, DefaultsAreWhatTheLoaderApplies) {
   const json& cable = defs.at("cable").at("properties");
   EXPECT_EQ(s.world->path(s.cables->cables()[0].joints[0].path).compliance,
             cable.at("compliance_m_per_N").at("default").get<double>());
+  EXPECT_EQ(s.world->path(s.cables->cables()[0].joints[0].path).damping,
+            cable.at("damping_N_s_per_m").at("default").get<double>());
   EXPECT_EQ(s.cables->cables()[0].closed, cable.at("closed").at("default").get<bool>());
   EXPECT_NEAR(s.cables->restLength(0, 0), 0.5, 1e-12);  // taut: from y = -1 to y = -1.5
 

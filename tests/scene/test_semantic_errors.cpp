@@ -333,6 +333,27 @@ TEST(SemanticErrors, WinchesAreRefusedWhereTheyCannotReel) {
               "/cables/0/winch/end", "\"first\"", "\"middle\"");
 }
 
+TEST(SemanticErrors, CableDampingMustBeANumberAtLeastZeroOnAnElasticCable) {
+  const auto damped = [](const std::string& properties) {
+    return baseWith(R"("name": "rope", "links")", R"("name": "rope", )" + properties + R"(, "links")");
+  };
+  expectError(damped(R"("compliance_m_per_N": 0.01, "damping_N_s_per_m": -2)"), "/cables/0/damping_N_s_per_m",
+              "a number >= 0", "-2");
+  expectError(damped(R"("compliance_m_per_N": 0.01, "damping_N_s_per_m": "2")"), "/cables/0/damping_N_s_per_m",
+              "a number", "\"2\"");
+  expectError(damped(R"("compliance_m_per_N": 0.01, "damping_N_s_per_m": 1e300)"), "/cables/0/damping_N_s_per_m",
+              "a number of magnitude at most 1e153", "1e+300");
+  // JSON has no infinity: too large for a double is a syntax error there.
+  const std::optional<SceneError> e = errorOf(damped(R"("compliance_m_per_N": 0.01, "damping_N_s_per_m": 1e400)"));
+  ASSERT_TRUE(e);
+  EXPECT_NE(e->found().find("number overflow parsing '1e400'"), std::string::npos) << e->what();
+  // A rigid cable does not stretch: nothing to damp.
+  expectError(damped(R"("damping_N_s_per_m": 2)"), "/cables/0/damping_N_s_per_m",
+              "no damping without compliance_m_per_N > 0", "2");
+  expectError(damped(R"("compliance_m_per_N": 0, "damping_N_s_per_m": 0.5)"), "/cables/0/damping_N_s_per_m",
+              "no damping without compliance_m_per_N > 0", "0.5");
+}
+
 TEST(SemanticErrors, AWinchOnABeltAndABreakingTensionOfZeroAreRefused) {
   expectError(baseWith(R"("name": "rope", "links")", R"("name": "rope", "closed": true, "winch": {"end": "last", "commands": [{"from_s": 0, "speed_m_per_s": 1}]}, "links")"),
               "/cables/0/winch", "no winch on a closed cable", "");

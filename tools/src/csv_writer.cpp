@@ -39,9 +39,9 @@ void append(std::string& row, double value, double time_s, const What& what) {
 bool canSlip(const Link& link) { return link.type == LinkType::Pinhole || std::isfinite(link.mu); }
 
 // The energy ledger's columns (energy.h), in this order.
-constexpr const char* kEnergyColumns[] = {"kinetic_J",   "potential_J",      "elastic_J", "drive_work_J",
-                                          "load_work_J", "winch_work_J",     "kinematic_work_J", "damping_J",
-                                          "contact_J",   "friction_J",       "residual_J"};
+constexpr const char* kEnergyColumns[] = {"kinetic_J",   "potential_J",  "elastic_J",        "drive_work_J",
+                                          "load_work_J", "winch_work_J", "kinematic_work_J", "damping_J",
+                                          "contact_J",   "friction_J",   "cable_damping_J",  "residual_J"};
 
 }  // namespace
 
@@ -104,9 +104,9 @@ void CsvWriter::writeRow() {
     if (cable.winch) append(row, cables_.winchPull(c), t, [&] { return "cable '" + cable.name + "' winch pull"; });
   }
   const EnergyLedger& e = energy_.ledger();
-  const double energies[] = {e.kinetic_J,   e.potential_J,      e.elastic_J, e.drive_work_J,
-                             e.load_work_J, e.winch_work_J,     e.kinematic_work_J, e.damping_J,
-                             e.contact_J,   e.friction_J,       energy_.residual_J()};
+  const double energies[] = {e.kinetic_J,   e.potential_J,  e.elastic_J,         e.drive_work_J,
+                             e.load_work_J, e.winch_work_J, e.kinematic_work_J,  e.damping_J,
+                             e.contact_J,   e.friction_J,   e.cable_damping_J,   energy_.residual_J()};
   static_assert(std::size(energies) == std::size(kEnergyColumns));
   for (std::size_t i = 0; i < std::size(energies); ++i)
     append(row, energies[i], t, [&] { return std::string("the energy ledger's ") + kEnergyColumns[i]; });

@@ -25,7 +25,8 @@ std::string nonFiniteMessage(double time_s, const std::string& what);
 /// energy ledger of the watch's last check (EnergyLedger, J):
 /// energy.kinetic_J, energy.potential_J, energy.elastic_J,
 /// energy.drive_work_J, energy.load_work_J, energy.winch_work_J,
-/// energy.kinematic_work_J, energy.damping_J, energy.contact_J, energy.friction_J, energy.residual_J
+/// energy.kinematic_work_J, energy.damping_J, energy.contact_J,
+/// energy.friction_J, energy.cable_damping_J, energy.residual_J
 /// (EnergyWatch::residual_J). Header fields are
 /// quoted per RFC 4180 where a name holds a comma, a quote or a line
 /// break. Numbers have 10 significant digits; -0 is written 0.

@@ -97,6 +97,12 @@ struct LinkDef {
 /// rest length, so strain, not span count, sets the stretch; cable stored
 /// on a body does not stretch (0: inextensible).
 ///
+/// `damping` (N s/m, >= 0; only with compliance > 0) is the whole cable's
+/// at that length likewise: a dashpot beside its spring, pulling with
+/// damping x its rate of stretch. Dashpots in series, a span of rest length
+/// L of a cable of total length L0 gets damping x L0 / L, so the damping's
+/// time, compliance x damping, is the same in every span (a material's).
+///
 /// `breaking_tension` (N, > 0; infinite: never): a span whose tension
 /// passes it parts (beyond the paper; CableSystem::update).
 struct CableDef {
@@ -104,6 +110,7 @@ struct CableDef {
   std::vector<LinkDef> links;
   bool closed = false;
   double compliance = 0.0;
+  double damping = 0.0;
   std::vector<double> rest_lengths;
   double breaking_tension = std::numeric_limits<double>::infinity();
 };
@@ -217,6 +224,7 @@ struct Cable {
   std::string name;
   bool closed = false;
   double compliance_per_m = 0.0;  // 1/N: span compliance = this x rest length
+  double damping_times_m = 0.0;   // N s: span damping (N s/m) = this / rest length
   double total_length = 0.0;      // m: rest lengths plus stored cable, as made or set
   std::vector<Link> links;
   std::vector<CableJoint> joints;  // joints[j] leaves links[j]
@@ -224,6 +232,10 @@ struct Cable {
   // m the winch reeled in before the last solve, whose pull (known once
   // that solve is done) times it is the winch's work (winchWork).
   double reeled = 0.0;
+  // m of cable the winch fed into its span in the last update (paid out,
+  // or negative reeled in, stretched by the last pull): PathConstraint::fed
+  // of the span's run.
+  double fed = 0.0;
   /// The rest lengths CableDef::rest_lengths gave (m, per joint), kept only
   /// where spans joined through a frictionless pinhole or wrap share one
   /// rest length in proportion to their lengths and so read otherwise at

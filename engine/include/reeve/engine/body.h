@@ -105,6 +105,11 @@ struct BodyState {
 
   /// World point of the body-local point `local`.
   Vec3 toWorld(const Vec3& local) const { return x + q * local; }
+  /// World point of `local` at this substep's start (x_prev, q_prev); a
+  /// body that does not move is where it is.
+  Vec3 toWorldAtSubstepStart(const Vec3& local) const {
+    return moves() ? Vec3(x_prev + q_prev * local) : toWorld(local);
+  }
   /// Body-local point of the world point `world`.
   Vec3 toLocal(const Vec3& world) const { return q.conjugate() * (world - x); }
   /// I^-1 v for a world-space vector v, with the current orientation.

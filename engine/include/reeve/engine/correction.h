@@ -23,6 +23,22 @@ double positionalDeltaLambda(const BodyState& a, const BodyState& b, const Vec3&
                              const Vec3& r_b, const Vec3& n, double C,
                              double alpha_tilde, double lambda);
 
+/// A compliant row with XPBD damping (Macklin, Müller, Chentanez, "XPBD",
+/// MIG 2016, eq. 25-26) folded into an undamped one: with gamma = alpha~
+/// beta~ / h = alpha~ h beta (beta the damping coefficient, N s/m),
+///   dlambda = (-C - alpha~ lambda - gamma dC) / ((1 + gamma) w + alpha~)
+/// is the undamped row's update with C' = (C + gamma dC) / (1 + gamma) and
+/// alpha~' = alpha~ / (1 + gamma); dC (m) is the change of the row's value
+/// since the substep began, grad C . (x - x_prev). The row then meets
+/// C / alpha + beta dC / h = tension: a spring and a dashpot side by side.
+struct DampedRow {
+  double C = 0.0;            ///< C', m
+  double alpha_tilde = 0.0;  ///< alpha~', 1/kg
+};
+inline DampedRow dampedRow(double C, double alpha_tilde, double gamma, double dC) {
+  return {(C + gamma * dC) / (1.0 + gamma), alpha_tilde / (1.0 + gamma)};
+}
+
 /// Moves b by the positional impulse P (kg m) applied at arm r_b, and a by
 /// -P at r_a: x += P/m, q += 1/2 [I^-1 (r x P), 0] q (SCA 2020, eq. 6-9);
 /// adds P, r x P and the turn to the bodies' impulse, angular_impulse and

@@ -44,6 +44,11 @@ struct WorldEnergy {
   /// Kinetic energy taken out by the contacts' velocity pass (dynamic
   /// friction, restitution), exactly: before and after it.
   double contact_loss = 0.0;
+  /// Energy taken out by the damping of distance constraints and paths
+  /// (cables, DistanceConstraint::damping): per substep, the tension beyond
+  /// the spring's, T - C / alpha, times the length's change over it, where
+  /// positive; beta (dL/dt)^2 h once the row is met.
+  double cable_damping_loss = 0.0;
 };
 
 }  // namespace reeve

@@ -21,8 +21,10 @@ struct PathPoint {
   Vec3 local = Vec3::Zero();
 };
 
-/// At least two points; `rest_length` (m), `compliance` (m/N) of the whole
-/// path. Disabled paths are skipped and exert nothing.
+/// At least two points; `rest_length` (m), `compliance` (m/N) and
+/// `damping` (N s/m: a force -damping dL/dt on the path's length L, only
+/// with compliance > 0; XPBD eq. 25-26, correction.h: dampedRow) of the
+/// whole path. Disabled paths are skipped and exert nothing.
 ///
 /// `weights`: empty (every segment pulls with the same tension: a
 /// frictionless path) or one value > 0 per segment (points - 1): segment i
@@ -40,12 +42,22 @@ struct PathConstraint {
   std::vector<double> weights;
   double rest_length = 0.0;
   double compliance = 0.0;
+  double damping = 0.0;
+  /// Cable fed into the path this substep at a point that does not slide
+  /// (m, as long as it was stretched; a winch paying out, negative reeling
+  /// in): a change of its length that is not stretching, which the damping
+  /// leaves out.
+  double fed = 0.0;
   /// The most the path pulls with (N, tension of a weight-1 segment): a
   /// winch's maximum pull; beyond it the constraint gives, lambda held at
   /// -max_tension h^2. Infinite: no limit.
   double max_tension = std::numeric_limits<double>::infinity();
   bool enabled = true;
   double lambda = 0.0;  // accumulated this substep, kg m; <= 0 when pulling
+  /// The length at this substep's start poses and present points plus
+  /// `fed` (m), set by the World before each solve: the damping's dC is the
+  /// length since.
+  double start_length = 0.0;
 };
 
 /// The World's bodies as the path kernels see them: id -> state, with
@@ -63,7 +75,11 @@ struct BodyTable {
 /// inverse mass is J_c M^-1 J_f^T over all of them (SCA 2020 eq. 2-4 for a
 /// general gradient; J_c = J_f without weights). lambda is kept in
 /// [-max_tension h^2, 0] (pull only, and at most max_tension) for the
-/// substep `h` (s).
+/// substep `h` (s). Damping acts only on a path taut or pulling, as the
+/// spring does.
 void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double alpha_tilde, double h);
+
+/// The path's length at the substep's start poses (m).
+double pathStartLength(const PathConstraint& path, const BodyTable& bodies);
 
 }  // namespace reeve

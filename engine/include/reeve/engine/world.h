@@ -292,6 +292,9 @@ class World {
   /// Adds this substep's work of the motor drives and applied loads
   /// (energy.h), once velocities are known.
   void addWork(double h);
+  /// Credits what the damped distance constraints and paths took out over
+  /// the substep (WorldEnergy::cable_damping_loss).
+  void addConstraintDampingLoss(double h);
   /// Kinetic energy (J) of body `id` now.
   double kineticEnergy(BodyId id) const;
   /// Work (J) kinematic body `id` has done on the rest over the substep of

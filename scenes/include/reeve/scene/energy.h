@@ -23,13 +23,15 @@ struct EnergyLedger {
   double damping_J = 0.0;     ///< taken out by body damping
   double contact_J = 0.0;     ///< taken out by the contacts' velocity pass
   double friction_J = 0.0;    ///< taken out by cable friction (CableSystem::frictionLoss)
+  double cable_damping_J = 0.0;  ///< taken out by cable damping (WorldEnergy::cable_damping_loss)
 
   /// kinetic + potential + elastic.
   double total_J() const { return kinetic_J + potential_J + elastic_J; }
   /// Everything the actuators put in: drives, loads, winches, kinematic bodies.
   double work_J() const { return drive_work_J + load_work_J + winch_work_J + kinematic_work_J; }
-  /// Everything measured as taken out: damping, contacts, cable friction.
-  double dissipated_J() const { return damping_J + contact_J + friction_J; }
+  /// Everything measured as taken out: damping, contacts, cable friction
+  /// and cable damping.
+  double dissipated_J() const { return damping_J + contact_J + friction_J + cable_damping_J; }
   /// total - work + dissipated: constant for an exact integrator; it falls
   /// by the losses nothing measures (the integrator's own O(h) damping,
   /// contact friction in the position solve, a speed guard, a break) and rises

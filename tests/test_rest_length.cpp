@@ -115,6 +115,51 @@ TEST(RestLength, MovingTheWheelWithoutTurningItOnlyRollsTheTangentPoint) {
 namespace reeve {
 namespace {
 
+TEST(RestLength, TheFramesOutputAgreesWithItsPosesNotASubstepLate) {
+  // Issue 28, item 11: the Atwood machine (1 and 2 kg over a 2 kg wheel of
+  // r = 0.3 m, no slip) stepped once at one substep of 1/600 s. The
+  // bookkeeping updates at a substep's start, so after the step its rest
+  // lengths are those before the solve turned the wheel; the rest lengths
+  // and stored cable reported now must include that turn: each span
+  // changes by r x the wheel's turn, the total is kept.
+  for (const SolverKind solver : {SolverKind::Direct, SolverKind::GaussSeidel}) {
+    SolverSettings settings;
+    settings.solver = solver;
+    settings.substeps = 1;
+    settings.iterations = 10;
+    World world(settings);
+    CableSystem cables(world);
+    BodyDef def;
+    def.shape = Shape::cylinder(0.3, 0.05);
+    def.mass = 2.0;
+    const BodyId wheel = world.addBody(def);
+    world.addHinge(HingeDef(wheel, kWorldBody, Vec3::Zero(), Vec3::UnitZ()));
+    def.shape = Shape::box(Vec3::Constant(0.1));
+    def.mass = 1.0;
+    def.position = Vec3(-0.3, -2.0, 0.0);
+    const BodyId light = world.addBody(def);
+    def.mass = 2.0;
+    def.position = Vec3(0.3, -2.0, 0.0);
+    const BodyId heavy = world.addBody(def);
+    CableDef rope;
+    rope.links = {LinkDef::attachment(light, Vec3(0.0, 0.1, 0.0)), LinkDef::rolling(wheel, -1),
+                  LinkDef::attachment(heavy, Vec3(0.0, 0.1, 0.0))};
+    cables.addCable(rope);
+    const double left = cables.restLength(0, 0), right = cables.restLength(0, 1), wrap = cables.cables()[0].links[1].stored;
+    world.step(1.0 / 600.0);
+    const double turn = world.hingeAngle(0);  // clockwise: negative, the heavy side goes down
+    ASSERT_LT(turn, -1e-6);
+    EXPECT_NEAR(cables.restLengthNow(0, 0), left + 0.3 * turn, 1e-12);
+    EXPECT_NEAR(cables.restLengthNow(0, 1), right - 0.3 * turn, 1e-12);
+    EXPECT_NEAR(cables.storedNow(0, 1), wrap, 1e-12);
+    EXPECT_NE(cables.restLength(0, 0), cables.restLengthNow(0, 0));  // the bookkeeping's own lags
+    // The next substep's update books what the query said.
+    const double said = cables.restLengthNow(0, 0);
+    cables.update(world.time(), 0.0);
+    EXPECT_NEAR(cables.restLength(0, 0), said, 1e-12);
+  }
+}
+
 TEST(CableSetup, ACableThatCannotBeBuiltLeavesTheWorldUntouched) {
   // The second span would have to start inside the wheel: no tangent.
   World world;

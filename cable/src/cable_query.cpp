@@ -1,8 +1,11 @@
 // Views of cables: tensions, lengths, tangent points, totals; rest lengths set by hand.
+#include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <utility>
 
+#include "link_geometry.h"
 #include "links.h"
 #include "reeve/cable/cable.h"
 
@@ -26,6 +29,41 @@ double CableSystem::tension(int c, int j) const {
 
 double CableSystem::restLength(int c, int j) const {
   return jointEnabled(c, j) ? cables_[c].joints[j].rest_length : 0.0;
+}
+
+std::optional<std::pair<double, double>> CableSystem::pendingPayOut(const Cable& cable, int j) const {
+  const Link& from = cable.links[j];
+  const CableJoint& joint = cable.joints[j];
+  const Link& to = cable.links[joint.to];
+  if (!from.rolls() && !to.rolls()) return std::pair(0.0, 0.0);
+  const auto anchors = spanAnchors(from, world_.body(from.body), to, world_.body(to.body), joint.local_b);
+  if (!anchors) return std::nullopt;
+  // Since the last update (a substep's start) only the solve has turned
+  // the bodies, unless an update by hand has counted that already.
+  const auto turn = [&](BodyId b) {
+    return turnSinceUpdate(b, solve_turn_counted_ ? 0.0 : world_.body(b).solve_turn.dot(world_.body(b).q * Vec3::UnitZ()));
+  };
+  return std::pair(from.rolls() ? payOut(from, joint.local_a, anchors->first, turn(from.body)) : 0.0,
+                   to.rolls() ? -payOut(to, joint.local_b, anchors->second, turn(to.body)) : 0.0);
+}
+
+double CableSystem::restLengthNow(int c, int j) const {
+  if (!jointEnabled(c, j)) return 0.0;
+  const auto paid = pendingPayOut(cables_[c], j);
+  const double rest = cables_[c].joints[j].rest_length;
+  return paid ? std::max(0.0, rest + paid->first + paid->second) : rest;
+}
+
+double CableSystem::storedNow(int c, int k) const {
+  const Cable& cable = cables_[c];
+  double stored = cable.links[k].stored;
+  if (!cable.links[k].active || !cable.links[k].rolls()) return stored;
+  for (int j = 0; j < static_cast<int>(cable.joints.size()); ++j) {
+    const bool leaves = j == k, arrives = cable.joints[j].to == k;
+    if ((!leaves && !arrives) || !jointEnabled(c, j)) continue;
+    if (const auto paid = pendingPayOut(cable, j)) stored -= leaves ? paid->first : paid->second;
+  }
+  return stored;
 }
 
 double CableSystem::length(int c, int j) const {

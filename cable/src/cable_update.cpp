@@ -18,30 +18,26 @@ namespace {
 // that has just merged, grazing its link, does not split straight back.
 constexpr double kSplitMargin = 1e-6;
 
-// Arc (m) paid out into a span when its anchor on a rolling link moves
-// from `old_anchor` to `new_anchor` (body-local) while the body turns by
-// `turn` (rad, about the plane normal): Alg. 1 l. 4-5 with the sign of the
-// leaving side; the arriving side uses its negative.
-double payOut(const Link& link, const Vec3& old_anchor, const Vec3& new_anchor, double turn) {
-  return sectionSurfaceDistance(link.section, planePoint(old_anchor), planePoint(new_anchor),
-                                link.orientation, turn);
-}
-
 }  // namespace
 
-void CableSystem::measureTurns(double h) {
+double CableSystem::turnSinceUpdate(BodyId b, double spin) const {
   // The geometric turn since the last update is known only up to whole
-  // turns; the last solve's own turn (BodyState::solve_turn, as far as the
-  // direct solver turned it) and this substep's integration (h omega)
-  // supply them, the geometry the rest.
+  // turns; the caller's spin supplies them, the geometry the rest.
+  const BodyState& body = world_.body(b);
+  const Vec3 n = body.q * Vec3::UnitZ();
+  const Quat dq = body.q * last_q_[b].conjugate();
+  const double twist = 2.0 * std::atan2(dq.vec().dot(n), dq.w());
+  return spin + std::remainder(twist - spin, 2.0 * std::numbers::pi);
+}
+
+void CableSystem::measureTurns(double h) {
+  // Whole turns from the last solve's own turn (BodyState::solve_turn, as
+  // far as the direct solver turned it) and this substep's integration
+  // (h omega).
   for (const BodyId b : rolling_bodies_) {
     const BodyState& body = world_.body(b);
-    const Vec3 n = body.q * Vec3::UnitZ();
-    const Quat dq = body.q * last_q_[b].conjugate();
-    const double twist = 2.0 * std::atan2(dq.vec().dot(n), dq.w());
     const Vec3 solved = solve_turn_counted_ ? Vec3::Zero() : body.solve_turn;
-    const double expected = (h * body.omega + solved).dot(n);
-    turn_[b] = expected + std::remainder(twist - expected, 2.0 * std::numbers::pi);
+    turn_[b] = turnSinceUpdate(b, (h * body.omega + solved).dot(body.q * Vec3::UnitZ()));
     last_q_[b] = body.q;
     move_[b] = (body.x - last_x_[b]).norm();
     last_x_[b] = body.x;

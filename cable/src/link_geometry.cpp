@@ -5,6 +5,7 @@
 #include <limits>
 #include <vector>
 
+#include "links.h"
 #include "reeve/cable/tangent.h"
 
 namespace reeve {
@@ -136,6 +137,11 @@ bool spanCutsSection(const Link& link, const BodyState& body, const Vec3& p, con
     if (t0 >= t1) return false;
   }
   return true;
+}
+
+double payOut(const Link& link, const Vec3& old_anchor, const Vec3& new_anchor, double turn) {
+  return sectionSurfaceDistance(link.section, planePoint(old_anchor), planePoint(new_anchor), link.orientation,
+                                turn);
 }
 
 }  // namespace reeve

@@ -27,6 +27,12 @@ std::optional<std::pair<Vec3, Vec3>> spanAnchors(const Link& from, const BodySta
                                                  const Link& to, const BodyState& to_body,
                                                  const Vec3& warm_to);
 
+/// Arc (m) paid out into a span when its anchor on a rolling link moves
+/// from `old_anchor` to `new_anchor` (body-local) while the body turns by
+/// `turn` (rad, about the plane normal): Alg. 1 l. 4-5 with the sign of the
+/// leaving side; the arriving side uses its negative.
+double payOut(const Link& link, const Vec3& old_anchor, const Vec3& new_anchor, double turn);
+
 /// Whether the straight span from world point `p` to `q` cuts into the
 /// link's section deeper than `margin` (m), seen in the link's plane: the
 /// split test of paper sec. 4.2.

@@ -86,9 +86,10 @@ void bindCables(py::module_& m) {
       .def_property_readonly(
           "rest_lengths_m",
           [](const CableView& v) {
-            return perJoint(v, [](const CableSystem& c, int i, int j) { return c.restLength(i, j); });
+            return perJoint(v, [](const CableSystem& c, int i, int j) { return c.restLengthNow(i, j); });
           },
-          "Rest length of each joint (m), shape (joints,): the cable between its two tangent points.")
+          "Rest length of each joint (m), shape (joints,): the cable between its two tangent points, as of the "
+          "poses now.")
       .def_property_readonly(
           "lengths_m",
           [](const CableView& v) {
@@ -108,7 +109,12 @@ void bindCables(py::module_& m) {
           "parted at the cable's breaking tension), shape (joints,).")
       .def_property_readonly(
           "stored_m",
-          [](const CableView& v) { return perLink<double>(v, [](const Link& l) { return l.stored; }); },
+          [](const CableView& v) {
+            py::array_t<double> out(static_cast<py::ssize_t>(cable(v).links.size()));
+            for (int k = 0; k < static_cast<int>(cable(v).links.size()); ++k)
+              out.mutable_at(k) = v.scene().cables->storedNow(v.index, k);
+            return out;
+          },
           "Cable stored on each link (m), shape (links,): wound on a rolling or hybrid end or a winch's drum, "
           "and after a break the loose cable hanging from the link; 0 elsewhere.")
       .def_property_readonly(

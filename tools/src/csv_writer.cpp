@@ -91,11 +91,11 @@ void CsvWriter::writeRow() {
         return [&cable, j, quantity] { return "cable '" + cable.name + "' joint " + std::to_string(j) + quantity; };
       };
       append(row, cables_.tension(c, j), t, joint(" tension"));
-      append(row, cables_.restLength(c, j), t, joint(" rest length"));
+      append(row, cables_.restLengthNow(c, j), t, joint(" rest length"));
       append(row, cables_.length(c, j), t, joint(" length"));
     }
     for (std::size_t k = 0; k < cable.links.size(); ++k)
-      append(row, cable.links[k].stored, t,
+      append(row, cables_.storedNow(c, static_cast<int>(k)), t,
              [&] { return "cable '" + cable.name + "' link " + std::to_string(k) + " stored cable"; });
     for (std::size_t k = 0; k < cable.links.size(); ++k)
       if (canSlip(cable.links[k]))

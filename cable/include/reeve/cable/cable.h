@@ -308,6 +308,14 @@ class CableSystem {
   double tension(int c, int j) const;
   double restLength(int c, int j) const;
   double length(int c, int j) const;
+  /// Rest length (m) of joint j and cable stored (m) on link k of cable c
+  /// as of the poses now: what the last update left plus what the next
+  /// will pay in or out for the turn the last solve made (Alg. 1 l. 4-5),
+  /// so that a frame's output agrees with its poses (issue 28, item 11:
+  /// they lagged a substep). restLength() and Link::stored are the
+  /// bookkeeping's own, as of the last update.
+  double restLengthNow(int c, int j) const;
+  double storedNow(int c, int k) const;
   /// Whether joint j of cable c currently exists (its link is active and
   /// it has not parted).
   bool jointEnabled(int c, int j) const;
@@ -365,6 +373,13 @@ class CableSystem {
   /// turn_[b]: how far (rad, unwrapped) body b turned about its cable
   /// plane's normal (local z) since the last update.
   void measureTurns(double h);
+  /// Body b's turn (rad, unwrapped) about its cable plane's normal since
+  /// the last update, counting `spin` (rad) as known whole turns.
+  double turnSinceUpdate(BodyId b, double spin) const;
+  /// Cable (m) joint j's two ends would pay into its span for the turns
+  /// since the last update: {leaving end, arriving end} (0 for ends that
+  /// do not roll); nullopt without tangents.
+  std::optional<std::pair<double, double>> pendingPayOut(const Cable& cable, int j) const;
   void updateJoint(Cable& cable, int j);
   /// The winch's substep (WinchDef) of `h` (s) starting at `start_s`: what
   /// it paid out stalled in the last solve, then what it reels in this one.

@@ -288,7 +288,7 @@ TEST(Hull, StackOfFiveHullCubesStandsStill) {
   // As the box stack of test_contacts.cpp, every cube a hull: within 5 mm
   // and 2 mrad of where it was put over 10 s at 20 substeps x 1 iteration
   // (a stack that walks or topples moves centimetres). Measured 0.09 mm,
-  // 0.02 mrad. Before static friction kept its anchor: 3.1 mm, 0.9 mrad,
+  // 0.012 mrad. Before static friction kept its anchor: 3.1 mm, 0.9 mrad,
   // and 0.2 to 3.1 mm with the vertices and faces listed in other orders
   // (the Gauss-Seidel row order set the millimetres).
   World world = makeWorld(20, 1);

@@ -285,9 +285,10 @@ TEST(Contacts, StackOfFiveBoxesStandsStillForTenSeconds) {
   // A perfectly placed stack has nothing to move it: every box stays within
   // 2 mm of where it was put, turns less than 1 mrad, and the top sinks less
   // than 1 mm (penetration of four contacts). Measured: 0.07 mm, 0.012 mrad,
-  // 0.06 mm (0.7 mm and 0.08 mrad before static friction kept its anchor). (Before contacts had a margin, a box pushed into its neighbour
-  // after detection found no contact until the next substep; the stack
-  // bounced every other substep and walked 6 cm.)
+  // 0.06 mm (0.7 mm and 0.08 mrad before static friction kept its anchor).
+  // (Before contacts had a margin, a box pushed into its neighbour after
+  // detection found no contact until the next substep; the stack bounced
+  // every other substep and walked 6 cm.)
   const StackRun run = runStack(5, 20, 1, 10.0);
   EXPECT_NEAR(run.top, 4.5, 1e-3);
   EXPECT_LT(run.drift, 2e-3);

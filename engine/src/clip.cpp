@@ -1,5 +1,6 @@
 #include "clip.h"
 
+#include <algorithm>
 #include <utility>
 
 namespace reeve {
@@ -9,33 +10,32 @@ void clipToPrism(const std::vector<Vec3>& face, const Vec3& n, std::vector<Vec3>
   Vec3 centre = Vec3::Zero();
   for (const Vec3& v : face) centre += v;
   centre /= static_cast<double>(face.size());
+  double size = 0.0;
+  for (const Vec3& v : face) size = std::max(size, (v - centre).norm());
+  const double slop = kClipSlop * size;
   const std::size_t k = face.size();
   for (std::size_t e = 0; e < k && !points.empty(); ++e) {
-    // Side plane through the face edge, parallel to n, normal pointing in.
+    // Side plane through the face edge, parallel to n, unit normal pointing
+    // in. A point within the slop outside it counts as inside, and is its
+    // own crossing: an edge is cut only where it leaves from strictly inside.
     const Vec3& r = face[e];
-    Vec3 w = n.cross(face[(e + 1) % k] - r);
+    Vec3 w = n.cross(face[(e + 1) % k] - r).normalized();
     if (w.dot(centre - r) < 0.0) w = -w;
-    const auto side = [&](const Vec3& p) { return w.dot(p - r); };  // >= 0: inside
-    const auto cut = [&](const Vec3& p, const Vec3& q) {
+    const auto side = [&](const Vec3& p) { return w.dot(p - r); };
+    const auto clipEdge = [&](const Vec3& p, const Vec3& q) {  // p's part, and the crossing
       const double sp = side(p), sq = side(q);
-      return Vec3(p + (q - p) * (sp / (sp - sq)));
+      const bool in_p = sp >= -slop, in_q = sq >= -slop;
+      if (in_p) scratch.push_back(p);
+      if (in_p != in_q && (in_p ? sp : sq) > 0.0) scratch.push_back(p + (q - p) * (sp / (sp - sq)));
     };
     scratch.clear();
     if (points.size() == 1) {
-      if (side(points[0]) >= 0.0) scratch.push_back(points[0]);
+      if (side(points[0]) >= -slop) scratch.push_back(points[0]);
     } else if (points.size() == 2) {
-      const Vec3 &p = points[0], &q = points[1];
-      const bool in_p = side(p) >= 0.0, in_q = side(q) >= 0.0;
-      if (in_p) scratch.push_back(p);
-      if (in_p != in_q) scratch.push_back(cut(p, q));
-      if (in_q) scratch.push_back(q);
+      clipEdge(points[0], points[1]);
+      if (side(points[1]) >= -slop) scratch.push_back(points[1]);
     } else {
-      for (std::size_t i = 0; i < points.size(); ++i) {
-        const Vec3 &p = points[i], &q = points[(i + 1) % points.size()];
-        const bool in_p = side(p) >= 0.0, in_q = side(q) >= 0.0;
-        if (in_p) scratch.push_back(p);
-        if (in_p != in_q) scratch.push_back(cut(p, q));
-      }
+      for (std::size_t i = 0; i < points.size(); ++i) clipEdge(points[i], points[(i + 1) % points.size()]);
     }
     std::swap(points, scratch);
   }

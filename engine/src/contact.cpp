@@ -16,6 +16,57 @@ bool isValid(const ContactMaterial& m) {
          m.restitution >= 0.0 && m.restitution <= 1.0;
 }
 
+namespace {
+
+double turn(const Vec2& o, const Vec2& p, const Vec2& q) {
+  return (p - o).x() * (q - o).y() - (p - o).y() * (q - o).x();
+}
+
+/// The convex hull of `points` (which it sorts), counter-clockwise
+/// (Andrew's monotone chain); one point when all coincide.
+void convexHull(std::vector<Vec2>& points, std::vector<Vec2>& hull) {
+  std::sort(points.begin(), points.end(),
+            [](const Vec2& p, const Vec2& q) { return p.x() < q.x() || (p.x() == q.x() && p.y() < q.y()); });
+  hull.clear();
+  for (int pass = 0; pass < 2 && points.size() > 1; ++pass) {
+    const std::size_t start = hull.size();
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      const Vec2& p = pass == 0 ? points[k] : points[points.size() - 1 - k];
+      while (hull.size() >= start + 2 && turn(hull[hull.size() - 2], hull.back(), p) <= 0.0) hull.pop_back();
+      hull.push_back(p);
+    }
+    hull.pop_back();
+  }
+  if (hull.empty()) hull.push_back(points.front());
+}
+
+/// Distance from p to a counter-clockwise convex polygon (a segment, a
+/// point); 0 inside.
+double distanceToHull(const std::vector<Vec2>& hull, const Vec2& p) {
+  bool inside = hull.size() > 2;
+  double distance = (p - hull.front()).norm();
+  for (std::size_t k = 0; k < hull.size() && hull.size() > 1; ++k) {
+    const Vec2 &e0 = hull[k], &e1 = hull[(k + 1) % hull.size()];
+    inside = inside && turn(e0, e1, p) >= 0.0;
+    const Vec2 e = e1 - e0;
+    const double s = std::clamp((p - e0).dot(e) / e.squaredNorm(), 0.0, 1.0);
+    distance = std::min(distance, (p - e0 - s * e).norm());
+  }
+  return inside ? 0.0 : distance;
+}
+
+/// Static friction's anchor at the patch centre as it was at the substep's
+/// start (x_prev, q_prev).
+void freshAnchor(ContactManifold& m, const BodyState& a, const BodyState& b) {
+  const Vec3 start = b.x_prev + b.q_prev * m.centre_b;
+  m.anchor_b = m.centre_b;
+  m.anchor_a = a.q_prev.conjugate() * (start - a.x_prev);
+  m.anchor_turn = a.q_prev.conjugate() * b.q_prev;
+  m.anchor_kept = false;
+}
+
+}  // namespace
+
 void solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, BodyState& b) {
   constexpr double kSettled = 1e-12;  // m: a sweep moving no row more than this ends the visit
   const int end = m.first + m.count;
@@ -38,10 +89,12 @@ void solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, 
   }
   double lambda_n = 0.0;  // of the whole manifold
   for (int i = m.first; i < end; ++i) lambda_n += contacts[i].lambda_n;
-  if (lambda_n <= 0.0) return;
-  // Static friction of the patch: one tangential row at its centre and one
+  if (lambda_n <= 0.0) {  // not pressed: nothing holds the anchor
+    m.stuck = false;
+    return;
+  }
+  // Static friction of the patch: one tangential row at its anchor and one
   // twist row about n, held together or not at all.
-  const Vec3 &local_a = m.centre_a, &local_b = m.centre_b;
   const Vec3& n = contacts[m.first].normal;
   const double mu_s = contacts[m.first].static_friction;
   const double radius = m.patch_radius;
@@ -51,32 +104,33 @@ void solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, 
   const Vec3 angular_a = a.angular_impulse, angular_b = b.angular_impulse;
   const Vec3 turn_a = a.solve_turn, turn_b = b.solve_turn;
   const double twist_before = m.twist_impulse;
-  for (int sweep = 0; sweep < kManifoldSweeps; ++sweep) {
-    // Tangential: C = |dp_t| of the centre, gradient dp_t / |dp_t| wrt b.
-    const Vec3 r_a = a.q * local_a, r_b = b.q * local_b;
-    const Vec3 dp = ((b.x + r_b) - (b.x_prev + b.q_prev * local_b)) -
-                    ((a.x + r_a) - (a.x_prev + a.q_prev * local_a));
-    const Vec3 dp_t = dp - n * n.dot(dp);
-    const double len = dp_t.norm();
-    if (len > kSettled) {
-      const Vec3 t = dp_t / len;
-      const Vec3 P = positionalDeltaLambda(a, b, r_a, r_b, t, len, 0.0, 0.0) * t;
-      m.friction_impulse += P;
-      applyPositionalImpulse(a, b, r_a, r_b, P);
+  // Holds the anchor (local_a, local_b, relative orientation anchor_turn);
+  // false, with everything undone, when that passes the bound.
+  const auto hold = [&](const Vec3& local_a, const Vec3& local_b, const Quat& anchor_turn) {
+    for (int sweep = 0; sweep < kManifoldSweeps; ++sweep) {
+      // Tangential: C = |dp_t| of the anchor, gradient dp_t / |dp_t| wrt b.
+      const Vec3 r_a = a.q * local_a, r_b = b.q * local_b;
+      const Vec3 dp = (b.x + r_b) - (a.x + r_a);
+      const Vec3 dp_t = dp - n * n.dot(dp);
+      const double len = dp_t.norm();
+      if (len > kSettled) {
+        const Vec3 t = dp_t / len;
+        const Vec3 P = positionalDeltaLambda(a, b, r_a, r_b, t, len, 0.0, 0.0) * t;
+        m.friction_impulse += P;
+        applyPositionalImpulse(a, b, r_a, r_b, P);
+      }
+      // Twist: C = the turn of b relative to a about n since the anchor.
+      const double turn = n.dot(rotationVector(b.q * (a.q * anchor_turn).conjugate()));
+      if (std::abs(turn) > kSettled && radius > 0.0) {
+        const double dl = angularDeltaLambda(a, b, n, turn, 0.0, 0.0);
+        m.twist_impulse += dl;
+        applyAngularImpulse(a, b, dl * n);
+      }
+      if (len <= kSettled && std::abs(turn) * radius <= kSettled) break;
     }
-    // Twist: C = the turn of b relative to a about n this substep.
-    const double turn =
-        n.dot(rotationVector(b.q * b.q_prev.conjugate()) - rotationVector(a.q * a.q_prev.conjugate()));
-    if (std::abs(turn) > kSettled && radius > 0.0) {
-      const double dl = angularDeltaLambda(a, b, n, turn, 0.0, 0.0);
-      m.twist_impulse += dl;
-      applyAngularImpulse(a, b, dl * n);
-    }
-    if (len <= kSettled && std::abs(turn) * radius <= kSettled) break;
-  }
-  if (m.friction_impulse.norm() > mu_s * lambda_n ||
-      std::abs(m.twist_impulse) > mu_s * lambda_n * radius) {  // sliding or spinning
-    a.x = xa;
+    if (m.friction_impulse.norm() <= mu_s * lambda_n && std::abs(m.twist_impulse) <= mu_s * lambda_n * radius)
+      return true;
+    a.x = xa;  // sliding or spinning
     a.q = qa;
     b.x = xb;
     b.q = qb;
@@ -88,7 +142,46 @@ void solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, 
     b.solve_turn = turn_b;
     m.friction_impulse = friction_before;
     m.twist_impulse = twist_before;
+    return false;
+  };
+  m.stuck = hold(m.anchor_a, m.anchor_b, m.anchor_turn);
+  if (m.stuck || !m.anchor_kept) return;
+  // Pulling back what earlier substeps let slip passes the bound (in an
+  // early iteration, before the normal rows carry the whole load, or
+  // under a load near it): hold this substep's motion alone, as a fresh
+  // anchor does, and the next substep anchors afresh unless a later visit
+  // holds the kept anchor.
+  ContactManifold fresh = m;
+  freshAnchor(fresh, a, b);
+  hold(fresh.anchor_a, fresh.anchor_b, fresh.anchor_turn);
+}
+
+void anchorFriction(ContactManifold& m, const Contact* contacts, const ContactManifold* previous,
+                    const BodyState& a, const BodyState& b, double margin) {
+  if (previous && previous->stuck) {
+    const bool same = previous->a == m.a;
+    const Vec3& on_a = same ? previous->anchor_a : previous->anchor_b;
+    const Vec3& on_b = same ? previous->anchor_b : previous->anchor_a;
+    // On the hull of all the points, not only the pressed ones, which come
+    // and go on a resting face.
+    const Vec3& n = contacts[m.first].normal;
+    const Vec3 u = n.unitOrthogonal(), v = n.cross(u);
+    const auto inPlane = [&](const Vec3& p) { return Vec2(u.dot(p), v.dot(p)); };
+    thread_local std::vector<Vec2> points, hull;
+    points.clear();
+    for (int i = m.first; i < m.first + m.count; ++i) points.push_back(inPlane(b.toWorld(contacts[i].local_b)));
+    convexHull(points, hull);
+    const Vec3 slip = b.toWorld(on_b) - a.toWorld(on_a);
+    if (distanceToHull(hull, inPlane(b.toWorld(on_b))) <= kAnchorOnPatch * margin &&
+        (slip - n * n.dot(slip)).norm() <= margin) {
+      m.anchor_a = on_a;
+      m.anchor_b = on_b;
+      m.anchor_turn = same ? previous->anchor_turn : previous->anchor_turn.conjugate();
+      m.anchor_kept = true;
+      return;
+    }
   }
+  freshAnchor(m, a, b);
 }
 
 void describePatch(ContactManifold& m, const Contact* contacts, const BodyState& a,
@@ -110,25 +203,9 @@ void describePatch(ContactManifold& m, const Contact* contacts, const BodyState&
     }
   }
   h /= static_cast<double>(points.size());
-  // Their convex hull (Andrew's monotone chain), its area, centroid and
-  // longest chord.
-  std::sort(points.begin(), points.end(),
-            [](const Vec2& p, const Vec2& q) { return p.x() < q.x() || (p.x() == q.x() && p.y() < q.y()); });
-  const auto turn = [](const Vec2& o, const Vec2& p, const Vec2& q) {
-    return (p - o).x() * (q - o).y() - (p - o).y() * (q - o).x();
-  };
+  // Their convex hull, its area, centroid and longest chord.
   thread_local std::vector<Vec2> hull;
-  hull.clear();
-  for (int pass = 0; pass < 2 && points.size() > 1; ++pass) {
-    const std::size_t start = hull.size();
-    for (std::size_t k = 0; k < points.size(); ++k) {
-      const Vec2& p = pass == 0 ? points[k] : points[points.size() - 1 - k];
-      while (hull.size() >= start + 2 && turn(hull[hull.size() - 2], hull.back(), p) <= 0.0) hull.pop_back();
-      hull.push_back(p);
-    }
-    hull.pop_back();
-  }
-  if (hull.empty()) hull.push_back(points.front());
+  convexHull(points, hull);
   double area = 0.0, spread = 0.0;
   Vec2 centroid = Vec2::Zero(), mean = Vec2::Zero();
   for (std::size_t k = 0; k < hull.size(); ++k) {

@@ -132,7 +132,13 @@ void World::setGround(const GroundPlane& ground) {
 
 void World::findContacts() {
   contacts_.clear();
+  // The last substep's manifolds, by pair (either way round), whose
+  // friction anchors a pair that still sticks keeps (anchorFriction).
+  const auto key = [](const ContactManifold& m) { return std::minmax(m.a, m.b); };
+  const auto before = [&](const ContactManifold& p, const ContactManifold& q) { return key(p) < key(q); };
+  previous_manifolds_.swap(manifolds_);
   manifolds_.clear();
+  std::sort(previous_manifolds_.begin(), previous_manifolds_.end(), before);
   // Bounds grow by the largest contact margin a body can have (collide.h).
   constexpr double grow = 1.0 + kContactMarginFraction;
   const auto group = [&](std::size_t first) {
@@ -141,7 +147,15 @@ void World::findContacts() {
     m.first = static_cast<int>(first);
     m.count = static_cast<int>(contacts_.size() - first);
     const Contact& c = contacts_[first];
-    describePatch(m, contacts_.data(), c.a == kWorldBody ? world_frame_ : bodies_[c.a], bodies_[c.b]);
+    m.a = c.a;
+    m.b = c.b;
+    const BodyState &a = c.a == kWorldBody ? world_frame_ : bodies_[c.a], &b = bodies_[c.b];
+    describePatch(m, contacts_.data(), a, b);
+    const auto found = std::lower_bound(previous_manifolds_.begin(), previous_manifolds_.end(), m, before);
+    const bool kept = found != previous_manifolds_.end() && key(*found) == key(m);
+    const Shape& shape_b = defs_[c.b].shape;
+    anchorFriction(m, contacts_.data(), kept ? &*found : nullptr, a, b,
+                   contactMargin(c.a == kWorldBody ? shape_b : defs_[c.a].shape, shape_b));
     manifolds_.push_back(m);
   };
   if (ground_) {
@@ -388,6 +402,7 @@ void World::step(double dt) {
     else if (!contacts_.empty()) {  // the ground was removed
       contacts_.clear();
       manifolds_.clear();
+      previous_manifolds_.clear();
     }
     solvePositions(h);
     updateVelocities(h);

@@ -33,6 +33,7 @@ struct Contact {
 /// `count` consecutive entries from `first` of the contact list; they share
 /// a normal, a material and one static friction bound.
 struct ContactManifold {
+  BodyId a = kWorldBody, b = 0;  // the pair, as its contacts name it
   int first = 0, count = 0;
   /// Sum of the static friction corrections (kg m, world, normal to n) of
   /// all points this substep: the manifold's friction, whose size static
@@ -44,12 +45,22 @@ struct ContactManifold {
   /// a and on b (m), and the lever arm of twisting friction (m).
   Vec3 centre_a = Vec3::Zero(), centre_b = Vec3::Zero();
   double patch_radius = 0.0;
+  /// Static friction's anchor (anchorFriction): body-local points of a and
+  /// b (m) that lay together along the patch when it began to stick, and
+  /// b's orientation relative to a then (q_a^-1 q_b).
+  Vec3 anchor_a = Vec3::Zero(), anchor_b = Vec3::Zero();
+  Quat anchor_turn = Quat::Identity();
+  bool anchor_kept = false;  // from an earlier substep, not this one's start
+  /// Static friction held the anchor at the manifold's last visit
+  /// (solveContactPositions): the next substep may keep it.
+  bool stuck = false;
 };
 
 /// Sets the patch of manifold `m` from its contacts at the poses a, b: the
 /// patch is the convex hull of the points that overlap (separation < 0;
 /// all points when none does yet). `centre_a`, `centre_b`: the mean of
-/// their body-local points, where the friction rows act. `patch_radius`:
+/// their body-local points, where dynamic friction acts and a fresh static
+/// friction anchor is set. `patch_radius`:
 /// the lever arm of twisting friction, the mean distance from the centre of
 /// a uniform pressure, taken as that of a disc of equal area,
 /// 2/3 sqrt(A / pi) (a square: 0.752 half-sides, exactly 0.765), or a
@@ -57,6 +68,25 @@ struct ContactManifold {
 /// one point, which holds no twist.
 void describePatch(ContactManifold& m, const Contact* contacts, const BodyState& a,
                    const BodyState& b);
+
+/// How far (a fraction of the contact margin, collide.h) a kept anchor may
+/// lie off the patch: a face's anchor stays while its pressed corners come
+/// and go; a rolling or rocking point contact is anchored afresh almost
+/// every substep (an anchor 1.8 mm along a thin rod rocking on a wheel
+/// spun the rod up about its axis).
+inline constexpr double kAnchorOnPatch = 1e-3;
+
+/// Sets the static friction anchor of manifold `m`, its patch described.
+/// Kept from `previous` (the same pair's manifold of the last substep, a
+/// and b either way round; nullptr for none) when that one stuck, its
+/// anchor on b lies within kAnchorOnPatch x `margin` (m) of the convex hull
+/// of m's points seen along n, and its anchors have slipped apart along the
+/// patch by no more than `margin` (nothing moved the bodies elsewhere).
+/// Otherwise the patch centre as it was at the substep's start (x_prev,
+/// q_prev): friction then holds this substep's motion, as in SCA 2020,
+/// sec. 3.5.
+void anchorFriction(ContactManifold& m, const Contact* contacts, const ContactManifold* previous,
+                    const BodyState& a, const BodyState& b, double margin);
 
 /// Most sweeps over a manifold's normal rows, and over its friction rows,
 /// in one visit; a visit stops sweeping early once no row moves more than
@@ -72,15 +102,22 @@ inline constexpr int kManifoldSweeps = 8;
 ///             compliance; lambda_n accumulates >= 0. Contacts found within
 ///             the margin (collide.h) start with C > 0 and act only if the
 ///             solve closes the gap.
-///   friction: at the patch centre c (describePatch) a tangential row,
-///             dp = (c_b - c_b_prev) - (c_a - c_a_prev), dp_t its part
-///             normal to n, C = |dp_t|, gradient dp_t / |dp_t|; and a twist
-///             row, C = n . (turn of b - turn of a this substep), angular.
+///   friction: at the anchor (anchorFriction) a tangential row, dp =
+///             p_b - p_a of the anchor's points, dp_t its part normal to
+///             n, C = |dp_t|, gradient dp_t / |dp_t|; and a twist row, C =
+///             n . (turn of b relative to a since the anchor), angular.
 ///             Kept only while |sum of tangential corrections| <= mu_s x
 ///             (sum of lambda_n) and |sum of twist corrections| <= mu_s x
-///             (sum of lambda_n) x patch_radius; otherwise both are undone
-///             and the velocity pass brakes instead.
-/// _prev are the poses before this substep's integration (x_prev, q_prev).
+///             (sum of lambda_n) x patch_radius; otherwise both are undone,
+///             the patch is not `stuck`, and the velocity pass brakes
+///             instead. A kept anchor that passes the bound is tried again
+///             afresh (this substep's motion alone); held so, the patch is
+///             not `stuck` either, and the next substep anchors afresh. A
+///             manifold with no pressed point is not stuck.
+/// The paper holds the motion since the substep's start, a fresh anchor
+/// each substep: what one substep's unconverged solve let slip stayed, and
+/// a stack of three boxes crept 8 mm in 10 s at 10 x 2 (issue 28, item
+/// 15). An anchor kept while the patch sticks pulls that slip back.
 /// The paper keeps a friction row and bound per point; Gauss-Seidel then
 /// lets the first point of a face hold the whole box, which a per-point
 /// budget refuses (a box on an incline slid below the friction angle), and

@@ -326,6 +326,7 @@ class World {
   std::vector<double> bound_radius_;    // m, per body: boundingRadius of its shape
   std::vector<Contact> contacts_;       // this substep's; capacity kept between substeps
   std::vector<ContactManifold> manifolds_;  // ranges of contacts_, one per touching pair
+  std::vector<ContactManifold> previous_manifolds_;  // the last substep's, sorted by pair (findContacts)
   double time_ = 0.0;
   double last_h_ = 0.0;
   std::optional<NonFiniteState> non_finite_;

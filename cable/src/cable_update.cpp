@@ -201,6 +201,7 @@ void CableSystem::mergeEmptyLinks(Cable& cable, int c, double time_s) {
     in.rest_length += out.rest_length + link.stored;
     link.stored = 0.0;
     link.active = false;
+    link.side = std::numeric_limits<double>::quiet_NaN();  // measured afresh from the next update
     link.slipping = link.mu == 0.0;  // a friction link starts sticking when it is split in again
     link.slip_speed = 0.0;
     events_.push_back({CableEvent::Kind::Merge, time_s, c, k, link.orientation});
@@ -210,15 +211,23 @@ void CableSystem::mergeEmptyLinks(Cable& cable, int c, double time_s) {
 void CableSystem::splitAtCrossedLinks(Cable& cable, int c, double time_s) {
   // Alg. 2 l. 26-28, Fig. 11b: a span that cuts into the section of an
   // inactive link lying between its ends in the cable is split there; the
-  // rest length is shared so both parts have the same strain.
+  // rest length is shared so both parts have the same strain. So is one
+  // that swept past the whole section within a substep (a 1 cm peg under a
+  // pendulum at one substep a frame, issue 28 item 12): the section's
+  // centre changed sides of it, between its ends.
   const int n = static_cast<int>(cable.links.size());
   for (int j = 0; j < static_cast<int>(cable.joints.size()); ++j) {
     if (!cable.links[j].active || cable.joints[j].parted) continue;
     CableJoint& in = cable.joints[j];
     for (int k = (j + 1) % n; k != in.to; k = (k + 1) % n) {
       Link& mid = cable.links[k];
-      if (!spanCutsSection(mid, world_.body(mid.body), startPointOf(cable, j), endPointOf(cable, j),
-                           kSplitMargin))
+      const double before = mid.side;
+      const auto [side, along] = spanSide(world_.body(mid.body), startPointOf(cable, j), endPointOf(cable, j));
+      mid.side = side;
+      // isnan first: an ordered comparison with NaN raises FE_INVALID.
+      const bool swept = !std::isnan(before) && before * side < 0.0 && along > 0.0 && along < 1.0;
+      if (!swept && !spanCutsSection(mid, world_.body(mid.body), startPointOf(cable, j), endPointOf(cable, j),
+                                     kSplitMargin))
         continue;
       Link& from = cable.links[j];
       Link& to = cable.links[in.to];
@@ -243,6 +252,7 @@ void CableSystem::splitAtCrossedLinks(Cable& cable, int c, double time_s) {
       from.stored -= from_shift;
       to.stored += to_shift;
       mid.stored = wrap;
+      mid.side = std::numeric_limits<double>::quiet_NaN();
       CableJoint& out = cable.joints[k];
       out.to = in.to;
       out.local_a = second->first;

@@ -139,6 +139,13 @@ bool spanCutsSection(const Link& link, const BodyState& body, const Vec3& p, con
   return true;
 }
 
+std::pair<double, double> spanSide(const BodyState& body, const Vec3& p, const Vec3& q) {
+  const Vec2 a = toPlane(body, p), d = toPlane(body, q) - a;
+  const double len2 = d.squaredNorm();
+  if (!(len2 > 0.0)) return {0.0, 0.0};
+  return {(a.y() * d.x() - a.x() * d.y()) / std::sqrt(len2), -a.dot(d) / len2};
+}
+
 double payOut(const Link& link, const Vec3& old_anchor, const Vec3& new_anchor, double turn) {
   return sectionSurfaceDistance(link.section, planePoint(old_anchor), planePoint(new_anchor), link.orientation,
                                 turn);

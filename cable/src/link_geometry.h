@@ -27,6 +27,12 @@ std::optional<std::pair<Vec3, Vec3>> spanAnchors(const Link& from, const BodySta
                                                  const Link& to, const BodyState& to_body,
                                                  const Vec3& warm_to);
 
+/// Where the straight span from world point `p` to `q` passes the link's
+/// section centre, seen in the link's plane: {signed distance of the
+/// centre from the span's line (m, + to the left of p -> q), parameter in
+/// [0, 1] of the span's point nearest it (unclamped)}.
+std::pair<double, double> spanSide(const BodyState& body, const Vec3& p, const Vec3& q);
+
 /// Arc (m) paid out into a span when its anchor on a rolling link moves
 /// from `old_anchor` to `new_anchor` (body-local) while the body turns by
 /// `turn` (rad, about the plane normal): Alg. 1 l. 4-5 with the sign of the

@@ -140,6 +140,11 @@ struct Link {
   /// sticks.
   double slip_speed = 0.0;
   double slip_speed_before = 0.0;  ///< in the substep before (m/s)
+  /// While inactive: the signed distance (m, + to the left in the cable
+  /// plane) of the section's centre from the span passing over it, at the
+  /// last update; NaN before there is one. A span that jumps past the
+  /// whole section in one substep changes its sign (the swept split).
+  double side = std::numeric_limits<double>::quiet_NaN();
 
   /// True when the cable wraps the body's section here (rolling, or a
   /// hybrid that still has cable).

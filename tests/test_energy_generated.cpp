@@ -125,9 +125,9 @@ class Generator {
                        {"position_m", vec(x, y)}});
   }
   // A kinematic carrier: speeds up to (vx, vy) over 0.5 s, reverses by 1.5 s
-  // and stops at 2 s, back near where it started.
+  // and stops at 2 s, back where it started.
   void carrier(const std::string& name, double x, double y, double speed) {
-    const double a = uniform(0.0, 2.0 * M_PI);
+    const double a = uniform(0.0, 6.283185307179586);  // a direction, radians
     const double vx = speed * std::cos(a), vy = speed * std::sin(a);
     bodies_.push_back({{"name", name},
                        {"shape", {{"type", "box"}, {"half_extents_m", vec(0.1, 0.1, 0.1)}}},

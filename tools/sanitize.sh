@@ -32,8 +32,8 @@ long+='|EnergyLedger/EveryShippedSceneAtFourBudgets\.'
 # the sanitizers whole).
 long+='|HingeDrive\.ACappedMotor|EnergyLedger\.AMotorPuts|Capstan\.AWrapOnAHingedWheel'
 # The rest of issue 28's, 0.4-4.5 s each in Release (10-40 x that here):
-# a resting stack at four budgets (contacts.json and the stack tests above
-# this list's take the contact code through), the drive targets' and cable
-# damping's sweeps over budgets and masses.
+# a resting stack at four budgets (contacts.json's whole run takes the
+# contact code through), the drive targets' and cable damping's sweeps
+# over budgets and masses.
 long+='|RestingStack\.|DriveTargets\.(AnAngleDrive|AVelocityRamp)|CableDamping\.LightAndHeavy)'
 ctest --test-dir build-sanitize --output-on-failure -j2 -E "$long"

@@ -35,5 +35,8 @@ long+='|HingeDrive\.ACappedMotor|EnergyLedger\.AMotorPuts|Capstan\.AWrapOnAHinge
 # a resting stack at four budgets (contacts.json's whole run takes the
 # contact code through), the drive targets' and cable damping's sweeps
 # over budgets and masses.
-long+='|RestingStack\.|DriveTargets\.(AnAngleDrive|AVelocityRamp)|CableDamping\.LightAndHeavy)'
+long+='|RestingStack\.|DriveTargets\.(AnAngleDrive|AVelocityRamp|ASlide)|CableDamping\.LightAndHeavy|SolverPrice\.'
+# The generated machines' 32 x 32 cells (10-24 s each here; the other
+# three budgets take the same code through).
+long+='|EnergyLedger/GeneratedMachineAtFourBudgets\..*32x32)'
 ctest --test-dir build-sanitize --output-on-failure -j2 -E "$long"

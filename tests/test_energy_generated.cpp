@@ -15,7 +15,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -28,6 +27,7 @@
 
 #include "reeve/scene/energy.h"
 #include "reeve/scene/scene.h"
+#include "ledger_ratchet.h"
 #include "solver_budgets.h"
 
 namespace reeve {
@@ -503,21 +503,12 @@ TEST_P(GeneratedMachineAtFourBudgets, CreatesNoEnergy) {
               cellName(cell).c_str(), worst, worst / energyTolerance(h), energyTolerance(h),
               first ? ", creates energy" : "", broke.empty() ? "" : (", " + broke).c_str());
   const bool creates = first || !broke.empty();
-  const bool known = knownCreating().count(cellName(cell)) > 0;
-  if (known)
-    EXPECT_TRUE(creates) << cellName(cell) << " no longer creates energy: take it off the list";
-  else
-    EXPECT_FALSE(creates) << cellName(cell) << ": " << (first ? energyCreatedMessage(*first) : broke) << "\n"
-                          << doc.dump();
+  test::expectAsListed(knownCreating(), cellName(cell), creates,
+                       (first ? energyCreatedMessage(*first) : broke) + "\n" + doc.dump());
 }
 
 INSTANTIATE_TEST_SUITE_P(EnergyLedger, GeneratedMachineAtFourBudgets, testing::ValuesIn(cells()),
-                         [](const testing::TestParamInfo<Cell>& info) {
-                           std::string name = cellName(info.param);
-                           for (char& ch : name)
-                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-                           return name;
-                         });
+                         [](const testing::TestParamInfo<Cell>& info) { return test::parameterName(cellName(info.param)); });
 
 }  // namespace
 }  // namespace reeve

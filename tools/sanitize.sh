@@ -36,7 +36,8 @@ long+='|HingeDrive\.ACappedMotor|EnergyLedger\.AMotorPuts|Capstan\.AWrapOnAHinge
 # contact code through), the drive targets' and cable damping's sweeps
 # over budgets and masses.
 long+='|RestingStack\.|DriveTargets\.(AnAngleDrive|AVelocityRamp|ASlide)|CableDamping\.LightAndHeavy|SolverPrice\.'
-# The generated machines' 32 x 32 cells (10-24 s each here; the other
-# three budgets take the same code through).
-long+='|EnergyLedger/GeneratedMachineAtFourBudgets\..*32x32)'
+# The generated machines' 32 x 32 cells (10-24 s each here) and their
+# Gauss-Seidel cells but 1 x 1 (the direct cells and that one take the
+# same machines through).
+long+='|EnergyLedger/GeneratedMachineAtFourBudgets\..*(32x32|gauss_seidel_1x10|gauss_seidel_10x2))'
 ctest --test-dir build-sanitize --output-on-failure -j2 -E "$long"

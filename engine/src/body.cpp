@@ -1,6 +1,5 @@
 #include "reeve/engine/body.h"
 
-#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -9,13 +8,11 @@
 namespace reeve {
 
 MotionKeyframe motionAt(const std::vector<MotionKeyframe>& motion, double t) {
-  const auto after = std::upper_bound(motion.begin(), motion.end(), t,
-                                      [](double time, const MotionKeyframe& k) { return time < k.time; });
-  MotionKeyframe m = after == motion.begin() ? motion.front() : *(after - 1);
-  if (after != motion.begin() && after != motion.end()) {
-    const double s = (t - m.time) / (after->time - m.time);
-    m.velocity += s * (after->velocity - m.velocity);
-    m.angular_velocity += s * (after->angular_velocity - m.angular_velocity);
+  const auto [i, s] = keyframeAt(motion, t);
+  MotionKeyframe m = motion[i];
+  if (s > 0.0) {
+    m.velocity += s * (motion[i + 1].velocity - m.velocity);
+    m.angular_velocity += s * (motion[i + 1].angular_velocity - m.angular_velocity);
   }
   m.time = t;
   return m;
@@ -30,13 +27,11 @@ BodyState makeBodyState(const BodyDef& def) {
                                 "': frictions must be finite and >= 0, restitution in [0, 1]");
   if (!def.motion.empty()) {
     if (def.is_static) throw std::invalid_argument("body '" + def.name + "': a static body has no motion");
-    for (std::size_t k = 0; k < def.motion.size(); ++k) {
-      const MotionKeyframe& m = def.motion[k];
-      if (!std::isfinite(m.time) || !m.velocity.allFinite() || !m.angular_velocity.allFinite())
-        throw std::invalid_argument("body '" + def.name + "': its motion's times and velocities must be finite");
-      if (k > 0 && !(m.time > def.motion[k - 1].time))
-        throw std::invalid_argument("body '" + def.name + "': its motion's times must increase strictly");
-    }
+    if (!timesIncrease(def.motion))
+      throw std::invalid_argument("body '" + def.name + "': its motion's times must be finite and increase strictly");
+    for (const MotionKeyframe& m : def.motion)
+      if (!m.velocity.allFinite() || !m.angular_velocity.allFinite())
+        throw std::invalid_argument("body '" + def.name + "': its motion's velocities must be finite");
     s.kinematic = true;
     s.v = def.motion.front().velocity;
     s.omega = def.motion.front().angular_velocity;

@@ -177,13 +177,8 @@ JointFrame makeJointFrame(const Vec3& anchor, const Vec3& axis, const BodyState&
 namespace reeve {
 
 double scheduledTarget(const std::vector<DriveKeyframe>& schedule, double t) {
-  const auto after = std::upper_bound(schedule.begin(), schedule.end(), t,
-                                      [](double time, const DriveKeyframe& k) { return time < k.time; });
-  if (after == schedule.begin()) return schedule.front().target;
-  if (after == schedule.end()) return schedule.back().target;
-  const DriveKeyframe& k0 = *(after - 1);
-  const double s = (t - k0.time) / (after->time - k0.time);
-  return k0.target + s * (after->target - k0.target);
+  const auto [i, s] = keyframeAt(schedule, t);
+  return s == 0.0 ? schedule[i].target : schedule[i].target + s * (schedule[i + 1].target - schedule[i].target);
 }
 
 }  // namespace reeve

@@ -48,12 +48,9 @@ void checkDrive(const char* kind, double target, double max_effort, double until
   // isnan first: an ordered comparison with NaN raises FE_INVALID.
   if (std::isnan(until) || until <= 0.0) reject(kind, "the drive's end time (until) must be > 0 s");
   if (std::isnan(max_effort)) reject(kind, "the drive's maximum force or torque must be a number");
-  for (std::size_t k = 0; k < schedule.size(); ++k) {
-    if (!std::isfinite(schedule[k].time) || !std::isfinite(schedule[k].target))
-      reject(kind, "the drive schedule's times and targets must be finite");
-    if (k > 0 && !(schedule[k].time > schedule[k - 1].time))
-      reject(kind, "the drive schedule's times must increase strictly");
-  }
+  if (!timesIncrease(schedule)) reject(kind, "the drive schedule's times must be finite and increase strictly");
+  for (const DriveKeyframe& k : schedule)
+    if (!std::isfinite(k.target)) reject(kind, "the drive schedule's targets must be finite");
 }
 
 // A drive's spring (HingeDrive, PrismaticDrive): stiffness and damping

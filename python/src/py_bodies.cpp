@@ -34,6 +34,15 @@ BodyId bodyOf(const View& v, const BodyKey& key) {
   throw py::key_error("no body named '" + name + "' in scene '" + v.scene().name + "'");
 }
 
+// One flag per body, shape (n,).
+template <class Get>
+py::array_t<bool> flags(const View& v, Get get) {
+  const int n = v.world().bodyCount();
+  py::array_t<bool> out(n);
+  for (BodyId b = 0; b < n; ++b) out.mutable_at(b) = get(b);
+  return out;
+}
+
 // Each body's vector as an (n, 3) array.
 template <class Get>
 py::array_t<double> rows3(const View& v, Get get) {
@@ -118,22 +127,10 @@ void bindBodies(py::module_& m) {
           },
           "Masses (kg), shape (n,); 0 for static bodies.")
       .def_property_readonly(
-          "static",
-          [](const BodiesView& v) {
-            const int n = v.world().bodyCount();
-            py::array_t<bool> out(n);
-            for (int b = 0; b < n; ++b) out.mutable_at(b) = v.world().bodyDef(b).is_static;
-            return out;
-          },
+          "static", [](const BodiesView& v) { return flags(v, [&](BodyId b) { return v.world().bodyDef(b).is_static; }); },
           "Whether each body is static (bool), shape (n,).")
       .def_property_readonly(
-          "kinematic",
-          [](const BodiesView& v) {
-            const int n = v.world().bodyCount();
-            py::array_t<bool> out(n);
-            for (int b = 0; b < n; ++b) out.mutable_at(b) = v.world().body(b).kinematic;
-            return out;
-          },
+          "kinematic", [](const BodiesView& v) { return flags(v, [&](BodyId b) { return v.world().body(b).kinematic; }); },
           "Whether each body is kinematic (bool), shape (n,): moved by its \"motion\", whatever pushes on it.")
       .def_property_readonly(
           "applied_forces_N",

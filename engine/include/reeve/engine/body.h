@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "reeve/engine/contact_material.h"
+#include "reeve/engine/keyframes.h"
 #include "reeve/engine/math.h"
 #include "reeve/engine/shape.h"
 

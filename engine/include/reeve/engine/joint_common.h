@@ -14,6 +14,7 @@
 #include <numbers>
 #include <vector>
 
+#include "reeve/engine/keyframes.h"
 #include "reeve/engine/math.h"
 
 namespace reeve {

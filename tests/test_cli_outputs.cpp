@@ -314,4 +314,36 @@ TEST_F(Cli, TheEnergyLedgerIsInTheCsvAndEnergyCreatedIsAWarningOrWithStrictAnErr
   EXPECT_FALSE(fs::exists(strict_csv));
 }
 
+TEST_F(Cli, ASpanWoundEmptyIsAWarningOrWithStrictAnError) {
+  // Issue 28, item 9: a motor winds 1 m of span onto a pulley at 0.5 m/s,
+  // hauling a slider along a rail to its rim (tests/test_spool.cpp has the
+  // physics). The run says when the span ran out (2.12 s at 10 x 2), and
+  // what to do; the event log has it; --strict stops there, writing nothing.
+  const std::string scene = write("wind.json", R"({
+    "name": "wind", "solver": {"frame_rate_hz": 60, "substeps": 10, "iterations": 2}, "duration_s": 2.5,
+    "bodies": [
+      {"name": "pulley", "shape": {"type": "cylinder", "radius_m": 0.1, "half_length_m": 0.02}, "mass_kg": 1,
+       "position_m": [0, 0, 0]},
+      {"name": "slider", "shape": {"type": "box", "half_extents_m": [0.05, 0.05, 0.05]}, "mass_kg": 1,
+       "position_m": [1, -0.1, 0]}],
+    "hinges": [{"body": "pulley", "anchor_m": [0, 0, 0], "axis": [0, 0, 1],
+                "drive": {"mode": "velocity", "target_rad_per_s": -5}}],
+    "joints": [{"type": "prismatic", "body": "slider", "anchor_m": [1, -0.1, 0], "axis": [1, 0, 0]}],
+    "cables": [{"name": "rope", "links": [
+      {"body": "pulley", "type": "hybrid", "orientation": "ccw", "stored_m": 0.5},
+      {"body": "slider", "type": "attachment", "point_m": [0, 0, 0]}]}]})");
+  Result r = reeve("run " + scene + " --events " + path("events.jsonl"));
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("reeve: warning: cable 'rope' ran out between 'pulley' (link 0) and 'slider' at t = 2.1"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("Stop the drive before, or give the span more cable"), std::string::npos) << r.err;
+  EXPECT_NE(slurp(path("events.jsonl")).find(R"("event":"span_runs_out","link":0)"), std::string::npos);
+  r = reeve("run " + scene + " --strict --csv " + path("wind.csv"));
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_NE(r.err.find("ran out between 'pulley' (link 0)"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("(--strict)"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("wind.csv")));
+}
+
 }  // namespace

@@ -8,6 +8,7 @@
 
 #include "reeve/cable/cable.h"
 #include "scene_fixture.h"
+#include "solver_budgets.h"
 
 namespace reeve {
 namespace {
@@ -107,6 +108,63 @@ TEST(Spool, TotalCableLengthIsConservedThroughSwitches) {
   for (int f = 0; f < s.frameCount(); ++f) {
     test::frame(s);
     ASSERT_NEAR(s.cables->totalLength(0), total, 1e-9 * total) << "frame " << f;
+  }
+}
+
+TEST(Spool, ASpanWoundEmptyIsReportedWhenItsTiePointReachesTheRim) {
+  // Issue 28, item 9: a motor winds a cable onto a 0.1 m pulley (a hybrid
+  // end with 0.5 m stored) at 5 rad/s, hauling a slider on a rail along the
+  // line that touches the pulley's bottom; 1 m of span runs out at
+  // 1 / (5 x 0.1) = 2 s, the slider's tie point at the rim. Nothing in the
+  // model stops the wheel there (it slips on and draws the tie point into
+  // it, DESIGN "Energy ledger", item 9), so the span running out is
+  // reported, once per running out and never before it, at every budget.
+  // The cable's total length is kept throughout. (Gauss-Seidel's
+  // unconverged solve lets the wheel pay cable back out as the tie point
+  // nears the rim: the slider is drawn past the rim's lowest point with the
+  // span never empty, and no event: a gap DESIGN states.)
+  for (const test::Budget& b : test::kFourBudgets) {
+    if (b.solver != SolverKind::Direct) continue;
+    SCOPED_TRACE(test::name(b));
+    SolverSettings settings;
+    settings.solver = b.solver;
+    settings.substeps = b.substeps;
+    settings.iterations = b.iterations;
+    World world(settings);
+    CableSystem cables(world);
+    BodyDef def;
+    def.shape = Shape::cylinder(0.1, 0.02);
+    def.mass = 1.0;
+    const BodyId pulley = world.addBody(def);
+    HingeDef hinge(pulley, kWorldBody, Vec3::Zero(), Vec3::UnitZ());
+    hinge.drive.mode = HingeDrive::Mode::Velocity;
+    hinge.drive.target = -5.0;
+    world.addHinge(hinge);
+    def.shape = Shape::box(Vec3::Constant(0.05));
+    def.position = Vec3(1.0, -0.1, 0.0);
+    const BodyId slider = world.addBody(def);
+    PrismaticDef rail;
+    rail.body = slider;
+    rail.anchor = def.position;
+    world.addPrismatic(rail);
+    CableDef rope;
+    rope.links = {LinkDef::hybrid(pulley, 1, 0.5), LinkDef::attachment(slider, Vec3::Zero())};
+    cables.addCable(rope);
+    const double total = cables.totalLength(0);
+    std::vector<CableEvent> ran_out;
+    for (int f = 0; f < 150; ++f) {  // 2.5 s
+      world.step(1.0 / 60.0);
+      for (const CableEvent& e : cables.takeEvents())
+        if (e.kind == CableEvent::Kind::SpanRunsOut) ran_out.push_back(e);
+      ASSERT_NEAR(cables.totalLength(0), total, 1e-9) << "t = " << world.time();
+    }
+    ASSERT_FALSE(ran_out.empty());
+    EXPECT_EQ(ran_out[0].link, 0);
+    // Not before the span is wound empty; within a few frames of it (the
+    // tie point reaches the rim at 2 s, and the span runs out where the
+    // wheel's next turn finds nothing left to wind: 2.12-2.17 s).
+    EXPECT_GE(ran_out[0].time_s, 2.0);
+    EXPECT_LE(ran_out[0].time_s, 2.2);
   }
 }
 

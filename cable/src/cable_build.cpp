@@ -49,6 +49,7 @@ const char* eventName(CableEvent::Kind kind) {
     case CableEvent::Kind::Split: return "split";
     case CableEvent::Kind::Break: return "break";
     case CableEvent::Kind::RunsOff: return "runs_off";
+    case CableEvent::Kind::SpanRunsOut: return "span_runs_out";
   }
   return "?";
 }

@@ -56,7 +56,7 @@ void CableSystem::update(double time_s, double h) {
     // Runs' rest lengths as the last solve left them, before this
     // substep's turns pay cable in and out.
     settleRuns(cable, h);
-    for (int j = 0; j < static_cast<int>(cable.joints.size()); ++j) updateJoint(cable, j);
+    for (int j = 0; j < static_cast<int>(cable.joints.size()); ++j) updateJoint(cable, c, j, time_s);
     if (cable.broken) releaseFreeEnds(cable, c, time_s);
     switchHybrids(cable, c, time_s);
     mergeEmptyLinks(cable, c, time_s);
@@ -88,7 +88,7 @@ void CableSystem::update(double time_s, double h) {
   }
 }
 
-void CableSystem::updateJoint(Cable& cable, int j) {
+void CableSystem::updateJoint(Cable& cable, int c, int j, double time_s) {
   Link& from = cable.links[j];
   CableJoint& joint = cable.joints[j];
   Link& to = cable.links[joint.to];
@@ -116,11 +116,18 @@ void CableSystem::updateJoint(Cable& cable, int j) {
   // the span could feed it (an unconverged solve: Gauss-Seidel on a wheel
   // 1e-6 of its load) slips on the cable: what it could not wind stays in
   // the span, so the total length is kept and the span pulls its far end in.
+  // A span that held cable and has none left ran out (a tie point reached
+  // the rim; item 9): said once, until it holds cable again.
   if (joint.rest_length < 0.0 && wound_a + wound_b > 0.0) {
     const double deficit = std::min(-joint.rest_length, wound_a + wound_b);
     from.stored -= deficit * wound_a / (wound_a + wound_b);
     to.stored -= deficit * wound_b / (wound_a + wound_b);
     joint.rest_length += deficit;
+    if (!joint.ran_out)
+      events_.push_back({CableEvent::Kind::SpanRunsOut, time_s, c, j, (wound_a >= wound_b ? from : to).orientation});
+    joint.ran_out = true;
+  } else if (joint.rest_length > 0.0) {
+    joint.ran_out = false;
   }
   joint.local_a = anchors->first;
   joint.local_b = anchors->second;

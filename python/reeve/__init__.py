@@ -90,18 +90,20 @@ def run(scene, frames=None, csv=None, png_dir=None, video=None, events=None, wid
     one per frame (columns as `reeve run --csv`). png_dir: a folder of
     frame_00000.png, ... png files. video: an .mp4 file (H.264 through the
     ffmpeg program; even width and height). events: the cable events (hybrid
-    links running out, merges, splits) as CSV. width, height: image size in
-    pixels. force: replace outputs that exist. strict: energy created (the
-    energy ledger, Scene.energy()) is an error, as `reeve run --strict`.
+    links running out, merges, splits, breaks, spans wound empty) as JSON
+    lines. width, height: image size in pixels. force: replace outputs that
+    exist. strict: energy created (the energy ledger, Scene.energy()) or a
+    span wound empty is an error, as `reeve run --strict`.
 
     Each output appears whole at the end, or not at all. Returns a dict:
     frames (done), physics_ms_per_frame, energy_created_frames (frames whose
     ledger showed energy created; each of the first 100 is also warned of,
-    RuntimeWarning). Raises FileExistsError for an
+    RuntimeWarning), spans_run_out (spans a wheel wound empty, its tie
+    point at the rim: warned of likewise). Raises FileExistsError for an
     output that exists without force, ValueError for outputs that clash or a
     bad size, reeve.SimulationError when the state becomes non-finite or the
-    cable bookkeeping breaks, or with strict energy is created (no output is
-    left), KeyboardInterrupt on
+    cable bookkeeping breaks, or with strict energy is created or a span runs
+    out (no output is left), KeyboardInterrupt on
     Ctrl-C after a whole frame (the outputs hold the frames done).
     """
     path = lambda p: None if p is None else _os.fspath(p)  # noqa: E731

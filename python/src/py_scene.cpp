@@ -138,9 +138,13 @@ py::dict run(PyScene& s, std::optional<int> frames, std::optional<std::filesyste
   for (const EnergyCreated& created : r.energy_created)
     if (PyErr_WarnEx(PyExc_RuntimeWarning, ("reeve: " + energyCreatedMessage(created)).c_str(), 1) != 0)
       throw py::error_already_set();
+  for (const CableEvent& e : r.span_run_out)
+    if (PyErr_WarnEx(PyExc_RuntimeWarning, ("reeve: " + spanRunsOutMessage(e, s.scene)).c_str(), 1) != 0)
+      throw py::error_already_set();
   py::dict result;
   result["frames"] = r.frames_done;
   result["energy_created_frames"] = r.energy_created_frames;
+  result["spans_run_out"] = r.spans_run_out;
   result["physics_ms_per_frame"] = 1e3 * r.physics_s / std::max(r.frames_done, 1);
   return result;
 }

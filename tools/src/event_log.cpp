@@ -12,8 +12,8 @@ namespace reeve {
 
 EventLog::EventLog(const std::filesystem::path& path, bool replace) : out_(path, replace) {}
 
-void EventLog::drain(CableSystem& cables) {
-  for (const CableEvent& e : cables.takeEvents()) {
+void EventLog::write(const CableSystem& cables, const std::vector<CableEvent>& events) {
+  for (const CableEvent& e : events) {
     // Finite by the scene limits (a sum of finite frame times); checked
     // all the same, as every number Reeve writes is.
     if (!std::isfinite(e.time_s))

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <filesystem>
+#include <vector>
 
 #include "output_file.h"
 #include "reeve/cable/cable.h"
@@ -14,8 +15,8 @@ class EventLog {
  public:
   /// Opens `path` (an OutputFile: nothing appears there before commit()).
   EventLog(const std::filesystem::path& path, bool replace);
-  /// Writes and clears the events the cable system gathered.
-  void drain(CableSystem& cables);
+  /// Writes `events`, taken from `cables` (CableSystem::takeEvents).
+  void write(const CableSystem& cables, const std::vector<CableEvent>& events);
   void close() { out_.close(); }
   void commit() { out_.commit(); }
 

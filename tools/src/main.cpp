@@ -46,11 +46,13 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--height", run.height, "Image height in pixels")->check(CLI::Range(16, 8192))->capture_default_str();
   run_cmd->footer(
       "Exit codes: 0 done; 1 the run failed (I/O, a full disk, rendering, ffmpeg, a non-finite state, and with\n"
-      "--strict energy created); 2 the scene is invalid; 3 an output exists (pass --force); 64 a bad command line or\n"
-      "outputs that clash; 130 or 143 stopped by SIGINT or SIGTERM after a whole frame, with every output closed.\n");
+      "--strict energy created or a span wound empty); 2 the scene is invalid; 3 an output exists (pass --force); 64\n"
+      "a bad command line or outputs that clash; 130 or 143 stopped by SIGINT or SIGTERM after a whole frame, with\n"
+      "every output closed.\n");
   run_cmd->add_flag("--force", run.force, "Overwrite existing output files");
   run_cmd->add_flag("--strict", run.strict,
-                    "Stop with exit 1 where the energy ledger shows energy created (by default a warning)");
+                    "Stop with exit 1 where the energy ledger shows energy created or a span is wound empty (by default "
+                    "a warning)");
 
   std::string validate_scene;
   CLI::App* validate_cmd = app.add_subcommand("validate", "Check a scene file and report the first error.");

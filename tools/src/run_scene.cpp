@@ -107,6 +107,20 @@ void checkRunOutputs(const RunOutputs& o, int frames) {
   }
 }
 
+std::string spanRunsOutMessage(const CableEvent& e, const Scene& scene) {
+  const Cable& cable = scene.cables->cables()[e.cable];
+  const Link& a = cable.links[e.link];
+  const Link& b = cable.links[cable.joints[e.link].to];
+  const World& world = *scene.world;
+  char when[32];
+  std::snprintf(when, sizeof when, "%.6g", e.time_s);
+  return "cable '" + cable.name + "' ran out between " + bodyName(world, a.body) + " (link " + std::to_string(e.link) +
+         ") and " + bodyName(world, b.body) + " at t = " + when + " s: " + bodyName(world, (a.rolls() ? a : b).body) +
+         " wound more cable than the span held (a tie point reached its rim). Nothing in the model stops the wheel "
+         "there: it slips on, and the tie point is drawn into it. Stop the drive before, or give the span more "
+         "cable";
+}
+
 std::optional<std::string> stopReason(const Scene& scene) {
   if (const auto& bad = scene.world->firstNonFinite())
     return nonFiniteMessage(bad->time_s, describe(*bad, *scene.world));
@@ -190,8 +204,13 @@ RunResult runScene(Scene& scene, int frames, const RunOutputs& o) {
       if (result.energy_created_frames++ < kMaxEnergyFindings) result.energy_created.push_back(*created);
     }
     if (csv) csv->writeRow();
-    if (events) events->drain(*scene.cables);
-    else scene.cables->takeEvents();  // nobody asked: do not let them pile up
+    const std::vector<CableEvent> happened = scene.cables->takeEvents();
+    for (const CableEvent& e : happened) {
+      if (e.kind != CableEvent::Kind::SpanRunsOut) continue;
+      if (o.strict) throw std::runtime_error(spanRunsOutMessage(e, scene) + " (--strict)");
+      if (result.spans_run_out++ < kMaxEnergyFindings) result.span_run_out.push_back(e);
+    }
+    if (events) events->write(*scene.cables, happened);
     if (draw) {
       const Image image = renderer->render(*scene.world, *scene.cables, camera);
       if (pngs) pngs->write(f, image);

@@ -50,6 +50,10 @@ struct RunResult {
   /// the first kMaxEnergyFindings of them, and how many there were.
   std::vector<EnergyCreated> energy_created;
   int energy_created_frames = 0;
+  /// Spans that ran out of cable (CableEvent::Kind::SpanRunsOut), the
+  /// first kMaxEnergyFindings of them, and how many there were.
+  std::vector<CableEvent> span_run_out;
+  int spans_run_out = 0;
 };
 
 /// Findings of energy created a RunResult keeps (it counts them all).
@@ -67,6 +71,10 @@ void checkRunOutputs(const RunOutputs& outputs, int frames);
 /// (CableSystem::firstBreach), with what to try; nothing while neither.
 std::optional<std::string> stopReason(const Scene& scene);
 
+/// "cable 'rope' ran out of cable between 'pulley' and 'slider' at t = T s:
+/// ...", as `reeve run` warns (issue 28, item 9).
+std::string spanRunsOutMessage(const CableEvent& event, const Scene& scene);
+
 /// The camera a run draws through: the scene's, or one framing every body
 /// and cable (frameScene) for images of aspect width / height.
 Camera sceneCamera(const Scene& scene, double aspect);
@@ -81,8 +89,8 @@ Camera sceneCamera(const Scene& scene, double aspect);
 /// OutputClash, std::runtime_error for a bad output name, a failed write,
 /// a non-finite state or a broken cable bookkeeping (World::firstNonFinite,
 /// CableSystem::firstBreach), or with `strict` energy created
-/// (EnergyWatch), leaving no output behind. Without `strict` energy
-/// created is counted in the result.
+/// (EnergyWatch) or a span run out of cable (spanRunsOutMessage), leaving
+/// no output behind. Without `strict` both are counted in the result.
 RunResult runScene(Scene& scene, int frames, const RunOutputs& outputs);
 
 }  // namespace reeve

@@ -177,15 +177,21 @@ struct CableJoint {
   double weight = 1.0;
   bool parted = false;
   double tail_a = 0.0, tail_b = 0.0;  // m
+  /// The span ran out: a wheel at an end wound more cable than it held
+  /// (SpanRunsOut), and it has not held cable since.
+  bool ran_out = false;
 };
 
 /// A link switch, merge or split (paper Alg. 2), or a break, for logs.
 /// Break: the span leaving `link` parted at `tension` (N). RunsOff: a free
 /// end (after a break) left `link`, which could not hold it: a pinhole or
 /// a wrap it slides over, or a wheel whose stored cable ran out; the span
-/// beyond goes slack for good.
+/// beyond goes slack for good. SpanRunsOut: the span leaving `link` ran out
+/// of cable, a wheel at its end winding more than it held (a tie point
+/// reached the wheel's rim, or two wheels met; issue 28, item 9): the
+/// wheel slips on from there, which nothing in the model stops.
 struct CableEvent {
-  enum class Kind { HybridRunsOut, HybridRollsAgain, Merge, Split, Break, RunsOff };
+  enum class Kind { HybridRunsOut, HybridRollsAgain, Merge, Split, Break, RunsOff, SpanRunsOut };
   Kind kind;
   double time_s;  // end of the substep in which it happened; a break: of the solve that overloaded it
   int cable;
@@ -195,7 +201,7 @@ struct CableEvent {
 };
 
 /// Name of an event kind ("hybrid_runs_out", "hybrid_rolls_again", "merge",
-/// "split", "break", "runs_off").
+/// "split", "break", "runs_off", "span_runs_out").
 const char* eventName(CableEvent::Kind kind);
 
 /// A command to a winch from simulated time `from_s` (s) on: speed mode
@@ -385,7 +391,7 @@ class CableSystem {
   /// since the last update: {leaving end, arriving end} (0 for ends that
   /// do not roll); nullopt without tangents.
   std::optional<std::pair<double, double>> pendingPayOut(const Cable& cable, int j) const;
-  void updateJoint(Cable& cable, int j);
+  void updateJoint(Cable& cable, int c, int j, double time_s);
   /// The winch's substep (WinchDef) of `h` (s) starting at `start_s`: what
   /// it paid out stalled in the last solve, then what it reels in this one.
   void reel(Cable& cable, double start_s, double h);

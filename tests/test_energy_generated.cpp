@@ -432,10 +432,6 @@ const std::set<std::string>& knownCreating() {
       // the world; it stays without the drive, the compliance or the rope.
       "m20_slider_dynamic direct 10x2", "m20_slider_dynamic direct 32x32", "m20_slider_dynamic gauss-seidel 1x1",
       "m20_slider_dynamic gauss-seidel 10x2", "m20_slider_dynamic gauss-seidel 32x32",
-      // A winch paying out from a kinematic carrier over a sheave with
-      // mu 0.97: +0.035 J in a frame at 1.55 s (0.4 %), Gauss-Seidel at
-      // 32 x 32 only; none with a no-slip sheave.
-      "m10_winch_kinematic gauss-seidel 32x32",
       // A velocity-driven carriage (0.46 m/s, uncapped) reaching its rail
       // stop at 2.17 s while it pulls a stiff, damped rope (1.1e-6 m/N) over
       // a 1.5 g sheave, at one substep: +26.9 J of elastic energy in that

@@ -127,9 +127,14 @@ void CableSystem::switchSlips(Cable& cable, double h) {
     if (link.slipping) {
       // Sticks when the slip stopped, or will have by the next update at
       // its present deceleration (a substep's lag is a substep of friction
-      // pushing the wrong way).
+      // pushing the wrong way). A run the last solve left slack carries no
+      // friction to stop it: it slides on, so that the cable a winch pays
+      // out into it reaches the load (item 6: stuck, the span between a
+      // static pinhole and a static drum kept the slack, the load fell free
+      // through it and was caught by a jerk, by turns).
       const double next = 2.0 * link.slip_speed - link.slip_speed_before;
       link.slip_speed_before = link.slip_speed;
+      if (world_.path(cable.joints[cable.joints[k].run].path).lambda == 0.0) continue;
       if (link.slip_sense * link.slip_speed > 0.0 && link.slip_sense * next > 0.0) continue;
       link.slipping = false;
       continue;

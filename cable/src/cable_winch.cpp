@@ -91,8 +91,23 @@ void CableSystem::reel(Cable& cable, double start_s, double h) {
   // the solve that takes the stretch up.
   winch_work_ += pull * cable.reeled * (1.0 + cable.compliance_per_m * std::max(0.0, pull));
   if (pull > 0.0 || length <= path.rest_length) cable.reeled = 0.0;
-  if (std::isfinite(winch.max_pull) && -path.lambda >= winch.max_pull * h * h * (1.0 - 1e-9)) {
-    const double given = std::min(std::max(0.0, length - path.rest_length), drum.stored);
+  const bool stalled = std::isfinite(winch.max_pull) && -path.lambda >= winch.max_pull * h * h * (1.0 - 1e-9);
+  if (stalled) {
+    // What the run stretched past its compliance's stretch at that pull:
+    // an elastic cable keeps the stretch its pull holds (paid out too, its
+    // tension fell to nothing and chattered back up, the ledger counting
+    // each drop as energy made).
+    const double elastic = path.compliance * -path.lambda / (h * h);
+    double given = std::min(std::max(0.0, length - path.rest_length - elastic), drum.stored);
+    // Still stalled, and this substep's motion (the run's length at the
+    // poses the integration predicts) takes it past the end of the cable
+    // and the stretch of its pull: it all goes now, and the solve holds the
+    // tied end where the cable runs out. (Booked at the next update, the
+    // last of the stretch was left for that solve to project out,
+    // launching the load up; issue 28, item 4.)
+    if (drum.stored > given && world_.pathLength(cable.joints[span.run].path) >
+                                   path.rest_length + drum.stored + path.compliance * winch.max_pull)
+      given = drum.stored;
     span.rest_length += given;
     drum.stored -= given;
     cable.fed += given;
@@ -103,6 +118,12 @@ void CableSystem::reel(Cable& cable, double start_s, double h) {
   const double step = winch.max_speed * h;
   double in = winch.target_stored ? std::clamp(*winch.target_stored - drum.stored, -step, step)
                                   : std::clamp(winch.speed * h, -step, step);
+  // Outpulled with its drum empty, a winch hauls nothing: the tied end
+  // holds. (Reeling in what its stall then paid straight back out, it
+  // chattered between its cap and the tied end's hold every substep, the
+  // load jerked up and dropped, and the cable's dashpot saw motion that
+  // was not there; item 4.)
+  if (stalled && drum.stored == 0.0) in = std::min(in, 0.0);
   in = std::clamp(in, -drum.stored, span.rest_length);
   span.rest_length -= in;
   drum.stored += in;

@@ -58,7 +58,13 @@ WorldEnergy World::energy() const {
       e.elastic += stretchElastic(c.compliance, currentLength(c, body(c.a), body(c.b)) - c.rest_length, c.unilateral);
   for (PathId id = 0; id < pathCount(); ++id) {
     const PathConstraint& p = paths_[id];
-    if (p.enabled) e.elastic += stretchElastic(p.compliance, pathLength(id) - p.rest_length, true);
+    // A capped path (a winch's pull, a breaking tension) is a spring in
+    // series with a clutch that slips at the cap: its spring stretches no
+    // more than compliance x cap; the rest is slip (a stall to pay out).
+    if (!p.enabled) continue;
+    const double stretch = pathLength(id) - p.rest_length;
+    e.elastic += stretchElastic(
+        p.compliance, std::isfinite(p.max_tension) ? std::min(stretch, p.compliance * p.max_tension) : stretch, true);
   }
   for (HingeId id = 0; id < static_cast<HingeId>(hinges_.size()); ++id) {
     const HingeJoint& j = hinges_[id];

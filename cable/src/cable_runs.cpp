@@ -60,11 +60,11 @@ Vec3 pointAt(const BodyState& body, const Vec3& local, bool now) {
 }  // namespace
 
 void CableSystem::syncRuns(Cable& cable) {
-  settleRuns(cable, 0.0);
+  settleRuns(cable, 0.0, true);
   buildRuns(cable);
 }
 
-void CableSystem::settleRuns(Cable& cable, double h) {
+double CableSystem::settleRuns(Cable& cable, double h, bool now) const {
   // A run's rest length is shared out in proportion to its spans' lengths:
   // equal strain, as Alg. 1 l. 8-16 intends, where the tension is the same
   // throughout; with friction, where span k pulls with T_k, in proportion
@@ -79,8 +79,9 @@ void CableSystem::settleRuns(Cable& cable, double h) {
     const CableJoint& span = cable.joints[k];
     const BodyState& a = world_.body(cable.links[k].body);
     const BodyState& b = world_.body(cable.links[span.to].body);
-    return (pointAt(b, span.local_b, h == 0.0) - pointAt(a, span.local_a, h == 0.0)).norm();
+    return (pointAt(b, span.local_b, now) - pointAt(a, span.local_a, now)).norm();
   };
+  double friction = 0.0;
   forEachRun(cable, [&](int j, bool loop) {
     double rest = 0.0, length = 0.0, weighed = 0.0;
     bool weighted = false;
@@ -111,9 +112,10 @@ void CableSystem::settleRuns(Cable& cable, double h) {
       // the tension it gained across the link (the energy ledger; never a
       // credit where friction pushed the slip along).
       if (hasFriction(link))
-        friction_loss_ += std::max(0.0, (cable.joints[span.to].weight - span.weight) * tension * (before - after));
+        friction += std::max(0.0, (cable.joints[span.to].weight - span.weight) * tension * (before - after));
     });
   });
+  return friction;
 }
 
 void CableSystem::switchSlips(Cable& cable, double h) {

@@ -377,8 +377,9 @@ class CableSystem {
   /// energy ledger): per substep, at each slipping friction link, the cable
   /// that slid over it times the tension it gained across it, as the last
   /// solve left them, where that is a loss (friction that pushed the slip
-  /// along is not credited: the ledger shows its energy as created).
-  double frictionLoss() const { return friction_loss_; }
+  /// along is not credited: the ledger shows its energy as created). The
+  /// last solve's is counted too, which the next update will book.
+  double frictionLoss() const;
 
  private:
   /// turn_[b]: how far (rad, unwrapped) body b turned about its cable
@@ -416,9 +417,12 @@ class CableSystem {
   /// of each sliding link over the last `h` s (settleRuns, before the
   /// substep's turns are paid out), switch friction links between sticking
   /// and slipping (switchSlips), and rebuild the runs' path constraints
-  /// (buildRuns). syncRuns: the first and last, between steps.
+  /// (buildRuns). syncRuns: the first and last, between steps. settleRuns
+  /// takes the spans' lengths at the poses `now` or as the last solve left
+  /// them (before this substep's integration), and returns the work
+  /// friction took out (J).
   void syncRuns(Cable& cable);
-  void settleRuns(Cable& cable, double h);
+  double settleRuns(Cable& cable, double h, bool now) const;
   void switchSlips(Cable& cable, double h);
   void buildRuns(Cable& cable);
   /// Wrap angle (rad) of the cable at active link k: around a rolling

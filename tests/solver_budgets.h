@@ -21,6 +21,14 @@ inline constexpr Budget kFourBudgets[] = {
     {SolverKind::Direct, 1, 1},       {SolverKind::Direct, 1, 10},       {SolverKind::Direct, 10, 2},
     {SolverKind::Direct, 32, 32},     {SolverKind::GaussSeidel, 1, 1},   {SolverKind::GaussSeidel, 1, 10},
     {SolverKind::GaussSeidel, 10, 2}, {SolverKind::GaussSeidel, 32, 32}};
+/// Default settings (gravity -9.81 m/s^2 along y) at budget `b`.
+inline SolverSettings settings(const Budget& b) {
+  SolverSettings s;
+  s.solver = b.solver;
+  s.substeps = b.substeps;
+  s.iterations = b.iterations;
+  return s;
+}
 inline std::string name(const Budget& b) {
   return std::string(b.solver == SolverKind::Direct ? "direct " : "gauss-seidel ") + std::to_string(b.substeps) +
          " x " + std::to_string(b.iterations);

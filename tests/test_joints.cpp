@@ -630,11 +630,7 @@ TEST(HingeDrive, ACappedMotorOnAWheelMovesItsRopeAtTheClosedFormBothWays) {
       for (const double tau : {0.5, 0.1}) {
         if (b.solver == SolverKind::GaussSeidel && disc < 1e-3) continue;
         SCOPED_TRACE(test::name(b) + ", disc " + std::to_string(disc) + " kg, cap " + std::to_string(tau) + " N m");
-        SolverSettings settings;
-        settings.solver = b.solver;
-        settings.substeps = b.substeps;
-        settings.iterations = b.iterations;
-        World world(settings);
+        World world(test::settings(b));
         CableSystem cables(world);
         BodyDef def;
         def.shape = Shape::cylinder(r, 0.02);

@@ -126,11 +126,7 @@ TEST(Spool, ASpanWoundEmptyIsReportedWhenItsTiePointReachesTheRim) {
   for (const test::Budget& b : test::kFourBudgets) {
     if (b.solver != SolverKind::Direct) continue;
     SCOPED_TRACE(test::name(b));
-    SolverSettings settings;
-    settings.solver = b.solver;
-    settings.substeps = b.substeps;
-    settings.iterations = b.iterations;
-    World world(settings);
+    World world(test::settings(b));
     CableSystem cables(world);
     BodyDef def;
     def.shape = Shape::cylinder(0.1, 0.02);

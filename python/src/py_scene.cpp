@@ -138,8 +138,8 @@ py::dict run(PyScene& s, std::optional<int> frames, std::optional<std::filesyste
   for (const EnergyCreated& created : r.energy_created)
     if (PyErr_WarnEx(PyExc_RuntimeWarning, ("reeve: " + energyCreatedMessage(created)).c_str(), 1) != 0)
       throw py::error_already_set();
-  for (const CableEvent& e : r.span_run_out)
-    if (PyErr_WarnEx(PyExc_RuntimeWarning, ("reeve: " + spanRunsOutMessage(e, s.scene)).c_str(), 1) != 0)
+  for (const std::string& message : r.span_run_out)
+    if (PyErr_WarnEx(PyExc_RuntimeWarning, ("reeve: " + message).c_str(), 1) != 0)
       throw py::error_already_set();
   py::dict result;
   result["frames"] = r.frames_done;

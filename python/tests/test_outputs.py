@@ -58,3 +58,29 @@ def test_a_run_that_breaks_raises_simulation_error(tmp_path):
     assert not (tmp_path / "broken.csv").exists()
     with pytest.raises(reeve.SimulationError, match="ran out of cable"):
         reeve.load(gear).step(60)
+
+
+def test_a_span_wound_empty_is_warned_of_and_strict_raises(tmp_path):
+    # Issue 28, item 9: a motor hauls a slider along a rail onto a 0.1 m
+    # pulley at 0.5 m/s; its 1 m span runs out when the tie point reaches
+    # the rim (2 s), which nothing in the model stops: warned of, with the
+    # cable, the links and the time; with strict=True a SimulationError.
+    scene = {
+        "name": "wind", "solver": {"frame_rate_hz": 60, "substeps": 10, "iterations": 2}, "duration_s": 2.5,
+        "bodies": [
+            {"name": "pulley", "shape": {"type": "cylinder", "radius_m": 0.1, "half_length_m": 0.02},
+             "mass_kg": 1, "position_m": [0, 0, 0]},
+            {"name": "slider", "shape": {"type": "box", "half_extents_m": [0.05, 0.05, 0.05]}, "mass_kg": 1,
+             "position_m": [1, -0.1, 0]}],
+        "hinges": [{"body": "pulley", "anchor_m": [0, 0, 0], "axis": [0, 0, 1],
+                    "drive": {"mode": "velocity", "target_rad_per_s": -5}}],
+        "joints": [{"type": "prismatic", "body": "slider", "anchor_m": [1, -0.1, 0], "axis": [1, 0, 0]}],
+        "cables": [{"name": "rope", "links": [
+            {"body": "pulley", "type": "hybrid", "orientation": "ccw", "stored_m": 0.5},
+            {"body": "slider", "type": "attachment", "point_m": [0, 0, 0]}]}]}
+    with pytest.warns(RuntimeWarning, match=r"cable 'rope' ran out between 'pulley' \(link 0\) and 'slider' at t = 2\.1"):
+        result = reeve.run(reeve.load(scene))
+    assert result["spans_run_out"] >= 1
+    with pytest.raises(reeve.SimulationError, match="ran out between"):
+        reeve.run(reeve.load(scene), csv=tmp_path / "wind.csv", strict=True)
+    assert not (tmp_path / "wind.csv").exists()

@@ -34,10 +34,10 @@ void printEnergyCreated(const RunResult& r) {
 }
 
 // Spans run out of cable (item 9): the first few, and how many in all.
-void printSpansRunOut(const RunResult& r, const Scene& scene) {
+void printSpansRunOut(const RunResult& r) {
   constexpr int kShown = 3;
   for (int i = 0; i < std::min<int>(kShown, static_cast<int>(r.span_run_out.size())); ++i)
-    std::fprintf(stderr, "reeve: warning: %s\n", spanRunsOutMessage(r.span_run_out[i], scene).c_str());
+    std::fprintf(stderr, "reeve: warning: %s\n", r.span_run_out[i].c_str());
   if (r.spans_run_out > kShown) std::fprintf(stderr, "reeve: warning: spans ran out %d times in all\n", r.spans_run_out);
 }
 
@@ -62,7 +62,7 @@ int simulate(const RunOptions& o) {
                  r.signal == SIGINT ? "interrupted (SIGINT)" : "terminated (SIGTERM)", done, frames, inside, done);
   }
   printEnergyCreated(r);
-  printSpansRunOut(r, scene);
+  printSpansRunOut(r);
   std::printf("reeve: simulated %d frames of '%s' (%.3f s, %d substeps x %d iterations, %s) in %.3f ms/frame of physics\n",
               done, scene.name.c_str(), done * dt, scene.world->settings().substeps,
               scene.world->settings().iterations, solverMethodName(scene.world->settings().solver),

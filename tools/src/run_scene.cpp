@@ -208,7 +208,7 @@ RunResult runScene(Scene& scene, int frames, const RunOutputs& o) {
     for (const CableEvent& e : happened) {
       if (e.kind != CableEvent::Kind::SpanRunsOut) continue;
       if (o.strict) throw std::runtime_error(spanRunsOutMessage(e, scene) + " (--strict)");
-      if (result.spans_run_out++ < kMaxEnergyFindings) result.span_run_out.push_back(e);
+      if (result.spans_run_out++ < kMaxEnergyFindings) result.span_run_out.push_back(spanRunsOutMessage(e, scene));
     }
     if (events) events->write(*scene.cables, happened);
     if (draw) {

@@ -50,9 +50,10 @@ struct RunResult {
   /// the first kMaxEnergyFindings of them, and how many there were.
   std::vector<EnergyCreated> energy_created;
   int energy_created_frames = 0;
-  /// Spans that ran out of cable (CableEvent::Kind::SpanRunsOut), the
-  /// first kMaxEnergyFindings of them, and how many there were.
-  std::vector<CableEvent> span_run_out;
+  /// Spans that ran out of cable (CableEvent::Kind::SpanRunsOut), said
+  /// as spanRunsOutMessage says them in the frame they happened, the first
+  /// kMaxEnergyFindings of them, and how many there were.
+  std::vector<std::string> span_run_out;
   int spans_run_out = 0;
 };
 

@@ -94,7 +94,14 @@ void CableSystem::updateJoint(Cable& cable, int c, int j, double time_s) {
   Link& to = cable.links[joint.to];
   if (!from.active || joint.parted || (!from.rolls() && !to.rolls())) return;
   const auto anchors = spanAnchors(from, world_.body(from.body), to, world_.body(to.body), joint.local_b);
-  if (!anchors) return;  // overlapping sections: keep the old anchors
+  if (!anchors) {  // overlapping sections, or a tie point inside its wheel: keep the old anchors
+    // A tie point drawn inside the wheel it is wound onto has run its span
+    // out too (a load hauled up into its drum; item 9).
+    if (from.rolls() != to.rolls() && !joint.ran_out)
+      events_.push_back({CableEvent::Kind::SpanRunsOut, time_s, c, j, (from.rolls() ? from : to).orientation});
+    joint.ran_out |= from.rolls() != to.rolls();
+    return;
+  }
   // Alg. 1 l. 4-5 and Alg. 2 l. 8-9: the anchors turned with their bodies
   // since the last update; the arc from the new tangent point back to the
   // old anchor is cable paid out into the span (leaving side) or taken up

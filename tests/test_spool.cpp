@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "reeve/cable/cable.h"
@@ -111,6 +112,21 @@ TEST(Spool, TotalCableLengthIsConservedThroughSwitches) {
   }
 }
 
+// A 1 kg wheel of radius 0.1 m hinged to the world at the origin, its
+// velocity drive asking `speed` rad/s with at most `max_torque` N m.
+BodyId motorDrivenWheel(World& world, double speed, double max_torque) {
+  BodyDef def;
+  def.shape = Shape::cylinder(0.1, 0.02);
+  def.mass = 1.0;
+  const BodyId wheel = world.addBody(def);
+  HingeDef hinge(wheel, kWorldBody, Vec3::Zero(), Vec3::UnitZ());
+  hinge.drive.mode = HingeDrive::Mode::Velocity;
+  hinge.drive.target = speed;
+  hinge.drive.max_torque = max_torque;
+  world.addHinge(hinge);
+  return wheel;
+}
+
 TEST(Spool, ASpanWoundEmptyIsReportedWhenItsTiePointReachesTheRim) {
   // Issue 28, item 9: a motor winds a cable onto a 0.1 m pulley (a hybrid
   // end with 0.5 m stored) at 5 rad/s, hauling a slider on a rail along the
@@ -128,14 +144,9 @@ TEST(Spool, ASpanWoundEmptyIsReportedWhenItsTiePointReachesTheRim) {
     SCOPED_TRACE(test::name(b));
     World world(test::settings(b));
     CableSystem cables(world);
+    const BodyId pulley = motorDrivenWheel(world, -5.0, std::numeric_limits<double>::infinity());
     BodyDef def;
-    def.shape = Shape::cylinder(0.1, 0.02);
     def.mass = 1.0;
-    const BodyId pulley = world.addBody(def);
-    HingeDef hinge(pulley, kWorldBody, Vec3::Zero(), Vec3::UnitZ());
-    hinge.drive.mode = HingeDrive::Mode::Velocity;
-    hinge.drive.target = -5.0;
-    world.addHinge(hinge);
     def.shape = Shape::box(Vec3::Constant(0.05));
     def.position = Vec3(1.0, -0.1, 0.0);
     const BodyId slider = world.addBody(def);
@@ -176,15 +187,9 @@ TEST(Spool, ALoadHauledUpIntoItsDrumIsReportedWhenItsTiePointIsDrawnInside) {
     SCOPED_TRACE(test::name(b));
     World world(test::settings(b));
     CableSystem cables(world);
+    const BodyId drum = motorDrivenWheel(world, 5.0, 5.0);
     BodyDef def;
-    def.shape = Shape::cylinder(0.1, 0.02);
     def.mass = 1.0;
-    const BodyId drum = world.addBody(def);
-    HingeDef hinge(drum, kWorldBody, Vec3::Zero(), Vec3::UnitZ());
-    hinge.drive.mode = HingeDrive::Mode::Velocity;
-    hinge.drive.target = 5.0;
-    hinge.drive.max_torque = 5.0;
-    world.addHinge(hinge);
     def.shape = Shape::sphere(0.05);
     def.position = Vec3(0.1, -1.0, 0.0);
     const BodyId load = world.addBody(def);

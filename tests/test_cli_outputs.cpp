@@ -345,7 +345,7 @@ TEST_F(Cli, ASpanWoundEmptyIsAWarningOrWithStrictAnError) {
   EXPECT_NE(r.err.find("(--strict)"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(path("wind.csv")));
   // Item 14: on a stiff elastic rope (2e-6 m/N) at 1 x 10 the fight that
-  // follows flings the slider (8e5 N; 3e5 J in a frame). Not a silent exit
+  // follows flings the slider (3.2e5 N; 3e5 J in a frame). Not a silent exit
   // 0: both the ledger and the span say so, and --strict makes it exit 1.
   std::string stiff = slurp(scene);
   stiff.replace(stiff.find(R"("name": "rope",)"), 15, R"("name": "rope", "compliance_m_per_N": 2e-6,)");

@@ -438,6 +438,16 @@ const std::set<std::string>& knownCreating() {
       // a 1.5 g sheave, at one substep: +26.9 J of elastic energy in that
       // frame (4.9 %). None without the stop, the drive or the compliance.
       "m06_slider_static direct 1x1", "m06_slider_static direct 1x10",
+      // A 2 kg sheave (mu 0.97 over half a turn) between 8.7 kg and a winch
+      // on a kinematic carrier that reverses, paying out: after the catch
+      // (2.2 kN in a frame) the wrap sticks and slips by turns, substep by
+      // substep, each solve consistent (a stuck one within the bound, a
+      // slipping one sliding with its friction) but the pair not: +0.21 J
+      // (0.14 %) in 0.05 s. At 10, 16, 20 and 128 substeps it sticks and
+      // meets the closed form, 78.57 and 77.78 N; before the stick/slip
+      // recheck (item 3) it slid at the bound at 20 to 128 substeps (47 to
+      // 538 N on the load's side). Also at 64 substeps.
+      "m10_winch_kinematic direct 32x32", "m10_winch_kinematic gauss-seidel 32x32",
       // Gauss-Seidel's one sweep a frame on stiff elastic cables (2e-8 to
       // 2e-5 m/N, most under grams): the stretch the unconverged sweep
       // leaves is elastic energy nothing put in (m01: +0.41 J in the first

@@ -175,6 +175,14 @@ int CableSystem::addCable(const CableDef& def) {
     last_x_[link.body] = world_.body(link.body).x;
   }
   cable.total_length = total;
+  // Friction links are checked against each solve (recheckSlips); the
+  // World keeps what a solve changes only while something may ask again.
+  const bool friction = std::any_of(cable.links.begin(), cable.links.end(),
+                                    [](const Link& l) { return l.mu > 0.0 && std::isfinite(l.mu); });
+  if (friction && !rechecks_slips_) {
+    world_.addResolveCheck([this](World&, double h) { return recheckSlips(h); });
+    rechecks_slips_ = true;
+  }
   cables_.push_back(std::move(cable));
   return static_cast<int>(cables_.size() - 1);
 }

@@ -142,30 +142,72 @@ void CableSystem::switchSlips(Cable& cable, double h) {
       continue;
     }
     link.slip_speed = link.slip_speed_before = 0.0;
-    // The last solve's tensions: its lambdas over this substep's h (the
-    // World's lastSubstep() is not set until its first step ends).
-    const int p = previousActive(cable, k);
-    // An inextensible run that nothing moves (a winch's span between a
-    // static drum and a pinhole) cannot be solved: stretched, it pulls as
-    // hard as anything pulls against it, and slips over the link towards
-    // itself (issue 28, item 6: read as 0 N, the link slipped the other
-    // way, paying the winch's cable out to the load, which the path then
-    // flung up at up to 10 m/s).
-    const auto tension = [&](int j) {
-      const PathConstraint& path = world_.path(cable.joints[cable.joints[j].run].path);
-      if (path.compliance == 0.0 && world_.pathLength(cable.joints[cable.joints[j].run].path) > path.rest_length &&
-          std::none_of(path.points.begin(), path.points.end(),
-                       [&](const PathPoint& q) { return world_.body(q.body).moves(); }))
-        return std::numeric_limits<double>::infinity();
-      return -path.lambda / (h * h) * cable.joints[j].weight;
-    };
-    const double in = tension(p), out = tension(k);
-    const double bound = std::exp(link.mu * wrapAngle(cable, k));
-    if (out > bound * in) link.slip_sense = 1;
-    else if (in > bound * out) link.slip_sense = -1;
-    else continue;
-    link.slipping = true;
+    startsSlipping(cable, k, h);
   }
+}
+
+double CableSystem::solvedTension(const Cable& cable, int j, double h) const {
+  // An inextensible run that nothing moves (a winch's span between a
+  // static drum and a pinhole) cannot be solved: stretched, it pulls as
+  // hard as anything pulls against it, and slips over the link towards
+  // itself (issue 28, item 6: read as 0 N, the link slipped the other
+  // way, paying the winch's cable out to the load, which the path then
+  // flung up at up to 10 m/s).
+  const PathId id = cable.joints[cable.joints[j].run].path;
+  const PathConstraint& path = world_.path(id);
+  if (path.compliance == 0.0 && world_.pathLength(id) > path.rest_length &&
+      std::none_of(path.points.begin(), path.points.end(),
+                   [&](const PathPoint& q) { return world_.body(q.body).moves(); }))
+    return std::numeric_limits<double>::infinity();
+  return -path.lambda / (h * h) * cable.joints[j].weight;
+}
+
+bool CableSystem::startsSlipping(Cable& cable, int k, double h) const {
+  Link& link = cable.links[k];
+  const double in = solvedTension(cable, previousActive(cable, k), h), out = solvedTension(cable, k, h);
+  const double bound = std::exp(link.mu * wrapAngle(cable, k));
+  if (out > bound * in) link.slip_sense = 1;
+  else if (in > bound * out) link.slip_sense = -1;
+  else return false;
+  link.slipping = true;
+  return true;
+}
+
+bool CableSystem::recheckSlips(double h) {
+  // Issue 28, item 3: switched only at the update, a link kept for a whole
+  // substep what the last solve decided, and at one substep a frame a
+  // sticking rope took whatever its solve asked of it (a winch reversing
+  // over a fixed drum: 172 N held against 0 N past a bound of 1.87), a
+  // slipping one slid on against its friction. Checked against this
+  // solve's own tensions and slip, a link that broke its assumption
+  // switches and the World solves the substep again.
+  bool changed = false;
+  for (Cable& cable : cables_) {
+    bool switched = false;
+    bool settled = false;  // settled_: the runs as the next update will settle them, each link's slip
+    const int n = static_cast<int>(cable.links.size());
+    for (int k = 0; k < n; ++k) {
+      Link& link = cable.links[k];
+      if (!link.active || !hasFriction(link) || cable.joints[k].parted) continue;
+      if (!link.slipping) {
+        switched |= startsSlipping(cable, k, h);
+        continue;
+      }
+      if (world_.path(cable.joints[cable.joints[k].run].path).lambda == 0.0) continue;  // slack: slides on
+      if (!settled) {
+        settled_ = cable;
+        settleRuns(settled_, h, true);
+        settled = true;
+      }
+      if (link.slip_sense * settled_.links[k].slip_speed >= 0.0) continue;
+      link.slipping = false;  // slid back against its friction: it sticks, and may slip the other way
+      link.slip_speed = link.slip_speed_before = 0.0;
+      switched = true;
+    }
+    if (switched) buildRuns(cable);
+    changed |= switched;
+  }
+  return changed;
 }
 
 void CableSystem::buildRuns(Cable& cable) {

@@ -189,7 +189,7 @@ void DirectSolver::build(World& world) {
   dphi_.assign(m, Vec3::Zero());
 }
 
-void DirectSolver::prepare(World& world, double h) {
+void DirectSolver::prepare(World& world, double h, bool again) {
   describe(world, scratch_);
   if (scratch_ != signature_) {
     signature_ = scratch_;  // a copy: scratch_ keeps its capacity for the next substeps
@@ -226,7 +226,8 @@ void DirectSolver::prepare(World& world, double h) {
   // A cable that pulled at the end of the last substep starts this one in
   // the active set, even if it is exactly taut (C = 0) after integration:
   // otherwise a long taut cable would join in one span per pass.
-  for (std::size_t r = 0; r < rows_.size(); ++r) pulled_[r] = lambda_[r] < 0.0;
+  if (!again)
+    for (std::size_t r = 0; r < rows_.size(); ++r) pulled_[r] = lambda_[r] < 0.0;
   std::fill(lambda_.begin(), lambda_.end(), 0.0);
 }
 

@@ -41,8 +41,10 @@ class DirectSolver {
   /// Starts a substep of `h` s (after the joints' prepare functions):
   /// rebuilds the row layout if the world's joints, paths or distance
   /// constraints changed since the last substep, clears the lambdas, sets
-  /// what stays put over the substep.
-  void prepare(World& world, double h);
+  /// what stays put over the substep. `again`: the substep's solve done
+  /// again (World::ResolveCheck), which starts from the first one's active
+  /// set, not from what the first one ended with.
+  void prepare(World& world, double h, bool again);
   /// One iteration: linearize, solve, move the bodies. Returns false, and
   /// moves nothing, when every row is already met to the settings'
   /// tolerance: the iterations left would do nothing either, unless

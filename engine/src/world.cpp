@@ -373,6 +373,8 @@ double World::pathLength(PathId id) const {
 
 void World::addSubstepHook(SubstepHook hook) { hooks_.push_back(std::move(hook)); }
 
+void World::addResolveCheck(ResolveCheck check) { resolve_checks_.push_back(std::move(check)); }
+
 std::optional<BodyId> World::findBody(const std::string& name) const {
   for (size_t i = 0; i < defs_.size(); ++i)
     if (defs_[i].name == name) return static_cast<BodyId>(i);
@@ -401,7 +403,7 @@ void World::step(double dt) {
       manifolds_.clear();
       previous_manifolds_.clear();
     }
-    solvePositions(h);
+    solvePositionsChecked(h);
     updateVelocities(h);
     for (HingeJoint& j : hinges_) trackHingeAngle(j, body(j.a), body(j.b), h);
     addWork(h);
@@ -491,7 +493,7 @@ void World::integrate(double h) {
   }
 }
 
-void World::solvePositions(double h) {
+void World::solvePositions(double h, bool again) {
   const double inv_h2 = 1.0 / (h * h);
   for (HingeJoint& j : hinges_) prepareHingeJoint(j, body(j.a), body(j.b), h);
   for (PrismaticJoint& j : prismatics_) preparePrismaticJoint(j, body(j.a), body(j.b), h);
@@ -513,7 +515,7 @@ void World::solvePositions(double h) {
     // take. They are swept after each direct iteration, as contacts are.
     bool weighted = false;
     for (const PathConstraint& p : paths_) weighted |= p.enabled && !p.weights.empty();
-    direct_->prepare(*this, h);
+    direct_->prepare(*this, h, again);
     // A row that nothing moves (a cable between two static anchors) is not
     // in the direct system, but a compliant one still pulls: with w = 0 one
     // visit sets its tension to stretch / compliance (issue 28, item 8; it
@@ -561,6 +563,38 @@ void World::solvePositions(double h) {
       interrupted_ = true;
       break;
     }
+  }
+}
+
+void World::solvePositionsChecked(double h) {
+  if (resolve_checks_.empty()) return solvePositions(h, false);
+  SolveStart& start = solve_start_;
+  start.x.resize(bodies_.size());
+  start.q.resize(bodies_.size());
+  for (size_t i = 0; i < bodies_.size(); ++i) {
+    start.x[i] = bodies_[i].x;
+    start.q[i] = bodies_[i].q;
+  }
+  start.hinge_spring.clear();
+  for (const HingeJoint& j : hinges_) start.hinge_spring.push_back(j.spring_previous);
+  start.prismatic_spring.clear();
+  for (const PrismaticJoint& j : prismatics_) start.prismatic_spring.push_back(j.spring_previous);
+  start.contacts = contacts_;
+  start.manifolds = manifolds_;
+  solvePositions(h, false);
+  for (int again = 0; again < kMaxResolves && !interrupted_; ++again) {
+    bool changed = false;
+    for (auto& check : resolve_checks_) changed |= check(*this, h);
+    if (!changed) return;
+    for (size_t i = 0; i < bodies_.size(); ++i) {
+      bodies_[i].x = start.x[i];
+      bodies_[i].q = start.q[i];
+    }
+    for (size_t i = 0; i < hinges_.size(); ++i) hinges_[i].spring_previous = start.hinge_spring[i];
+    for (size_t i = 0; i < prismatics_.size(); ++i) prismatics_[i].spring_previous = start.prismatic_spring[i];
+    contacts_ = start.contacts;
+    manifolds_ = start.manifolds;
+    solvePositions(h, true);
   }
 }
 

@@ -424,6 +424,15 @@ class CableSystem {
   void syncRuns(Cable& cable);
   double settleRuns(Cable& cable, double h, bool now) const;
   void switchSlips(Cable& cable, double h);
+  /// Tension (N) of span j in the last solve of a substep of h s: its
+  /// run's lambda over h^2 times its weight.
+  double solvedTension(const Cable& cable, int j, double h) const;
+  /// Whether sticking friction link k slips now, at the last solve's
+  /// tensions (then set slipping, with its sense).
+  bool startsSlipping(Cable& cable, int k, double h) const;
+  /// The World's ResolveCheck: switches the friction links the solve just
+  /// done carried past their bound or slid backwards; true if any.
+  bool recheckSlips(double h);
   void buildRuns(Cable& cable);
   /// Wrap angle (rad) of the cable at active link k: around a rolling
   /// link's section, through a pinhole.
@@ -448,6 +457,8 @@ class CableSystem {
   std::optional<CableBreach> breach_;   // firstBreach()
   double winch_work_ = 0.0;             // J, winchWork() but the last substep's
   double friction_loss_ = 0.0;          // J, frictionLoss()
+  bool rechecks_slips_ = false;         // recheckSlips is the World's ResolveCheck
+  Cable settled_;                       // recheckSlips' copy, kept for its storage
 };
 
 }  // namespace reeve

@@ -88,6 +88,14 @@ class World {
   /// solve, with the substep h (s). The seam through which cable/ moves the
   /// anchors and rest lengths of its distance constraints (DESIGN.md).
   using SubstepHook = std::function<void(World&, double h)>;
+  /// Called after each substep's position solve, with h (s). Returns true
+  /// when it changed the constraints of this substep because the solve
+  /// broke an assumption they were built on (cable/: a sticking friction
+  /// link whose capstan bound the solve's tensions passed, a slipping one
+  /// the solve slid against its friction); the substep is then solved
+  /// again from the poses before the solve, at most kMaxResolves times.
+  using ResolveCheck = std::function<bool(World&, double h)>;
+  static constexpr int kMaxResolves = 2;
 
   explicit World(SolverSettings settings = {});
   ~World();
@@ -123,6 +131,7 @@ class World {
   DistanceId addDistance(const DistanceConstraint& c);
   PathId addPath(PathConstraint path);
   void addSubstepHook(SubstepHook hook);
+  void addResolveCheck(ResolveCheck check);
 
   /// Sets the ground plane {p : n . p = height_m} (n = ground.normal,
   /// normalized here), which touches every dynamic body (SCA 2020, sec.
@@ -285,7 +294,10 @@ class World {
   /// has come (HingeDrive::until) and sets scheduled drives' targets.
   void updateDrives(double h);
   void integrate(double h);
-  void solvePositions(double h);
+  /// `again`: the substep's solve done again (ResolveCheck).
+  void solvePositions(double h, bool again);
+  /// solvePositions, again while a ResolveCheck asks (kMaxResolves).
+  void solvePositionsChecked(double h);
   /// The interrupt flag is raised (setInterruptFlag); read, not cleared.
   bool interruptRequested() const { return interrupt_ && interrupt_->load(std::memory_order_relaxed) != 0; }
   void updateVelocities(double h);
@@ -321,6 +333,18 @@ class World {
   std::vector<DistanceConstraint> distances_;
   std::vector<PathConstraint> paths_;
   std::vector<SubstepHook> hooks_;
+  std::vector<ResolveCheck> resolve_checks_;
+  /// What a position solve changes, kept from before it while a
+  /// ResolveCheck may ask for it again: the poses, the contacts and the
+  /// springs' previous errors (the joints' prepare functions move them on).
+  struct SolveStart {
+    std::vector<Vec3> x;
+    std::vector<Quat> q;
+    std::vector<double> hinge_spring, prismatic_spring;
+    std::vector<Contact> contacts;
+    std::vector<ContactManifold> manifolds;
+  };
+  SolveStart solve_start_;
   std::optional<GroundPlane> ground_;
   std::vector<BodyId> colliders_;       // bodies with BodyDef::collides, swept along x
   std::vector<double> bound_radius_;    // m, per body: boundingRadius of its shape

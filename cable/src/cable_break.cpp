@@ -71,8 +71,8 @@ void CableSystem::part(Cable& cable, int j, double share_a) {
   // is kept.
   joint.tail_a = share_a * joint.rest_length;
   joint.tail_b = joint.rest_length - joint.tail_a;
-  cable.links[j].stored += joint.tail_a;
-  cable.links[joint.to].stored += joint.tail_b;
+  cable.links[j].windOn(joint.tail_a, 0.0);
+  cable.links[joint.to].windOn(joint.tail_b, 0.0);
   joint.rest_length = 0.0;
   joint.parted = true;
   cable.broken = true;
@@ -98,7 +98,7 @@ void CableSystem::releaseFreeEnds(Cable& cable, int c, double time_s) {
         // Everything on link k runs off with the end and hangs from the
         // span's far link, with the span's own cable.
         span.rest_length += link.stored;
-        link.stored = 0.0;
+        link.unwindAll();
         part(cable, other, before ? 1.0 : 0.0);
         link.slipping = link.mu == 0.0;
         link.slip_speed = link.slip_speed_before = 0.0;

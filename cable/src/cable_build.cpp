@@ -138,12 +138,22 @@ int CableSystem::addCable(const CableDef& def) {
   for (int k = 0; k < n; ++k) {
     Link& link = cable.links[k];
     if (link.active && link.rolls()) {
+      // An elastic cable is wound at the strain its rest lengths give the
+      // span arriving at the link (the first link: the span leaving it),
+      // the strain at which more winds on from there (restOfArc).
+      const int j = k == 0 && !def.closed ? 0 : previousActive(cable, k);
+      const double span_rest = cable.joints[j].rest_length, length = spanLength(cable, j);
+      const double strain =
+          def.compliance > 0.0 && span_rest > 0.0 ? std::max(0.0, length / span_rest - 1.0) : 0.0;
+      double rest = 0.0;
       if (def.links[k].stored) {
-        link.stored = *def.links[k].stored;
+        rest = *def.links[k].stored;
       } else if (!isEnd(cable, k)) {
-        link.stored = sectionWrappedArc(link.section, planePoint(cable.joints[previousActive(cable, k)].local_b),
-                                        planePoint(cable.joints[k].local_a), link.orientation);
+        rest = sectionWrappedArc(link.section, planePoint(cable.joints[previousActive(cable, k)].local_b),
+                                 planePoint(cable.joints[k].local_a), link.orientation) /
+               (1.0 + strain);
       }
+      link.windOn(rest, rest * strain);
     }
     total += link.stored;
   }

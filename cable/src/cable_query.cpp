@@ -44,6 +44,17 @@ double CableSystem::frictionLoss() const {
   return friction_loss_ + pending;
 }
 
+double CableSystem::storedElasticEnergy() const {
+  double energy = 0.0;
+  for (const Cable& cable : cables_)
+    if (cable.compliance_per_m > 0.0)
+      for (const Link& link : cable.links)
+        if (link.active)
+          for (const WoundLayer& layer : link.layers)
+            if (layer.rest > 0.0) energy += layer.stretch * layer.stretch / (2.0 * cable.compliance_per_m * layer.rest);
+  return energy;
+}
+
 double CableSystem::restLength(int c, int j) const {
   return jointEnabled(c, j) ? cables_[c].joints[j].rest_length : 0.0;
 }
@@ -67,8 +78,13 @@ std::optional<std::pair<double, double>> CableSystem::pendingPayOut(const Cable&
 double CableSystem::restLengthNow(int c, int j) const {
   if (!jointEnabled(c, j)) return 0.0;
   const auto paid = pendingPayOut(cables_[c], j);
-  const double rest = cables_[c].joints[j].rest_length;
-  return paid ? std::max(0.0, rest + paid->first + paid->second) : rest;
+  const Cable& cable = cables_[c];
+  const double rest = cable.joints[j].rest_length;
+  if (!paid) return rest;
+  // Cable paid in from each end, as rest length (restOfArc).
+  const double in_a = cable.links[j].rolls() ? -restOfArc(cable, j, j, -paid->first) : 0.0;
+  const double in_b = cable.links[cable.joints[j].to].rolls() ? -restOfArc(cable, cable.joints[j].to, j, -paid->second) : 0.0;
+  return std::max(0.0, rest + in_a + in_b);
 }
 
 double CableSystem::storedNow(int c, int k) const {
@@ -78,7 +94,7 @@ double CableSystem::storedNow(int c, int k) const {
   for (int j = 0; j < static_cast<int>(cable.joints.size()); ++j) {
     const bool leaves = j == k, arrives = cable.joints[j].to == k;
     if ((!leaves && !arrives) || !jointEnabled(c, j)) continue;
-    if (const auto paid = pendingPayOut(cable, j)) stored -= leaves ? paid->first : paid->second;
+    if (const auto paid = pendingPayOut(cable, j)) stored += restOfArc(cable, k, j, -(leaves ? paid->first : paid->second));
   }
   return stored;
 }

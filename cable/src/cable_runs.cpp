@@ -289,7 +289,7 @@ double CableSystem::wrapAngle(const Cable& cable, int k) const {
     const double norms = u_in.norm() * u_out.norm();
     return norms > 0.0 ? std::acos(std::clamp(u_in.dot(u_out) / norms, -1.0, 1.0)) : 0.0;
   }
-  if (link.section.kind == Section::Kind::Circle) return link.stored / link.section.radius;
+  if (link.section.kind == Section::Kind::Circle) return link.arc() / link.section.radius;
   // A polygon: the turn from the arriving span's direction to the leaving
   // one's, in the link's sense, plus the whole turns its stored cable
   // holds beyond the geometric wrap.
@@ -300,7 +300,7 @@ double CableSystem::wrapAngle(const Cable& cable, int k) const {
   if (turn < 0.0) turn += 2.0 * std::numbers::pi;
   const double arc = sectionWrappedArc(link.section, planePoint(cable.joints[p].local_b),
                                        planePoint(cable.joints[k].local_a), link.orientation);
-  return turn + 2.0 * std::numbers::pi * std::round((link.stored - arc) / link.section.perimeter());
+  return turn + 2.0 * std::numbers::pi * std::round((link.arc() - arc) / link.section.perimeter());
 }
 
 }  // namespace reeve

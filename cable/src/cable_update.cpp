@@ -48,6 +48,7 @@ void CableSystem::measureTurns(double h) {
 }
 
 void CableSystem::update(double time_s, double h) {
+  poses_predicted_ = h > 0.0;
   measureTurns(h);
   for (int c = 0; c < static_cast<int>(cables_.size()); ++c) {
     Cable& cable = cables_[c];
@@ -64,6 +65,7 @@ void CableSystem::update(double time_s, double h) {
     if (h > 0.0) switchSlips(cable, h);
     buildRuns(cable);
   }
+  poses_predicted_ = false;
   if (breach_) return;  // the first one says what went wrong
   if (auto b = findBreach()) {
     b->time_s = time_s;
@@ -107,18 +109,9 @@ void CableSystem::updateJoint(Cable& cable, int c, int j, double time_s) {
   // old anchor is cable paid out into the span (leaving side) or taken up
   // from it (arriving side).
   double wound_a = 0.0, wound_b = 0.0;  // taken up from the span by each end
-  if (from.rolls()) {
-    const double s = payOut(from, joint.local_a, anchors->first, turn_[from.body]);
-    joint.rest_length += s;
-    from.stored -= s;
-    wound_a = std::max(0.0, -s);
-  }
-  if (to.rolls()) {
-    const double s = payOut(to, joint.local_b, anchors->second, turn_[to.body]);
-    joint.rest_length -= s;
-    to.stored += s;
-    wound_b = std::max(0.0, s);
-  }
+  if (from.rolls()) wound_a = std::max(0.0, wind(cable, j, j, -payOut(from, joint.local_a, anchors->first, turn_[from.body])));
+  if (to.rolls())
+    wound_b = std::max(0.0, wind(cable, joint.to, j, payOut(to, joint.local_b, anchors->second, turn_[to.body])));
   // A span holds no less than no cable. A wheel that turned further than
   // the span could feed it (an unconverged solve: Gauss-Seidel on a wheel
   // 1e-6 of its load) slips on the cable: what it could not wind stays in
@@ -127,8 +120,8 @@ void CableSystem::updateJoint(Cable& cable, int c, int j, double time_s) {
   // the rim; item 9): said once, until it holds cable again.
   if (joint.rest_length < 0.0 && wound_a + wound_b > 0.0) {
     const double deficit = std::min(-joint.rest_length, wound_a + wound_b);
-    from.stored -= deficit * wound_a / (wound_a + wound_b);
-    to.stored -= deficit * wound_b / (wound_a + wound_b);
+    from.takeRest(deficit * wound_a / (wound_a + wound_b));
+    to.takeRest(deficit * wound_b / (wound_a + wound_b));
     joint.rest_length += deficit;
     if (!joint.ran_out)
       events_.push_back({CableEvent::Kind::SpanRunsOut, time_s, c, j, (wound_a >= wound_b ? from : to).orientation});
@@ -138,6 +131,48 @@ void CableSystem::updateJoint(Cable& cable, int c, int j, double time_s) {
   }
   joint.local_a = anchors->first;
   joint.local_b = anchors->second;
+}
+
+double CableSystem::restOfArc(const Cable& cable, int k, int j, double arc) const {
+  if (cable.compliance_per_m == 0.0) return arc;
+  if (arc < 0.0) {
+    Link link = cable.links[k];
+    return -link.windOff(-arc);
+  }
+  // At the span's strain as the last solve left it: its stretch past its
+  // rest length (the spring's; a damped cable's lambda holds its dashpot's
+  // pull too), so that the stretch that winds on is the span's own and
+  // carries its elastic energy with it. (An estimate of the strain further
+  // on, midway through the winding, was second order in the substep for
+  // the hand's tendons but made a stiff cable's wound layers stretch from
+  // nothing where the span's far end moved with the winding.)
+  const CableJoint& span = cable.joints[j];
+  const BodyState& a = world_.body(cable.links[j].body);
+  const BodyState& b = world_.body(cable.links[span.to].body);
+  const auto solved = [&](const BodyState& body, const Vec3& local) {
+    return poses_predicted_ ? Vec3(body.x_prev + body.q_prev * local) : body.toWorld(local);
+  };
+  const double length = (solved(b, span.local_b) - solved(a, span.local_a)).norm();
+  if (!(length > span.rest_length) || !(span.rest_length > 0.0)) return arc;  // slack: it winds on unstretched
+  return arc * span.rest_length / length;
+}
+
+double CableSystem::windLink(Cable& cable, int k, int j, double arc) {
+  Link& link = cable.links[k];
+  if (arc < 0.0) return -link.windOff(-arc);
+  const double rest = restOfArc(cable, k, j, arc);
+  link.windOn(rest, arc - rest);
+  return rest;
+}
+
+double CableSystem::wind(Cable& cable, int k, int j, double arc) {
+  // Wound as rest length, an elastic cable's arc left the span short of
+  // the cable it gave the wheel, by its strain: the span stretched as it
+  // wound, energy from nothing (1/2 T strain per metre; the hand's tendons
+  // at 8-30 % strain made 0.02 J as its fingers curled, at any substep).
+  const double rest = windLink(cable, k, j, arc);
+  cable.joints[j].rest_length -= rest;
+  return rest;
 }
 
 void CableSystem::switchHybrids(Cable& cable, int c, double time_s) {
@@ -163,7 +198,7 @@ void CableSystem::switchHybrids(Cable& cable, int c, double time_s) {
       link.point = fromPlane(link, boundaryPoint(link.section, end));
       anchor = link.point;
       joint.rest_length += link.stored;  // the overdraft, so the total is kept
-      link.stored = 0.0;
+      link.unwindAll();
       events_.push_back({CableEvent::Kind::HybridRunsOut, time_s, c, k, link.orientation});
       continue;
     }
@@ -191,8 +226,8 @@ void CableSystem::switchHybrids(Cable& cable, int c, double time_s) {
     const int i = wrap[0] <= wrap[1] ? 0 : 1;
     link.attached = false;
     link.orientation = i == 0 ? 1 : -1;
-    link.stored = wrap[i];
-    joint.rest_length -= wrap[i];
+    link.unwindAll();
+    wind(cable, k, j, wrap[i]);
     anchor = fromPlane(link, tangent[i]);
     events_.push_back({CableEvent::Kind::HybridRollsAgain, time_s, c, k, link.orientation});
   }
@@ -213,7 +248,7 @@ void CableSystem::mergeEmptyLinks(Cable& cable, int c, double time_s) {
     in.to = out.to;
     in.local_b = out.local_b;
     in.rest_length += out.rest_length + link.stored;
-    link.stored = 0.0;
+    link.unwindAll();
     link.active = false;
     link.side = std::numeric_limits<double>::quiet_NaN();  // measured afresh from the next update
     link.slipping = link.mu == 0.0;  // a friction link starts sticking when it is split in again
@@ -253,19 +288,23 @@ void CableSystem::splitAtCrossedLinks(Cable& cable, int c, double time_s) {
         continue;
       }
       // Moving the span's ends to the new tangent points pays cable in or
-      // out of the end links, as in updateJoint().
-      const double from_shift = from.rolls() ? payOut(from, in.local_a, first->first, 0.0) : 0.0;
-      const double to_shift = to.rolls() ? payOut(to, in.local_b, second->second, 0.0) : 0.0;
+      // out of the end links, as in updateJoint(); the wrap around the new
+      // link comes from the span (all as rest lengths: restOfArc).
+      const double onto_from = from.rolls() ? -payOut(from, in.local_a, first->first, 0.0) : 0.0;
+      const double onto_to = to.rolls() ? payOut(to, in.local_b, second->second, 0.0) : 0.0;
       const double wrap = sectionWrappedArc(mid.section, planePoint(first->second), planePoint(second->first),
                                             mid.orientation);
-      const double rest = in.rest_length + from_shift - to_shift - wrap;
+      const double rest_from = restOfArc(cable, j, j, onto_from), rest_to = restOfArc(cable, in.to, j, onto_to);
+      const double rest_wrap = restOfArc(cable, k, j, wrap);
+      const double rest = in.rest_length - rest_from - rest_to - rest_wrap;
       if (rest < 0.0) {  // a slack span swept deep into the section: not enough cable to wrap it
         mid.active = false;
         continue;
       }
-      from.stored -= from_shift;
-      to.stored += to_shift;
-      mid.stored = wrap;
+      if (from.rolls()) windLink(cable, j, j, onto_from);
+      if (to.rolls()) windLink(cable, in.to, j, onto_to);
+      mid.unwindAll();
+      windLink(cable, k, j, wrap);
       mid.side = std::numeric_limits<double>::quiet_NaN();
       CableJoint& out = cable.joints[k];
       out.to = in.to;

@@ -1,5 +1,8 @@
 #include "links.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace reeve {
 
 int nextActive(const Cable& cable, int k) {
@@ -14,6 +17,72 @@ int previousActive(const Cable& cable, int k) {
   for (int i = k - 1; i > k - n; --i)
     if ((cable.closed || i >= 0) && cable.links[(i + n) % n].active) return (i + n) % n;
   return 0;
+}
+
+namespace {
+// Layers whose strains differ by less than this are one (a layer per
+// substep would grow without bound while the strain barely changes).
+constexpr double kLayerStrain = 1e-3;
+}  // namespace
+
+void Link::windOn(double rest, double stretch) {
+  stored += rest;
+  if (stretch == 0.0 && layers.empty()) return;  // inextensible, or unstretched at the bottom
+  stored_stretch += stretch;
+  if (!layers.empty()) {
+    WoundLayer& top = layers.back();
+    if (top.rest > 0.0 && rest > 0.0 && std::abs(top.stretch / top.rest - stretch / rest) <= kLayerStrain) {
+      top.rest += rest;
+      top.stretch += stretch;
+      return;
+    }
+  }
+  layers.push_back({rest, stretch});
+}
+
+double Link::windOff(double arc) {
+  double rest = 0.0;
+  while (arc > 0.0 && !layers.empty()) {
+    WoundLayer& top = layers.back();
+    const double covers = top.rest + top.stretch;
+    if (covers <= arc) {
+      arc -= covers;
+      rest += top.rest;
+      stored_stretch -= top.stretch;
+      layers.pop_back();
+      continue;
+    }
+    const double f = arc / covers;
+    rest += f * top.rest;
+    stored_stretch -= f * top.stretch;
+    top.rest -= f * top.rest;
+    top.stretch -= f * top.stretch;
+    arc = 0.0;
+  }
+  if (layers.empty()) stored_stretch = 0.0;  // no rounding left behind
+  rest += arc;  // unstretched, from below the layers or past the end
+  stored -= rest;
+  return rest;
+}
+
+void Link::takeRest(double rest) {
+  while (rest > 0.0 && !layers.empty()) {
+    WoundLayer& top = layers.back();
+    const double taken = std::min(rest, top.rest), f = top.rest > 0.0 ? taken / top.rest : 1.0;
+    stored_stretch -= f * top.stretch;
+    top.stretch -= f * top.stretch;
+    top.rest -= taken;
+    stored -= taken;
+    rest -= taken;
+    if (top.rest <= 0.0) layers.pop_back();
+  }
+  if (layers.empty()) stored_stretch = 0.0;
+  stored -= rest;
+}
+
+void Link::unwindAll() {
+  stored = stored_stretch = 0.0;
+  layers.clear();
 }
 
 double solvedLength(const World& world, const PathConstraint& path) {

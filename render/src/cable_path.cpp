@@ -114,7 +114,7 @@ int extraTurns(const Link& link, const BodyState& body, const Vec3& arrival,
                const Vec3& departure) {
   const double wrap = sectionWrappedArc(link.section, inPlane(body, arrival),
                                         inPlane(body, departure), link.orientation);
-  return static_cast<int>(std::lround((link.stored - wrap) / link.section.perimeter()));
+  return static_cast<int>(std::lround((link.arc() - wrap) / link.section.perimeter()));
 }
 
 std::vector<Vec3> wrapPath(const Link& link, const BodyState& body, const Vec3& arrival,
@@ -214,7 +214,7 @@ std::vector<Vec3> spoolCoil(const CableSystem& cables, int c, int k, double pitc
   const BodyState& body = cables.world().body(link.body);
   const Vec3 tangent = k == 0 ? cables.startPoint(c, joint) : cables.endPoint(c, joint);
   const Section& s = link.section;
-  const double turns = std::min(link.stored / s.perimeter(), double(kMaxCoilTurns));
+  const double turns = std::min(link.arc() / s.perimeter(), double(kMaxCoilTurns));
   // A spacing that does not depend on the turns, so the coil's thickness
   // follows the stored cable all the way down.
   const double spacing = std::min(pitch, std::max(inradius(s), min_full_band) / kMaxCoilTurns);

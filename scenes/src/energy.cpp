@@ -15,7 +15,7 @@ EnergyLedger energyLedger(const Scene& scene) {
   EnergyLedger e;
   e.kinetic_J = world.kinetic;
   e.potential_J = world.gravity;
-  e.elastic_J = world.elastic;
+  e.elastic_J = world.elastic + scene.cables->storedElasticEnergy();
   e.drive_work_J = world.drive_work;
   e.load_work_J = world.load_work;
   e.winch_work_J = scene.cables->winchWork();

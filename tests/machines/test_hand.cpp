@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -20,14 +21,33 @@
 namespace reeve {
 namespace {
 
+// `extensor`: the relative error allowed the extensor's wound cable and
+// the torques and tensions that follow from it. The cable winds on at the
+// strain its span had at the last solve, which lags the strain's rise
+// while a knuckle winds (first order in the substep): worst 1.5e-3 at rest
+// and 3.7e-3 where 100 kg slams the index shut at 10 x 2, 7.7e-3 at 1 x 20.
+// (Wound as rest length, as it was: 18 %.)
 struct Budget {
   int substeps, iterations;
+  double extensor;
 };
-const Budget kBudgets[] = {{10, 2}, {1, 20}};  // the scene's; the paper's Table 1
+const Budget kBudgets[] = {{10, 2, 5e-3}, {1, 20, 1e-2}};  // the scene's; the paper's Table 1
 
 const char* const kDigits[] = {"index", "middle", "ring", "little", "thumb"};
 
-Scene load(const Budget b) { return test::scene("hand", b.substeps, b.iterations); }
+// Per scene (its World), each hinge's lowest angle so far (rad, <= 0:
+// its angle at load is 0), read after every frame by run(): the extensor's
+// rest lengths depend on it (extensorRest).
+std::vector<double>& lowestAngles(const World& w) {
+  static std::map<const World*, std::vector<double>> lowest;
+  return lowest[&w];
+}
+
+Scene load(const Budget b) {
+  Scene s = test::scene("hand", b.substeps, b.iterations);
+  lowestAngles(*s.world).assign(s.world->hinges().size(), 0.0);
+  return s;
+}
 
 double gravity(const Scene& s) { return -s.world->settings().gravity.y(); }
 
@@ -135,12 +155,26 @@ std::vector<double> angles(const Scene& s, const Digit& d) {
   return a;
 }
 
-// Extensor tension (N) of span j by Hooke's law, with the strain measured
-// against the rest length: the knuckle beyond joint j has wound r dtheta
-// of the span's rest length onto itself, while the span's straight length
-// stays what the geometry makes it.
-double extensorTension(const Digit& d, int j, double dtheta) {
-  const double rest = d.rest0[j] - d.radius * dtheta;
+// Rest length (m) of extensor span j once joint j has turned dtheta, its
+// lowest angle so far `lowest` (<= 0). The cable does not slip on the
+// knuckle beyond the joint, so the knuckle unwinds last on, first off:
+// below 0 it unwinds what was wound at load, at the span's strain then
+// (e0 = L / R0 - 1: r dtheta of surface is r dtheta / (1 + e0) of rest
+// length), and from its lowest angle up it winds cable off the span
+// stretched as the span is, so that R falls by r dtheta R / L (L the span's
+// straight length, which the geometry keeps): R = R_low exp(-r (dtheta -
+// lowest) / L), and unwinds it again the same way. (Wound as rest length,
+// r dtheta, the tendons at their 8-30 % strain stretched from nothing:
+// 0.02 J made as the fingers curled.)
+double extensorRest(const Digit& d, int j, double dtheta, double lowest) {
+  const double r = d.radius, strain0 = d.span[j] / d.rest0[j] - 1.0;
+  const double at_lowest = d.rest0[j] - r * lowest / (1.0 + strain0);
+  return at_lowest * std::exp(-r * (dtheta - lowest) / d.span[j]);
+}
+
+// Extensor tension (N) of span j by Hooke's law against that rest length.
+double extensorTension(const Digit& d, int j, double dtheta, double lowest) {
+  const double rest = extensorRest(d, j, dtheta, lowest);
   return d.axial_stiffness * (d.span[j] - rest) / rest;
 }
 
@@ -176,15 +210,18 @@ double run(Scene& s, double seconds) {
       return 1e9;
     }
     worst = std::max(worst, limitViolation(*s.world));
+    std::vector<double>& lowest = lowestAngles(*s.world);
+    for (HingeId h = 0; h < static_cast<HingeId>(lowest.size()); ++h)
+      lowest[h] = std::min(lowest[h], s.world->hingeAngle(h));
   }
   return worst;
 }
 
 // Relative errors of both tendons' excursions against their closed forms:
 // the flexor's is the weight's drop on its rail (compared from 1 mm on),
-// the extensor's the rest length each knuckle has wound on, r dtheta per
-// joint (the worst joint that has turned at least kLeastTurn), so that
-// the ratios mean something.
+// the extensor's the rest length each knuckle has wound on (extensorRest;
+// the worst joint that has turned at least kLeastTurn), so that the ratios
+// mean something.
 constexpr double kLeastExcursion = 1e-3;  // m
 constexpr double kLeastTurn = 0.02;       // rad
 struct Excursion {
@@ -199,7 +236,8 @@ Excursion excursion(const Scene& s, const Digit& d) {
   for (int j = 0; j < d.joints(); ++j) {
     if (std::abs(a[j]) < kLeastTurn) continue;
     const double wound = d.rest0[j] - s.cables->restLength(d.extensor, j);
-    e.extensor_error = std::max(e.extensor_error, std::abs(wound / (d.radius * a[j]) - 1.0));
+    const double want = d.rest0[j] - extensorRest(d, j, a[j], lowestAngles(*s.world)[d.hinges[j]]);
+    e.extensor_error = std::max(e.extensor_error, std::abs(wound / want - 1.0));
   }
   return e;
 }
@@ -228,7 +266,7 @@ std::vector<JointTorques> statics(const Scene& s, const Digit& d) {
     const Vec3 q = w.worldPoint(far.body, far.point), p = w.worldPoint(near.body, near.point);
     JointTorques t{};
     t.flexor = n.dot((q - c).cross(tension * (p - q).normalized()));
-    t.extensor = -extensorTension(d, j, a[j]) * d.radius;
+    t.extensor = -extensorTension(d, j, a[j], lowestAngles(w)[d.hinges[j]]) * d.radius;
     for (int i = j; i < k; ++i)
       for (BodyId b : {d.segs[i], d.knuckles[i]})
         t.gravity += n.dot((w.body(b).x - c).cross(w.bodyMass(b) * w.settings().gravity));
@@ -260,7 +298,7 @@ TEST(Hand, TendonExcursionIsTheIntegralOfMomentArmOverJointAngle) {
   // need no bookkeeping: its excursion is compared every 5 frames while
   // the fingers move and settle. The extensor's wound cable is what the
   // cable update measured at the substep's predicted pose, so while a
-  // knuckle accelerates it differs from r dtheta at the solved pose by
+  // knuckle accelerates it differs from what the solved pose winds by
   // r h^2 (angular acceleration); it is compared at rest (here, and at
   // every load of MoreFlexorLoadClosesTheFingerMonotonicallyOntoItsLimits).
   for (const Budget b : kBudgets) {
@@ -287,7 +325,7 @@ TEST(Hand, TendonExcursionIsTheIntegralOfMomentArmOverJointAngle) {
                 "exceeded by %.1e rad\n",
                 b.substeps, b.iterations, flexor, extensor, limits);
     EXPECT_LT(flexor, 1e-3);
-    EXPECT_LT(extensor, 1e-3);
+    EXPECT_LT(extensor, b.extensor);
     EXPECT_LE(limits, 1e-6);
   }
 }
@@ -320,11 +358,11 @@ TEST(Hand, AtRestEachJointsFlexorTorqueBalancesExtensorAndGravity) {
         std::printf("[ measured ] %d x %d %-6s joint %d: angle %.4f rad, flexor %.5f, extensor %.5f, gravity %.5f "
                     "N m, residual %.1e of the flexor's\n",
                     b.substeps, b.iterations, name, j, a[j], t[j].flexor, t[j].extensor, t[j].gravity, error);
-        EXPECT_LT(error, 5e-3) << name << " " << j;
+        EXPECT_LT(error, std::max(5e-3, b.extensor)) << name << " " << j;
         worst = std::max(worst, error);
         gravity_share = std::max(gravity_share, std::abs(t[j].gravity / t[j].flexor));
         // The engine's own tensions agree with the closed forms used.
-        hooke = std::max(hooke, std::abs(s.cables->tension(d.extensor, j) / extensorTension(d, j, a[j]) - 1.0));
+        hooke = std::max(hooke, std::abs(s.cables->tension(d.extensor, j) / extensorTension(d, j, a[j], lowestAngles(*s.world)[d.hinges[j]]) - 1.0));
       }
       const double m_g = s.world->bodyMass(d.weight) * gravity(s);
       flexor_tension = std::max(flexor_tension, std::abs(s.cables->tension(d.flexor, 0) / m_g - 1.0));
@@ -332,7 +370,7 @@ TEST(Hand, AtRestEachJointsFlexorTorqueBalancesExtensorAndGravity) {
     std::printf("[ measured ] %d x %d: worst torque residual %.2e; engine vs Hooke %.2e, flexor vs m g %.2e; "
                 "gravity up to %.0f %% of a flexor torque\n",
                 b.substeps, b.iterations, worst, hooke, flexor_tension, 100 * gravity_share);
-    EXPECT_LT(hooke, 5e-3);
+    EXPECT_LT(hooke, std::max(5e-3, b.extensor));
     EXPECT_LT(flexor_tension, 5e-3);
     EXPECT_GT(gravity_share, 0.1);  // gravity is a real part of the balance
   }
@@ -388,7 +426,7 @@ TEST(Hand, MoreFlexorLoadClosesTheFingerMonotonicallyOntoItsLimits) {
                 "digits moved by at most %.1e rad\n",
                 b.substeps, b.iterations, limits, excursions, others);
     EXPECT_LE(limits, 1e-6);
-    EXPECT_LT(excursions, 1e-3);
+    EXPECT_LT(excursions, b.extensor);
   }
 }
 
@@ -415,7 +453,7 @@ TEST(Hand, KilonewtonFlexorLoadHoldsAgainstTheLimits) {
     EXPECT_LE(limits, 1e-6);
     EXPECT_NEAR(tension, m_g, 5e-3 * m_g);
     EXPECT_LT(e.flexor_error, 1e-3);
-    EXPECT_LT(e.extensor_error, 1e-3);
+    EXPECT_LT(e.extensor_error, b.extensor);
     EXPECT_LT(hingeGap(*s.world), 1e-6);
     EXPECT_LT(s.world->body(index.weight).v.norm(), 1e-4);
   }
@@ -439,7 +477,7 @@ TEST(Hand, FeatherweightPhalangesStillBalance) {
       const std::vector<JointTorques> t = statics(s, d);
       for (int j = 0; j < d.joints(); ++j) {
         worst = std::max(worst, std::abs(t[j].residual() / t[j].flexor));
-        EXPECT_LT(std::abs(t[j].residual() / t[j].flexor), 5e-3) << d.name << " " << j;
+        EXPECT_LT(std::abs(t[j].residual() / t[j].flexor), std::max(5e-3, b.extensor)) << d.name << " " << j;
       }
       EXPECT_LT(excursion(s, d).flexor_error, 1e-3) << d.name;
     }

@@ -115,6 +115,12 @@ struct CableDef {
   double breaking_tension = std::numeric_limits<double>::infinity();
 };
 
+/// Cable wound onto a link at one strain: `rest` m of rest length covering
+/// rest + stretch m of the surface (elastic cables only).
+struct WoundLayer {
+  double rest = 0.0, stretch = 0.0;
+};
+
 /// A link in the solver. `attached` marks a hybrid link that has run out of
 /// cable and acts as an attachment at `point`.
 struct Link {
@@ -124,7 +130,26 @@ struct Link {
   Vec3 point = Vec3::Zero();
   Section section;
   double plane_offset = 0.0;
-  double stored = 0.0;  // m
+  double stored = 0.0;  // m of rest length
+  /// An elastic cable winds on at the strain of the span it comes from and
+  /// unwinds last on, first off, each layer at the strain it was wound
+  /// with (the cable does not slip on the wheel). The layers (the last
+  /// wound at the back) hold the top of `stored`; the rest of it lies
+  /// below them unstretched. stored_stretch: their stretch, summed (m).
+  std::vector<WoundLayer> layers;
+  double stored_stretch = 0.0;
+  /// The surface (m) the wound cable covers.
+  double arc() const { return stored + stored_stretch; }
+  /// Winds `rest` m of cable stretched by `stretch` m onto the top.
+  void windOn(double rest, double stretch);
+  /// Unwinds `arc` m (> 0) of surface from the top; returns the rest
+  /// length that came off. Below the layers it is unstretched, and past
+  /// the stored cable `stored` goes negative (a link run empty).
+  double windOff(double arc);
+  /// Takes `rest` m of rest length off the top (a span's deficit).
+  void takeRest(double rest);
+  /// No cable wound: stored and its layers 0.
+  void unwindAll();
   bool active = true;
   bool attached = false;
   /// Friction coefficient (LinkDef::mu); infinite: never slips.
@@ -380,6 +405,10 @@ class CableSystem {
   /// along is not credited: the ledger shows its energy as created). The
   /// last solve's is counted too, which the next update will book.
   double frictionLoss() const;
+  /// Elastic energy (J) of the stretched cable wound on the links (the
+  /// energy ledger): stored_stretch^2 / (2 compliance_per_m x stored) per
+  /// link. Spans' elastic energy is the World's (their path constraints).
+  double storedElasticEnergy() const;
 
  private:
   /// turn_[b]: how far (rad, unwrapped) body b turned about its cable
@@ -434,6 +463,17 @@ class CableSystem {
   /// done carried past their bound or slid backwards; true if any.
   bool recheckSlips(double h);
   void buildRuns(Cable& cable);
+  /// Rest length (m) of `arc` m of cable (along the surface) winding onto
+  /// link k (> 0) from span j, or off it (< 0) into span j: on at span j's
+  /// strain as the last solve left it, off at the strain the link's cable
+  /// was wound with (Link::windOff). `arc` itself for an inextensible cable.
+  double restOfArc(const Cable& cable, int k, int j, double arc) const;
+  /// Winds `arc` m (as restOfArc) onto link k from span j, or off it into
+  /// span j: moves the rest length between them and the stretch onto or
+  /// off the link. Returns the rest length the span lost (< 0: gained).
+  /// windLink: the link's side only.
+  double wind(Cable& cable, int k, int j, double arc);
+  double windLink(Cable& cable, int k, int j, double arc);
   /// Wrap angle (rad) of the cable at active link k: around a rolling
   /// link's section, through a pinhole.
   double wrapAngle(const Cable& cable, int k) const;
@@ -457,6 +497,7 @@ class CableSystem {
   std::optional<CableBreach> breach_;   // firstBreach()
   double winch_work_ = 0.0;             // J, winchWork() but the last substep's
   double friction_loss_ = 0.0;          // J, frictionLoss()
+  bool poses_predicted_ = false;        // within a substep's update: the last solve's poses are x_prev, q_prev
   bool rechecks_slips_ = false;         // recheckSlips is the World's ResolveCheck
   Cable settled_;                       // recheckSlips' copy, kept for its storage
 };

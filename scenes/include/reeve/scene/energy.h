@@ -15,7 +15,7 @@ namespace reeve {
 struct EnergyLedger {
   double kinetic_J = 0.0;    ///< bodies' translation and rotation (WorldEnergy::kinetic)
   double potential_J = 0.0;  ///< gravity, -sum m g . x (0 at the world origin)
-  double elastic_J = 0.0;    ///< compliant cables, joints and springs (WorldEnergy::elastic)
+  double elastic_J = 0.0;    ///< compliant cables (spans and the stretch wound on wheels), joints and springs
   double drive_work_J = 0.0;  ///< motor drives on hinges and prismatic joints
   double load_work_J = 0.0;   ///< applied forces and torques
   double winch_work_J = 0.0;  ///< winches reeling in (negative paying out under load)

@@ -64,8 +64,7 @@ const std::set<std::string>& knownCreating() {
       "spool gauss-seidel 1x1",
       // The segment rope's chain of contacts (1.8 % in its first frame at
       // 32 x 32): the contacts' velocity pass credits as a loss what the
-      // balance gives back frame for frame, likely the outward velocity a
-      // segment carried round the wheel leaves each solve with (DESIGN).
+      // next solve gives back, frame for frame (DESIGN).
       "rope_segments direct 10x2", "rope_segments direct 32x32", "rope_segments gauss-seidel 10x2",
       "rope_segments gauss-seidel 32x32",
   };

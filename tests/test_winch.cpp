@@ -239,8 +239,7 @@ TEST(Winch, HaulingACompliantCableBetweenTwoStaticAnchorsStretchesItToTheClosedF
 // 0.5 s, then caps the winch at `max_pull` N commanding `speed` m/s.
 void haulOneMetreThenCap(Crane& c, double max_pull, double speed) {
   WinchDef w;
-  w.max_pull = 1e5;
-  w.speed = 1.0;
+  w.speed = 1.0;  // max_pull unlimited: 1 m hauled whatever the load
   w.max_speed = 1.0;
   w.schedule = {{1.0, 0.0, std::nullopt}};
   c.cables.setWinch(c.cable, w);
@@ -324,6 +323,44 @@ TEST(Winch, AnOverloadedWinchPaysOutWhatItHoldsAndAnEmptyDrumHolds) {
       if (f >= 5) EXPECT_NEAR(pull, 60.0, 1e-6 * 60.0) << "t = " << elastic.world.time();
     }
   }
+}
+
+// Item 4 at the extremes of mass: 1 g and 10 t on a winch of 0.6 m g at
+// most (10 kg is above). On an empty drum the tied end holds the load;
+// with 1 m hauled on and held, it stalls, the load sinks at 0.4 g, and
+// where the drum runs out (0.714 s) it stops dead 1 m down, never
+// launched, as at 10 kg.
+TEST(Winch, AnOverloadedWinchHoldsOrStopsItsLoadDeadAtEveryMass) {
+  for (const double m : {1e-3, 1e4})
+    for (const Budget& b : test::kFourBudgets) {
+      SCOPED_TRACE(name(b) + ", " + std::to_string(m) + " kg");
+      Crane empty(m, b.solver, b.substeps, b.iterations);
+      WinchDef w;
+      w.max_pull = 0.6 * m * kG;
+      empty.cables.setWinch(empty.cable, w);
+      empty.run(1.0);
+      EXPECT_NEAR(empty.world.body(empty.load).x.y(), -3.0, 1e-9);
+      EXPECT_NEAR(empty.cables.tension(empty.cable, 0), m * kG, 1e-6 * m * kG);
+
+      Crane c(m, b.solver, b.substeps, b.iterations);
+      haulOneMetreThenCap(c, 0.6 * m * kG, 0.0);
+      ASSERT_NEAR(c.stored(), 1.0, 1e-9);
+      const double y0 = c.world.body(c.load).x.y();
+      const double a = 0.4 * kG, h = 1.0 / (60.0 * b.substeps);
+      double fastest_up = 0.0;
+      for (int f = 0; f < 90; ++f) {  // 1.5 s
+        c.world.step(1.0 / 60.0);
+        fastest_up = std::max(fastest_up, c.world.body(c.load).v.y());
+        if (f == 29) EXPECT_NEAR(y0 - c.world.body(c.load).x.y(), 0.5 * a * 0.25, a * 0.5 * h + 1e-9);  // 0.5 s
+        if (c.stored() > 0.0) EXPECT_LE(c.cables.winchPull(c.cable), 0.6 * m * kG * (1.0 + 1e-9));  // then the catch
+      }
+      EXPECT_EQ(c.stored(), 0.0);
+      EXPECT_LT(fastest_up, 1e-9);  // stopped, never launched
+      EXPECT_NEAR(c.world.body(c.load).x.y(), y0 - 1.0, 1e-9);
+      EXPECT_NEAR(c.world.body(c.load).v.y(), 0.0, 1e-9);
+      EXPECT_NEAR(c.cables.tension(c.cable, 0), m * kG, 1e-6 * m * kG);
+      EXPECT_NEAR(c.cables.totalLength(c.cable), c.total, 1e-9);
+    }
 }
 
 TEST(Winch, HaulingAndPayingOutThroughAFrictionPinholeHoldTheCapstanRatio) {

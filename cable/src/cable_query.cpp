@@ -82,8 +82,9 @@ double CableSystem::restLengthNow(int c, int j) const {
   const double rest = cable.joints[j].rest_length;
   if (!paid) return rest;
   // Cable paid in from each end, as rest length (restOfArc).
+  const int to = cable.joints[j].to;
   const double in_a = cable.links[j].rolls() ? -restOfArc(cable, j, j, -paid->first) : 0.0;
-  const double in_b = cable.links[cable.joints[j].to].rolls() ? -restOfArc(cable, cable.joints[j].to, j, -paid->second) : 0.0;
+  const double in_b = cable.links[to].rolls() ? -restOfArc(cable, to, j, -paid->second) : 0.0;
   return std::max(0.0, rest + in_a + in_b);
 }
 
@@ -94,7 +95,8 @@ double CableSystem::storedNow(int c, int k) const {
   for (int j = 0; j < static_cast<int>(cable.joints.size()); ++j) {
     const bool leaves = j == k, arrives = cable.joints[j].to == k;
     if ((!leaves && !arrives) || !jointEnabled(c, j)) continue;
-    if (const auto paid = pendingPayOut(cable, j)) stored += restOfArc(cable, k, j, -(leaves ? paid->first : paid->second));
+    if (const auto paid = pendingPayOut(cable, j))
+      stored += restOfArc(cable, k, j, -(leaves ? paid->first : paid->second));  // the arc onto the link
   }
   return stored;
 }

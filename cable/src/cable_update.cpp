@@ -109,7 +109,8 @@ void CableSystem::updateJoint(Cable& cable, int c, int j, double time_s) {
   // old anchor is cable paid out into the span (leaving side) or taken up
   // from it (arriving side).
   double wound_a = 0.0, wound_b = 0.0;  // taken up from the span by each end
-  if (from.rolls()) wound_a = std::max(0.0, wind(cable, j, j, -payOut(from, joint.local_a, anchors->first, turn_[from.body])));
+  if (from.rolls())
+    wound_a = std::max(0.0, wind(cable, j, j, -payOut(from, joint.local_a, anchors->first, turn_[from.body])));
   if (to.rolls())
     wound_b = std::max(0.0, wind(cable, joint.to, j, payOut(to, joint.local_b, anchors->second, turn_[to.body])));
   // A span holds no less than no cable. A wheel that turned further than

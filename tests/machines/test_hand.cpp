@@ -362,7 +362,8 @@ TEST(Hand, AtRestEachJointsFlexorTorqueBalancesExtensorAndGravity) {
         worst = std::max(worst, error);
         gravity_share = std::max(gravity_share, std::abs(t[j].gravity / t[j].flexor));
         // The engine's own tensions agree with the closed forms used.
-        hooke = std::max(hooke, std::abs(s.cables->tension(d.extensor, j) / extensorTension(d, j, a[j], lowestAngles(*s.world)[d.hinges[j]]) - 1.0));
+        const double want = extensorTension(d, j, a[j], lowestAngles(*s.world)[d.hinges[j]]);
+        hooke = std::max(hooke, std::abs(s.cables->tension(d.extensor, j) / want - 1.0));
       }
       const double m_g = s.world->bodyMass(d.weight) * gravity(s);
       flexor_tension = std::max(flexor_tension, std::abs(s.cables->tension(d.flexor, 0) / m_g - 1.0));

@@ -110,6 +110,33 @@ TEST(Elastic, ADrumWindsAnElasticCableByTheSurfaceItTurns) {
     }
 }
 
+// A link's wound layers (Link::windOn, windOff): 3,000 windings at
+// strains alternating 0 and 10 % stay within the 1,024 layers a link keeps
+// (the deepest merged), with the rest length and stretch they hold; all
+// of it unwound gives back the rest length wound, last on first off.
+TEST(Elastic, WoundLayersStayBoundedAndKeepWhatTheyHold) {
+  Link link;
+  double rest = 0.0, stretch = 0.0;
+  for (int i = 0; i < 3000; ++i) {
+    const double r = 1e-3 * (1 + i % 7), s = i % 2 == 0 ? 0.0 : 0.1 * r;
+    link.windOn(r, s);
+    rest += r;
+    stretch += s;
+  }
+  EXPECT_LE(link.layers.size(), 1024u);
+  EXPECT_NEAR(link.stored, rest, 1e-12);
+  EXPECT_NEAR(link.stored_stretch, stretch, 1e-12);
+  double layers = 0.0;
+  for (const WoundLayer& l : link.layers) layers += l.rest;
+  EXPECT_NEAR(layers, rest - 1e-3, 1e-12);  // the first, unstretched, lies below them
+  // The top layer (wound at 10 %) comes off first, at its own strain.
+  const WoundLayer top = link.layers.back();
+  EXPECT_NEAR(link.windOff(0.5 * (top.rest + top.stretch)), 0.5 * top.rest, 1e-15);
+  EXPECT_NEAR(link.windOff(link.arc()), rest - 0.5 * top.rest, 1e-12);
+  EXPECT_NEAR(link.stored, 0.0, 1e-12);
+  EXPECT_TRUE(link.layers.empty());
+}
+
 TEST(Elastic, ZeroComplianceIsInextensibleAtTwentyIterations) {
   Scene s = test::scene("atwood");
   s.world->settings().iterations = 20;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 
 namespace reeve {
 
@@ -21,11 +22,17 @@ int previousActive(const Cable& cable, int k) {
 
 namespace {
 // Layers whose strains differ by less than this are one (a layer per
-// substep would grow without bound while the strain barely changes).
+// substep would grow without bound while the strain barely changes), and
+// past this many the two deepest are: the hand's knuckles held 618 layers
+// after 3 s and still gained 10 a second at rest, turning to and fro by a
+// hair. (At 64 the merged depths were unwound again as a finger settled
+// back, 1.9 % off its closed form.)
 constexpr double kLayerStrain = 1e-3;
+constexpr std::size_t kMostLayers = 1024;
 }  // namespace
 
 void Link::windOn(double rest, double stretch) {
+  if (rest == 0.0 && stretch == 0.0) return;  // a wheel that did not turn: no empty layer
   stored += rest;
   if (stretch == 0.0 && layers.empty()) return;  // inextensible, or unstretched at the bottom
   stored_stretch += stretch;
@@ -38,6 +45,11 @@ void Link::windOn(double rest, double stretch) {
     }
   }
   layers.push_back({rest, stretch});
+  if (layers.size() > kMostLayers) {
+    layers[1].rest += layers[0].rest;
+    layers[1].stretch += layers[0].stretch;
+    layers.erase(layers.begin());
+  }
 }
 
 double Link::windOff(double arc) {

@@ -319,19 +319,7 @@ TEST_F(Cli, ASpanWoundEmptyIsAWarningOrWithStrictAnError) {
   // hauling a slider along a rail to its rim (tests/test_spool.cpp has the
   // physics). The run says when the span ran out (2.12 s at 10 x 2), and
   // what to do; the event log has it; --strict stops there, writing nothing.
-  const std::string scene = write("wind.json", R"({
-    "name": "wind", "solver": {"frame_rate_hz": 60, "substeps": 10, "iterations": 2}, "duration_s": 2.5,
-    "bodies": [
-      {"name": "pulley", "shape": {"type": "cylinder", "radius_m": 0.1, "half_length_m": 0.02}, "mass_kg": 1,
-       "position_m": [0, 0, 0]},
-      {"name": "slider", "shape": {"type": "box", "half_extents_m": [0.05, 0.05, 0.05]}, "mass_kg": 1,
-       "position_m": [1, -0.1, 0]}],
-    "hinges": [{"body": "pulley", "anchor_m": [0, 0, 0], "axis": [0, 0, 1],
-                "drive": {"mode": "velocity", "target_rad_per_s": -5}}],
-    "joints": [{"type": "prismatic", "body": "slider", "anchor_m": [1, -0.1, 0], "axis": [1, 0, 0]}],
-    "cables": [{"name": "rope", "links": [
-      {"body": "pulley", "type": "hybrid", "orientation": "ccw", "stored_m": 0.5},
-      {"body": "slider", "type": "attachment", "point_m": [0, 0, 0]}]}]})");
+  const std::string scene = REEVE_TEST_SCENES_DIR "/span_wound_empty.json";
   Result r = reeve("run " + scene + " --events " + path("events.jsonl"));
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.err.find("reeve: warning: cable 'rope' ran out between 'pulley' (link 0) and 'slider' at t = 2.1"),

@@ -273,7 +273,7 @@ TEST(Capstan, HaulingAndLoweringTraceTheTwoBranchesOfTheBound) {
     }
 }
 
-// Issue 28, item 3: 10 kg hanging from a rope wrapped half a turn over a
+// Issue 28, item 3: 10 kg (and 1 g, 10 t) hanging from a rope wrapped half a turn over a
 // static drum (r = 0.1 m, mu = 0.2: k = exp(mu pi) = 1.874) to a winch
 // fixed beside it, hauling at 0.2 m/s for 1 s and then paying out at 0.2
 // m/s. Hauling, the drum side pulls k m g; paying out, m g / k; in between
@@ -282,10 +282,11 @@ TEST(Capstan, HaulingAndLoweringTraceTheTwoBranchesOfTheBound) {
 // late, a sticking rope held 172 N against 0 N at one substep a frame
 // (the catch) and slid back at the full ratio with no stop.
 TEST(Capstan, AWinchReversingOverAFixedDrumNeverPassesTheBound) {
-  constexpr double mu = 0.2, r = 0.1, m_load = 10.0;
+  constexpr double mu = 0.2, r = 0.1;
   const double k = std::exp(mu * kPi);
+  for (const double m_load : {1e-3, 10.0, 1e4})  // 1 g to 10 t: 9.8 mN to 98 kN of weight
   for (const Budget& b : kFourBudgets) {
-    SCOPED_TRACE(test::name(b));
+    SCOPED_TRACE(test::name(b) + ", " + std::to_string(m_load) + " kg");
     Machine m(b);
     const BodyId drum = m.drum(r, Vec3::Zero());
     const BodyId post = m.drum(0.02, Vec3(r, -2.0, 0.0));

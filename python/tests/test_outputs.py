@@ -65,19 +65,7 @@ def test_a_span_wound_empty_is_warned_of_and_strict_raises(tmp_path):
     # pulley at 0.5 m/s; its 1 m span runs out when the tie point reaches
     # the rim (2 s), which nothing in the model stops: warned of, with the
     # cable, the links and the time; with strict=True a SimulationError.
-    scene = {
-        "name": "wind", "solver": {"frame_rate_hz": 60, "substeps": 10, "iterations": 2}, "duration_s": 2.5,
-        "bodies": [
-            {"name": "pulley", "shape": {"type": "cylinder", "radius_m": 0.1, "half_length_m": 0.02},
-             "mass_kg": 1, "position_m": [0, 0, 0]},
-            {"name": "slider", "shape": {"type": "box", "half_extents_m": [0.05, 0.05, 0.05]}, "mass_kg": 1,
-             "position_m": [1, -0.1, 0]}],
-        "hinges": [{"body": "pulley", "anchor_m": [0, 0, 0], "axis": [0, 0, 1],
-                    "drive": {"mode": "velocity", "target_rad_per_s": -5}}],
-        "joints": [{"type": "prismatic", "body": "slider", "anchor_m": [1, -0.1, 0], "axis": [1, 0, 0]}],
-        "cables": [{"name": "rope", "links": [
-            {"body": "pulley", "type": "hybrid", "orientation": "ccw", "stored_m": 0.5},
-            {"body": "slider", "type": "attachment", "point_m": [0, 0, 0]}]}]}
+    scene = pathlib.Path(__file__).parents[2] / "tests" / "scenes" / "span_wound_empty.json"  # shared with the CLI test
     with pytest.warns(RuntimeWarning, match=r"cable 'rope' ran out between 'pulley' \(link 0\) and 'slider' at t = 2\.1"):
         result = reeve.run(reeve.load(scene))
     assert result["spans_run_out"] >= 1

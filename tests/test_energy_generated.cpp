@@ -412,18 +412,6 @@ void PrintTo(const Cell& c, std::ostream* os) { *os << cellName(c); }
 // Machine, solver and budget of the cells that create energy today, and why.
 const std::set<std::string>& knownCreating() {
   static const std::set<std::string> cells = {
-      // A winch hauling from an empty drum on a stiff elastic cable (7.5e-6
-      // m/N) with a heavy dashpot (1474 N s/m), max_pull_N half its load's
-      // weight (0.52 x). It chattered between its cap and the tied end
-      // (reeling in what its stall paid straight back out) and its cable
-      // stretched on from nothing (item 4); now it holds from 0.025 s on,
-      // but in the first substeps the stall's pay-out, all at once, reads to
-      // the dashpot as the cable shortening: it cuts the tension to 0 and
-      // the ledger credits damping that did not happen (+0.39 J, 0.15 %, at
-      // 10 x 2). Fixed at one substep a frame (direct).
-      "m03_winch_static direct 10x2", "m03_winch_static direct 32x32", "m03_winch_static gauss-seidel 1x1",
-      "m03_winch_static gauss-seidel 1x10", "m03_winch_static gauss-seidel 10x2",
-      "m03_winch_static gauss-seidel 32x32",
       // A carriage on a rail fixed to a block hung by two ropes (a dynamic
       // holder), hauling a load over a sheave: +26 to 29 J since the
       // balance's lowest point at 0.37 s (0.11-0.13 % of the scale) at

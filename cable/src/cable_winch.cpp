@@ -98,7 +98,11 @@ void CableSystem::reel(Cable& cable, double start_s, double h) {
     // tension fell to nothing and chattered back up, the ledger counting
     // each drop as energy made).
     const double elastic = path.compliance * -path.lambda / (h * h);
-    double given = std::min(std::max(0.0, length - path.rest_length - elastic), drum.stored);
+    // That slip already happened in the last solve (the run is that long
+    // now), so it is not fed: the dashpot would read it as this substep's
+    // shortening and cut the tension.
+    const double slipped = std::min(std::max(0.0, length - path.rest_length - elastic), drum.stored);
+    double given = slipped;
     // Still stalled, and this substep's motion (the run's length at the
     // poses the integration predicts) takes it past the end of the cable
     // and the stretch of its pull: it all goes now, and the solve holds the
@@ -110,7 +114,7 @@ void CableSystem::reel(Cable& cable, double start_s, double h) {
       given = drum.stored;
     span.rest_length += given;
     drum.stored -= given;
-    cable.fed += given;
+    cable.fed += given - slipped;
     winch_work_ -= pull * given;
   }
   // This substep's command: cable reeled in (> 0), within what the span

@@ -444,6 +444,91 @@ TEST(PrismaticJoint, PositionDriveHoldsItsTarget) {
   EXPECT_NEAR(rail.world.prismaticDriveForce(rail.joint), rail.m * rail.gSin(), 0.01 * rail.m * rail.gSin());
 }
 
+// A bead on a rod (a prismatic joint whose rail is a swinging body). The
+// rail's rows turn with it, so it holds the bead where the bead is, not at
+// its own anchor: applied there, the reaction on a rod the bead had slid
+// s along was s off, a torque that worked on the rod.
+struct BeadOnRod {
+  World world;
+  BodyId rod, bead;
+  PrismaticId joint;
+  // A 1 kg rod of 1 m hinged at the origin about z, lying along +x, and a
+  // 1 kg bead on it r0 from the hinge, both turning at w rad/s.
+  BeadOnRod(const test::Budget& b, const Vec3& gravity, double r0, double w, const HingeDrive& drive)
+      : world(makeWorld(b.substeps, b.iterations)) {
+    world.settings().solver = b.solver;
+    world.settings().gravity = gravity;
+    rod = addBox(world, 1.0, Vec3(0.5, 0.02, 0.02), Vec3(0.5, 0.0, 0.0));
+    bead = addBox(world, 1.0, Vec3(0.03, 0.03, 0.03), Vec3(r0, 0.0, 0.0));
+    world.addHinge({rod, kWorldBody, Vec3::Zero(), Vec3::UnitZ(), 0.0, {}, drive});
+    PrismaticDef def;
+    def.body = bead;
+    def.other = rod;
+    def.anchor = Vec3(r0, 0.0, 0.0);
+    def.axis = Vec3::UnitX();
+    joint = world.addPrismatic(def);
+    for (const BodyId id : {rod, bead}) {
+      world.body(id).omega = Vec3(0.0, 0.0, w);
+      world.body(id).v = Vec3(0.0, 0.0, w).cross(world.body(id).x);
+    }
+  }
+  double radius() const { return world.body(bead).x.norm(); }
+  double mechanical() const {
+    const WorldEnergy e = world.energy();
+    return e.kinetic + e.gravity;
+  }
+};
+
+TEST(PrismaticJoint, ABeadOnARodSpunAtConstantSpeedSlidesOutAsCoshAndTheDriveDoesItsWork) {
+  // Zero gravity, the rod driven at w = 2 rad/s (unlimited): the bead,
+  // at rest on it at r0 = 0.1 m, slides out as r0 cosh(w t), and the drive
+  // puts in the bead's kinetic energy, m r0^2 w^2 (cosh(2 w t) - 1) / 2
+  // (the rod's own and the bead's spin do not change). Before, the drive
+  // put in less than that (the reaction's torque on the rod too small by
+  // the bead's slide): energy created.
+  const double r0 = 0.1, w = 2.0, t = 1.0;
+  for (const test::Budget& b : test::kFourBudgets) {
+    SCOPED_TRACE(test::name(b));
+    BeadOnRod m(b, Vec3::Zero(), r0, w, {HingeDrive::Mode::Velocity, w, 0.0});
+    const double start = m.mechanical();
+    run(m.world, t, 1.0 / 60.0, [](double) {});
+    const double r = r0 * std::cosh(w * t), work = 0.5 * r0 * r0 * w * w * (std::cosh(2.0 * w * t) - 1.0);
+    const double h = 1.0 / (60.0 * b.substeps);
+    std::printf("[ measured ] bead on a spun rod, %s: r %.6f vs r0 cosh(w t) %.6f m (%+.2e), drive work %.6f vs "
+                "the bead's energy %.6f J (%+.2e), kinetic energy gained %.6f J\n",
+                test::name(b).c_str(), m.radius(), r, m.radius() / r - 1.0, m.world.energy().drive_work, work,
+                m.world.energy().drive_work / work - 1.0, m.mechanical() - start);
+    // First order in h, as XPBD is: the bead lags by about w h of its
+    // radius, and its kinetic energy by twice as much again.
+    EXPECT_NEAR(m.radius(), r, 2.0 * w * h * r);
+    EXPECT_NEAR(m.mechanical() - start, work, 5.0 * w * h * work);
+    // XPBD's implicit step takes energy out, never puts it in.
+    EXPECT_GE(m.world.energy().drive_work, (m.mechanical() - start) * (1.0 - 1e-9));
+  }
+}
+
+TEST(PrismaticJoint, ABeadOnAFreelySwingingRodNeverGainsEnergy) {
+  // Under gravity, the rod let go swinging at 2 rad/s with the bead at its
+  // middle: the bead slides out and, past the hinge, back through it. No
+  // drive: kinetic + potential energy can only fall (XPBD's implicit step),
+  // by O(h). Before, it rose by 1e5 J within half a second at every budget.
+  for (const test::Budget& b : test::kFourBudgets) {
+    SCOPED_TRACE(test::name(b));
+    BeadOnRod m(b, Vec3(0.0, -kG, 0.0), 0.5, 2.0, {});
+    const double start = m.mechanical(), scale = 2.0 * kG * 1.0;  // 2 kg lifted 1 m
+    double highest = -std::numeric_limits<double>::infinity(), farthest = 0.0;
+    run(m.world, 3.0, 1.0 / 60.0, [&](double) {
+      highest = std::max(highest, m.mechanical());
+      farthest = std::max(farthest, m.radius());
+    });
+    std::printf("[ measured ] bead on a swinging rod, %s: highest energy %+.2e J over the start, end %+.2e J, "
+                "bead out to %.3f m\n",
+                test::name(b).c_str(), highest - start, m.mechanical() - start, farthest);
+    EXPECT_LE(highest - start, 1e-9 * scale);
+    EXPECT_GT(farthest, 1.0);  // it did slide out, past the rod's end
+  }
+}
+
 // ------------------------------------------------------------ spherical --
 
 TEST(SphericalJoint, BallJointedPendulumKeepsItsPivotDistance) {

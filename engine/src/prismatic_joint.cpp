@@ -16,6 +16,15 @@ joint_rows::DriveKind kindOf(PrismaticDrive::Mode mode) {
   return joint_rows::DriveKind::None;
 }
 
+// The arm on the rail b at which its rows act: to the point of b under a's
+// anchor, where the rail holds the slider, not to b's own anchor. The rows
+// C = t . (p_b - p_a) and s = (p_a - p_b) . u turn with b, so their
+// gradient on b's rotation is (p_a - x_b) x t (Box2D's d + r_A). At b's
+// anchor a slider s metres along applied its reaction s metres off, a
+// torque that worked on the rail: a bead on a swinging rod gained energy
+// as it slid out, and blew up (1e8 J) within half a second.
+Vec3 railArm(const BodyState& a, const BodyState& b, const Vec3& r_a) { return a.x + r_a - b.x; }
+
 // The rail and orientation rows (solvePrismaticJoint) at arms r_a, r_b.
 joint_rows::BilateralRows bilateralRows(const PrismaticJoint& j, const BodyState& a, const BodyState& b,
                                         const Vec3& r_a, const Vec3& r_b) {
@@ -111,7 +120,7 @@ void solvePrismaticJoint(PrismaticJoint& j, BodyState& a, BodyState& b, double h
   const double alpha_tilde = j.compliance / (h * h);
   const auto block = [&](const joint_rows::ClampedRow* clamped) {
     const Vec3 r_a = a.q * j.anchor_a, r_b = b.q * j.anchor_b;
-    joint_rows::solveRows(a, b, r_a, r_b, bilateralRows(j, a, b, r_a, r_b), alpha_tilde, clamped,
+    joint_rows::solveRows(a, b, r_a, railArm(a, b, r_a), bilateralRows(j, a, b, r_a, r_b), alpha_tilde, clamped,
                           j.impulse_linear, j.impulse_angular);
   };
   const bool driven = j.drive.mode != PrismaticDrive::Mode::None;
@@ -135,7 +144,7 @@ void solvePrismaticJoint(PrismaticJoint& j, BodyState& a, BodyState& b, double h
 
 void joint_rows::prismaticRowSet(PrismaticJoint& j, const BodyState& a, const BodyState& b, JointRowSet& out) {
   const Vec3 r_a = a.q * j.anchor_a, r_b = b.q * j.anchor_b;
-  out.start(r_a, r_b, bilateralRows(j, a, b, r_a, r_b));
+  out.start(r_a, railArm(a, b, r_a), bilateralRows(j, a, b, r_a, r_b));
   Vec6 dir = Vec6::Zero();
   dir.head<3>() = -(b.q * j.axis_b);
   addCoordinateRows(j.slide, j.limit, j.drive.mode != PrismaticDrive::Mode::None, false,

@@ -302,6 +302,9 @@ SphericalId World::addSpherical(const SphericalDef& def) {
   checkLimit("spherical joint", def.twist_limit, kPi);
   if (def.swing_limit.enabled && !(def.swing_limit.max >= 0.0 && def.swing_limit.max <= kPi))
     reject("spherical joint", "the swing limit must lie within [0, pi] rad");
+  if (def.twist_limit.enabled && !(def.swing_limit.enabled && def.swing_limit.max <= kMaxSwingWithTwist))
+    reject("spherical joint", "a twist limit needs a swing limit of at most pi/2 rad (the twist is ill-defined "
+                              "as the swing nears pi)");
   rotors_dirty_ = true;
   sphericals_.push_back(makeSphericalJoint(def, body(def.body), body(def.other)));
   return static_cast<SphericalId>(sphericals_.size() - 1);

@@ -160,8 +160,15 @@ void addSpherical(const json& j, const std::string& path, const BodyNames& names
       throw SceneError(source, path + "/swing_limit_rad", "an angle in [0, pi] rad",
                        literal(*swing));
   }
-  if (const auto twist = j.find("twist_limit"); twist != j.end())
+  if (const auto twist = j.find("twist_limit"); twist != j.end()) {
     def.twist_limit = angleLimit(*twist, path + "/twist_limit", source);
+    if (!def.swing_limit.enabled)
+      throw SceneError(source, path, "swing_limit_rad of at most pi/2 with a twist_limit (the twist is ill-defined as the swing nears pi)",
+                       "a twist_limit alone");
+    if (def.swing_limit.max > kMaxSwingWithTwist)
+      throw SceneError(source, path + "/swing_limit_rad", "at most pi/2 rad with a twist_limit (the twist is ill-defined as the swing nears pi)",
+                       literal(j.at("swing_limit_rad")));
+  }
   addChecked([&] { world.addSpherical(def); }, path, source);
 }
 

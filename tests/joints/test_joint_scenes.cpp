@@ -363,6 +363,18 @@ TEST(JointErrors, TwistLimitLowerAboveUpper) {
               "/joints/1/twist_limit/upper_rad", "an angle >= lower_rad 0.2", "0.1");
 }
 
+TEST(JointErrors, ATwistLimitNeedsASwingLimitOfAtMostAQuarterTurn) {
+  // The twist about the two axes' mean is undefined as the swing nears pi:
+  // a body on a ball joint with a twist limit alone, swung over its axis,
+  // gained 1e5 J (kMaxSwingWithTwist).
+  expectError(jointsWith(R"("swing_limit_rad": 0.7, )", ""), "/joints/1",
+              "swing_limit_rad of at most pi/2 with a twist_limit (the twist is ill-defined as the swing nears pi)",
+              "a twist_limit alone");
+  expectError(jointsWith(R"("swing_limit_rad": 0.7)", R"("swing_limit_rad": 1.6)"), "/joints/1/swing_limit_rad",
+              "at most pi/2 rad with a twist_limit (the twist is ill-defined as the swing nears pi)", "1.6");
+  EXPECT_NO_THROW(parseScene(jointsWith(R"("swing_limit_rad": 0.7)", R"("swing_limit_rad": 1.57)"), "test.json"));
+}
+
 TEST(JointErrors, HingeLimitOutsideAHalfTurn) {
   expectError(jointsWith(R"({"lower_rad": -0.5, "upper_rad": 1.0})",
                          R"({"lower_rad": -4, "upper_rad": 1.0})"),

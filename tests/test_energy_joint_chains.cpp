@@ -75,48 +75,25 @@ Chain makeChain(int index, const test::Budget& b) {
     const Vec3 axis = Vec3(u(), u(), u()).normalized();
     const unsigned kind = rng() % 4u;
     const bool limited = u() > 0.0;
+    const JointLimit none{};
     switch (kind) {
-      case 0: {
-        HingeDef h(id, other, joint_at, axis);
-        if (limited) h.limit = {true, -0.3, 0.4};
-        w.addHinge(h);
+      case 0:
+        w.addHinge({id, other, joint_at, axis, 0.0, limited ? JointLimit{true, -0.3, 0.4} : none});
         chain.joints += limited ? 'H' : 'h';
         break;
-      }
-      case 1: {
-        PrismaticDef p;
-        p.body = id;
-        p.other = other;
-        p.anchor = joint_at;
-        p.axis = axis;
-        p.limit = {true, -0.2, 0.3};
-        w.addPrismatic(p);
+      case 1:  // a rail always ends: left open, a slider ran 25 m out (DESIGN.md)
+        w.addPrismatic({id, other, joint_at, axis, 0.0, {true, -0.2, 0.3}, {}});
         chain.joints += 'P';
         break;
-      }
-      case 2: {
-        SphericalDef sp;
-        sp.body = id;
-        sp.other = other;
-        sp.anchor = joint_at;
-        sp.axis = Vec3::UnitX();
-        if (limited) {
-          sp.swing_limit = {true, 0.5};
-          sp.twist_limit = {true, -0.3, 0.3};
-        }
-        w.addSpherical(sp);
+      case 2:
+        w.addSpherical({id, other, joint_at, Vec3::UnitX(), 0.0, limited ? SwingLimit{true, 0.5} : SwingLimit{},
+                        limited ? JointLimit{true, -0.3, 0.3} : none});
         chain.joints += limited ? 'S' : 's';
         break;
-      }
-      default: {
-        FixedDef f;
-        f.body = id;
-        f.other = other;
-        f.anchor = joint_at;
-        w.addFixed(f);
+      default:
+        w.addFixed({id, other, joint_at, 0.0});
         chain.joints += 'f';
         break;
-      }
     }
     joint_at += Vec3(0.4, 0.0, 0.0);
   }
@@ -150,7 +127,7 @@ std::optional<EnergyCreated> firstCreation(Chain& chain, double seconds = kDurat
 // enough that c30 rises 1.1 % of the scale (the tolerance is 1 %) built by
 // clang and less by gcc (over 200 chains, 11 at 1 x 1, 1 at 1 x 10);
 // Gauss-Seidel's counts as they are today. Its 32 x 32 sweeps cost ten
-// times the direct solver's: the first second only.
+// times the direct solver's: the first half second only.
 struct Cell {
   test::Budget budget;
   int creating;
@@ -184,7 +161,7 @@ INSTANTIATE_TEST_SUITE_P(EnergyLedger, JointChains,
                                          Cell{{kGaussSeidel, 1, 1}, 29, kDuration_s},
                                          Cell{{kGaussSeidel, 1, 10}, 22, kDuration_s},
                                          Cell{{kGaussSeidel, 10, 2}, 27, kDuration_s},
-                                         Cell{{kGaussSeidel, 32, 32}, 2, 1.0}),
+                                         Cell{{kGaussSeidel, 32, 32}, 1, 0.5}),
                          [](const testing::TestParamInfo<Cell>& info) {
                            return test::parameterName(test::name(info.param.budget));
                          });

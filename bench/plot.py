@@ -1,6 +1,6 @@
 # Draws a `reeve bench` CSV as a PNG (matplotlib). Run by `reeve bench
 # ... --plot FILE`, which pipes this script to `python3 - KIND CSV PNG`;
-# by hand: python3 bench/plot.py KIND CSV PNG, KIND table1 | trade | extremes.
+# by hand: python3 bench/plot.py KIND CSV PNG, KIND table1 | trade | extremes | scaling.
 import csv
 import math
 import sys
@@ -129,7 +129,33 @@ def extremes(r, png):
     fig.tight_layout(rect=(0, 0.02, 1, 1))
     fig.savefig(png, dpi=100, format="png")
 
+def scaling(r, png):
+    # One line per series, solver and budget: ms/frame against K, log-log.
+    fig, ax = plt.subplots(figsize=(9, 6))
+    lines = []
+    for x in r:
+        key = (x["series"], x["solver"], x["budget"])
+        if key not in lines:
+            lines.append(key)
+    for series, solver, budget in lines:
+        pts = [(num(x["K"]), num(x["ms_per_frame"])) for x in r
+               if (x["series"], x["solver"], x["budget"]) == (series, solver, budget) and x["ms_per_frame"] != ""]
+        pts = [p for p in pts if p[1] > 0]
+        if not pts:
+            continue
+        ax.plot([p[0] for p in pts], [p[1] for p in pts], marker="o", ms=3, lw=1,
+                ls="-" if solver == "direct" else "--", label=f"{series} {solver} {budget}")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("K")
+    ax.set_ylabel("ms per frame")
+    ax.set_title("Cost against K (solid: direct, dashed: Gauss-Seidel)")
+    ax.legend(fontsize=6, ncol=2)
+    footer(fig, r)
+    fig.tight_layout(rect=(0, 0.03, 1, 1))
+    fig.savefig(png, dpi=110, format="png")
+
 
 if __name__ == "__main__":
     kind, source, target = sys.argv[1:4]
-    {"table1": table1, "trade": trade, "extremes": extremes}[kind](rows(source), target)
+    {"table1": table1, "trade": trade, "extremes": extremes, "scaling": scaling}[kind](rows(source), target)

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <map>
+#include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -250,6 +251,85 @@ TEST(BenchTable1, ReportsTheSceneTheEnvironmentAndTheSpeedUpItMeasured) {
       EXPECT_EQ(row.at("speedup"), "");
     }
   }
+}
+
+// The machines of `reeve bench scaling` at K = 4 stand still with every
+// span at its closed-form tension (machines.h), solved directly at 10 x 2.
+void expectStatics(const machines::StaticMachine& m, const std::string& name, double tolerance = 1e-6) {
+  for (int f = 0; f < 5; ++f) m.scene.world->step(1.0 / 60.0);
+  ASSERT_FALSE(m.scene.world->firstNonFinite()) << name;
+  const CableSystem& cables = *m.scene.cables;
+  int spans = 0;
+  for (int c = 0; c < static_cast<int>(cables.cables().size()); ++c)
+    for (int j = 0; j < static_cast<int>(cables.cables()[c].joints.size()); ++j) {
+      ASSERT_TRUE(cables.jointEnabled(c, j)) << name << " cable " << c << " span " << j;
+      EXPECT_LT(relative(cables.tension(c, j), m.tension_N), tolerance) << name << " cable " << c << " span " << j;
+      ++spans;
+    }
+  EXPECT_GT(spans, 0) << name;
+}
+
+TEST(ScalingMachines, MeetTheirClosedFormStaticsAtFourWithTheDirectSolver) {
+  machines::ScalingSpec spec;
+  spec.count = 4;
+  spec.load_kg = 1.5;
+  spec.budget = {10, 2, SolverKind::Direct};
+  expectStatics(machines::scalingChain(spec), "chain");
+  expectStatics(machines::tackleHinged(spec), "tackle_hinged");
+  expectStatics(machines::tackleRolling(spec), "tackle_rolling");
+  expectStatics(machines::islands(spec), "islands");
+  expectStatics(machines::wound(spec), "wound");
+  EXPECT_DOUBLE_EQ(machines::tackleHinged(spec).tension_N, 15.0);  // W / K: the block weighs K m
+}
+
+// The compliant star starts in its equilibrium, yet its first substep
+// leaves it off by an error that falls as h^2 (1.4e-5 at 10 substeps a
+// frame, 1.1e-3 at 1): at 100 substeps it is within 1e-6.
+TEST(ScalingMachines, TheCompliantStarHoldsItsConeTensionAsTheSubstepShrinks) {
+  machines::ScalingSpec spec;
+  spec.count = 4;
+  spec.budget = {10, 2, SolverKind::Direct};
+  expectStatics(machines::star(spec, true), "star_compliant 10 x 2", 1e-4);
+  spec.budget.substeps = 100;
+  expectStatics(machines::star(spec, true), "star_compliant 100 x 2", 1e-6);
+}
+
+// Four rigid cables hold the effector redundantly: the direct solver need
+// not share the load evenly (it puts it on one opposite pair), but the
+// cables' pull balances the weight, and no cable pushes.
+TEST(ScalingMachines, TheRigidStarCarriesTheEffectorsWeight) {
+  machines::ScalingSpec spec;
+  spec.count = 4;
+  spec.budget = {10, 2, SolverKind::Direct};
+  const machines::StaticMachine m = machines::star(spec, false);
+  EXPECT_DOUBLE_EQ(m.tension_N, 10.0 / std::cos(std::numbers::pi / 6.0));  // m g / cos theta
+  for (int f = 0; f < 5; ++f) m.scene.world->step(1.0 / 60.0);
+  double vertical = 0.0;
+  for (int c = 0; c < 4; ++c) {
+    EXPECT_GE(m.scene.cables->tension(c, 0), 0.0);
+    vertical += m.scene.cables->tension(c, 0) * std::cos(std::numbers::pi / 6.0);
+  }
+  EXPECT_LT(relative(vertical, 4 * 10.0), 1e-4);  // M g, M = K m (8e-6 off: the pair sways)
+}
+
+TEST(ScalingMachines, OddFallCountsBalanceToo) {
+  machines::ScalingSpec spec;
+  spec.count = 5;
+  spec.budget = {10, 2, SolverKind::Direct};
+  expectStatics(machines::tackleHinged(spec), "tackle_hinged");
+  expectStatics(machines::tackleRolling(spec), "tackle_rolling");
+}
+
+TEST(BenchScaling, RunsTheChainAndPrintsItsTable) {
+  test::TempDir dir;
+  const Result r = reeve(dir, "bench scaling --k 4 --frames 1 --series chain");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("# cpu:"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("statics_error"), std::string::npos) << r.out;
+  for (const char* cell : {"chain  ", "direct", "gauss-seidel", "1x10", "10x2", "fitted exponent"})
+    EXPECT_NE(r.out.find(cell), std::string::npos) << cell << "\n" << r.out;
+  EXPECT_EQ(reeve(dir, "bench scaling --series nope").code, 64);
+  EXPECT_EQ(reeve(dir, "bench scaling --budget 10").code, 64);
 }
 
 TEST(BenchOutputs, RefusesToOverwriteAndRejectsUnknownNames) {

@@ -60,7 +60,7 @@ int guarded(const std::function<int()>& run) {
 
 std::function<int()> addBenchCommand(CLI::App& app, CLI::App*& bench_cmd) {
   bench_cmd = app.add_subcommand(
-      "bench", "Measure speed and accuracy: Table 1, the speed/accuracy trade, stability at the extremes.");
+      "bench", "Measure speed and accuracy: Table 1, the speed/accuracy trade, stability at the extremes, scaling.");
   bench_cmd->require_subcommand(1);
   bench_cmd->footer(
       "Prints the CPU, compiler, build type, date and threads with every result; never passes or fails on a "
@@ -124,6 +124,27 @@ std::function<int()> addBenchCommand(CLI::App& app, CLI::App*& bench_cmd) {
   addSolvers(exc, ex->solvers);
   exc->add_option("--cell", ex->cell, "Run only this cell, by the key the report prints");
 
+  auto sc = std::make_shared<bench::ScalingOptions>();
+  CLI::App* scc = bench_cmd->add_subcommand(
+      "scaling", "ms/frame, peak memory and statics error of both solvers as the cable joints grow, per topology.");
+  addOutput(scc, sc->output, true);
+  scc->add_option("--series", sc->series,
+                  "Series to run (chain, tackle_hinged, tackle_rolling, star_rigid, star_compliant, islands, wound; "
+                  "default all)")
+      ->delimiter(',');
+  addSolvers(scc, sc->solvers);
+  scc->add_option("--budget", sc->budgets, "Budgets per frame, SUBSTEPSxITERATIONS (default 1x10,10x2)")
+      ->delimiter(',');
+  scc->add_option("--k", sc->k, "Counts K (default 4,16,64,256,1024,4096)")
+      ->delimiter(',')
+      ->check(CLI::PositiveNumber);
+  scc->add_option("--frames", sc->frames, "Timed frames per cell (default 10)")->check(CLI::PositiveNumber);
+  scc->add_option("--max-ms-per-frame", sc->max_ms_per_frame,
+                  "Skip a K whose ms/frame, extrapolated from the K before, passes this (default 2000)")
+      ->check(CLI::PositiveNumber);
+  scc->add_option("--cell-timeout-s", sc->cell_timeout_s, "Kill a cell running longer than this, s (default 60)")
+      ->check(CLI::PositiveNumber);
+
   auto peers = std::make_shared<bench::PeersOptions>();
   CLI::App* pe = bench_cmd->add_subcommand(
       "peers", bench::peersAvailable()
@@ -138,6 +159,7 @@ std::function<int()> addBenchCommand(CLI::App& app, CLI::App*& bench_cmd) {
     if (*t1) return guarded([&] { return bench::table1(*table1); });
     if (*tr) return guarded([&] { return bench::trade(*trade); });
     if (*exc) return guarded([&] { return bench::extremes(*ex); });
+    if (*scc) return guarded([&] { return bench::scaling(*sc); });
     return guarded([&] { return bench::peers(*peers); });
   };
 }

@@ -54,6 +54,23 @@ struct ExtremesOptions {
 };
 int extremes(const ExtremesOptions& options);
 
+/// `reeve bench scaling`: ms/frame, peak memory, iterations and statics
+/// error of each solver on machines at rest (machines.h, "The series of
+/// reeve bench scaling") as their count K grows, each cell in a child
+/// process; the fitted exponent of ms/frame against K per series, solver
+/// and budget. A baseline for the solvers' cost, never a pass or fail.
+struct ScalingOptions {
+  Output output;
+  std::vector<std::string> series;  ///< series names; empty: all
+  std::vector<std::string> solvers = {"direct", "gauss-seidel"};
+  std::vector<std::string> budgets = {"1x10", "10x2"};  ///< SUBSTEPSxITERATIONS per frame
+  std::vector<int> k = {4, 16, 64, 256, 1024, 4096};
+  int frames = 10;                   ///< timed frames of 1/60 s per cell
+  double max_ms_per_frame = 2000.0;  ///< skip a K predicted dearer than this (ms)
+  double cell_timeout_s = 60.0;      ///< kill a cell running longer (s, wall clock)
+};
+int scaling(const ScalingOptions& options);
+
 /// Whether `reeve bench peers` was built (Debian's libmujoco-dev found).
 bool peersAvailable();
 

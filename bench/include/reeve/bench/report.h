@@ -73,8 +73,8 @@ class Table {
 void checkOutput(const Output& out);
 
 /// Writes the CSV and draws the plot of `kind` ("table1", "trade",
-/// "extremes") as `out` asks. The plot runs Debian's /usr/bin/python3 (its
-/// matplotlib: python3-matplotlib) with the embedded
+/// "extremes", "scaling") as `out` asks. The plot runs Debian's
+/// /usr/bin/python3 (its matplotlib: python3-matplotlib) with the embedded
 /// bench/plot.py on the CSV (a temporary one when --csv was not given).
 /// Throws OutputError when a file cannot be written or the plot fails.
 void writeOutputs(const Output& out, const Table& table, const Environment& env, const std::string& kind);

@@ -158,6 +158,68 @@ HilbertSpec hilbertSceneSpec(int level, double slack_m);
 /// The machine loaded from hilbertSceneJson(spec) (scene_json.h).
 Hilbert hilbert(const HilbertSpec& spec);
 
+/// The series of `reeve bench scaling` (scaling_machines.cpp): machines
+/// that scale with a count K and stand still, so that every span of every
+/// cable carries one known tension, `tension_N`, from statics (frictionless
+/// sheaves and wraps turn or slide freely; g along -y, frames at 60 Hz).
+/// Wheels and sheaves are solid cylinders 0.1 m in radius.
+struct ScalingSpec {
+  int count = 4;         ///< K: wheels, falls, cables, machines or passes
+  double load_kg = 1.0;  ///< m: each hanging load, or the load per fall
+  double gravity = 10.0;  ///< m/s^2
+  Budget budget;
+};
+
+struct StaticMachine {
+  Scene scene;
+  double tension_N = 0.0;  ///< every span's tension at rest (N)
+};
+
+/// chain: the zig-zag (above) over K >= 2 wheels of 0.1 kg hinged to the
+/// world, m at both ends: tension m g in all K + 1 spans.
+StaticMachine scalingChain(const ScalingSpec& spec);
+
+/// tackle_hinged: a K-fall block and tackle (K >= 2). K - 1 sheaves of
+/// 0.01 m kg, 0.2 m apart in x, alternately hinged to a static upper block
+/// (y = 0) and to a moving lower block 2 m below (the last sheave a lower
+/// one); the cable is tied to the block opposite the first sheave, runs
+/// over and under them all (K vertical falls) and ends at a point on the
+/// upper block. The lower block with its sheaves weighs W = K m, its
+/// centre of mass under the falls' centre: each fall carries W g / K = m g.
+StaticMachine tackleHinged(const ScalingSpec& spec);
+
+/// tackle_rolling: tackleHinged's K falls without sheave bodies: the cable
+/// wraps octagons (circumradius 0.1 m, a vertex at each side) that are
+/// sections of the two block bodies themselves, frictionless (mu = 0: it
+/// slides, one path constraint); the lower block weighs W = K m: m g per
+/// fall.
+StaticMachine tackleRolling(const ScalingSpec& spec);
+
+/// star_rigid / star_compliant: an effector (a box of 0.1 m sides and
+/// M = K m) hanging on K cables, each from an anchor on a circle of radius
+/// 0.5 m, 1 m from the effector's top centre, to that point: a cone of
+/// half-angle theta = 30 degrees. Each cable carries M g / (K cos theta) =
+/// m g / cos theta. Rigid: inextensible, taut at the start (K > 3 makes
+/// the cables redundant; the symmetric answer is also the least-norm
+/// one). Compliant: each cable's rest length is 1 / 1.01 of its span and
+/// its compliance (m/N) stretches it by the remaining 1 % at that tension,
+/// so it starts at rest in equilibrium.
+StaticMachine star(const ScalingSpec& spec, bool compliant);
+
+/// islands: K Atwood machines (wheels 0.3 m in radius, 2 kg, hinged to
+/// the world, 1 m apart in x) with m on both sides, in one scene: 2 K
+/// spans, tension m g each.
+StaticMachine islands(const ScalingSpec& spec);
+
+/// wound: one cable wound back and forth between two wheels 1 m apart
+/// (hinged to the world at (0, 0, 0) and (1, 0, 0)) in K wraps (K even),
+/// clockwise round one wheel, then the other: half a turn each, a quarter
+/// at the two ends, all frictionless (mu = 0: one path constraint; the
+/// top spans lie on one another, as do the bottom ones); m hangs 2 m down
+/// from each free end (left of the first wheel, right of the second):
+/// tension m g in all K + 1 spans.
+StaticMachine wound(const ScalingSpec& spec);
+
 /// The points (grid units) of the 3D Hilbert curve with 2^level points per
 /// side, in curve order; consecutive points are one unit apart (Skilling,
 /// "Programming the Hilbert curve", AIP Conf. Proc. 707, 2004).

@@ -22,6 +22,27 @@
 // compliant row (alpha~ on its diagonal, joint_rows::prepareCoordinate),
 // not dependent on a limit. Contacts stay Gauss-Seidel, after each
 // iteration. Private to reeve_engine.
+//
+// A body with many rows (a tackle's block, an effector on K cables, a
+// palm) would make J W J^T dense among them: K^2 values and a K^3
+// factorization. Such a body, a *hub*, keeps its motion dx_h (6 values; a
+// rotor's, 1) as unknowns beside the rows, in the augmented (KKT) form
+// (Baraff, "Linear-time dynamics using Lagrange multipliers", 1996):
+//   [ J_n W_n J_n^T + alpha~ + delta   J_h  ] [dlambda]   [-C - alpha~ lambda]
+//   [ J_h^T                           -M_h  ] [dx_h   ] = [0                 ],
+// n the other bodies, eliminated in closed form as before, and M_h the
+// hub's mass (m, and its world inertia). The matrix is quasi-definite, so
+// an LDL^T exists in any elimination order (Vanderbei 1995): one AMD order
+// over rows and hub motions eliminates the rows first and each hub once,
+// and the cost is linear in its rows. A rigid row whose only moving bodies
+// are hubs has nothing on its diagonal but alpha~: it gets at least
+// delta = kHubRegularization x the hub's row count x its hub part of
+// J W J^T there, and one
+// refinement step against the system without delta takes its error from
+// kHubRegularization to its square. Rigid rows that are redundant through
+// a hub (more cables than the effector has freedoms) share the load in
+// the least-squares sense of that delta: the least norm of
+// sum dlambda_k^2 delta_k, equal shares for K equal cables.
 #pragma once
 
 #include <array>
@@ -111,9 +132,25 @@ class DirectSolver {
   /// `tolerance` (m or rad): what counts as a met row.
   void solveActiveSet(double tolerance);
   /// Factors the assembled matrix, solves for x_ and sets dlambda_ and the
-  /// bodies' motion, keeping rows wrongly dropped as dependent.
+  /// bodies' motion, keeping rows wrongly dropped as dependent; then, where
+  /// a hub's rows were regularized, one refinement step.
   void factorAndSolve(double tolerance);
+  /// dlambda_ and the hubs' motion from the solution in x_.
+  void readSolution();
+  /// The free rows' residual of the system without the hubs' delta, in
+  /// x_ (0 for the other unknowns), solved with the last factor and added.
+  /// Returns the largest residual (m or rad) it corrected.
+  double refine();
+  struct Hub;
+  /// Redistributes the hub's free rigid leaves' dlambda to the least
+  /// delta-weighted norm with the same wrench on it.
+  void leastNormLeaves(const Hub& hub);
   void bodyMotion();
+  /// A hub's mass matrix entry (i, j) (kg or kg m^2, world) and the entry's
+  /// gradient along the hub's dof `dof` (0-2 linear, 3-5 angular; a rotor's
+  /// 0 is its axle).
+  double hubMass(int hub, int i, int j) const;
+  double hubGradient(const Entry& e, int dof) const;
 
   std::vector<int> signature_, scratch_;
   struct RunScratch {  // evaluateRun's, per point of the path
@@ -123,7 +160,28 @@ class DirectSolver {
   std::vector<Row> rows_;
   std::vector<Entry> entries_;
   std::vector<Pair> pairs_;
-  std::vector<Slot> slots_;
+  std::vector<Slot> slots_;  // other_row >= rows_.size(): a hub's unknown
+  struct Hub {
+    int body;   // index into bodies_
+    int dofs;   // 6, or 1 for a rotor
+    int first;  // its first unknown (rows_.size() + ...)
+    int first_leaf, leaves;  // rows that move it alone: leaf_entries_
+  };
+  struct Coupling {  // J_h: the entry's gradient along a hub's dof
+    int entry, hub, dof, slot;
+  };
+  struct MassSlot {  // -M_h(i, j), i <= j
+    int hub, i, j, slot;
+  };
+  std::vector<Hub> hubs_;
+  std::vector<int> hub_of_;  // per index into bodies_: its hub, or -1
+  std::vector<Coupling> couplings_;
+  std::vector<MassSlot> mass_slots_;
+  std::vector<int> position_;      // per unknown (rows, then hubs' dofs): in the elimination order
+  std::vector<double> hub_motion_;  // per hub dof: the solve's dx_h
+  std::vector<double> delta_;       // per row: its regularization (0 off hubs)
+  std::vector<int> leaf_entries_;   // per hub, from first_leaf: its leaves' entries
+  std::vector<Mat3> hub_inertia_;   // per hub: world inertia this iteration
   std::vector<BodyId> bodies_;    // moving bodies in some row
   std::vector<int> body_index_;   // per world body: its index in bodies_, or -1
   SparseLdlt ldlt_;
@@ -132,7 +190,7 @@ class DirectSolver {
   // joint rows the 6-D direction and the joint's impulse accumulators.
   enum class State : unsigned char { Free, Fixed, Off };
   std::vector<double> C_, alpha_, lo_, hi_, lambda_, dlambda_;
-  std::vector<double> x_, rhs_;  // right-hand side, then solution, in elimination order
+  std::vector<double> x_, rhs_;  // right-hand side, then solution, in elimination order (every unknown)
   std::vector<char> keep_;        // per position: a row not to drop (factorAndSolve)
   std::vector<State> state_;
   std::vector<char> pulled_;  // per row: its lambda was < 0 when the last substep ended

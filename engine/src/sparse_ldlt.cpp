@@ -106,8 +106,9 @@ int SparseLdlt::factor(double drop_tolerance, const std::vector<char>& keep, dou
       size += std::abs(l_ki * yi);
       Lx_[slot] = l_ki;
     }
-    pivot_ratio_[k] = size > 0.0 ? d / size : 0.0;
-    if (d > (!keep.empty() && keep[k] ? keep_tolerance : drop_tolerance) * size) {
+    const double sign = !negative_.empty() && negative_[k] ? -1.0 : 1.0;
+    pivot_ratio_[k] = size > 0.0 ? sign * d / size : 0.0;
+    if (sign * d > (!keep.empty() && keep[k] ? keep_tolerance : drop_tolerance) * size) {
       inv_d_[k] = 1.0 / d;
     } else {
       inv_d_[k] = 0.0;

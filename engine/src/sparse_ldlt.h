@@ -27,9 +27,16 @@ class SparseLdlt {
   std::vector<double>& values() { return Ax_; }
   /// Index in values() of diagonal entry k.
   int diagonalSlot(int k) const { return diagonal_[k]; }
+  /// Marks the positions whose pivot is negative (a quasi-definite matrix
+  /// [S B; B^T -M], S and M positive definite: Vanderbei, SIAM J. Optim.
+  /// 5(1), 1995, has an LDL^T in any elimination order, its pivots positive
+  /// in S and negative in -M); empty, or all 0: every pivot positive.
+  /// Kept until changed.
+  void setNegativePivots(std::vector<char> negative) { negative_ = std::move(negative); }
 
   /// Factors the matrix in values() as L D L^T. A pivot d_k = A_kk -
-  /// sum_i L_ki^2 d_i that falls to `drop_tolerance` times the size of
+  /// sum_i L_ki^2 d_i (negated where setNegativePivots says it is
+  /// negative) that falls to `drop_tolerance` times the size of
   /// what it is the difference of (A_kk + sum_i |L_ki^2 d_i|) or below is
   /// what rounding leaves of zero: its row depends on earlier ones (a
   /// redundant constraint) and is dropped, its unknown set to 0 by
@@ -53,6 +60,7 @@ class SparseLdlt {
   std::vector<int> parent_, Lp_, Lnz_, Li_, flag_;  // L, column by column
   std::vector<int> row_start_, row_column_, row_slot_;  // each row's pattern in L
   std::vector<double> Lx_, inv_d_, y_, pivot_ratio_;
+  std::vector<char> negative_;
 };
 
 }  // namespace reeve

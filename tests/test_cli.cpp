@@ -299,19 +299,20 @@ TEST_F(Cli, SettingsThatWillTakeHoursAreWarnedOfBeforeTheRun) {
   EXPECT_NE(slow_run.err.find("/solver: 40 substeps x 1000 iterations"), std::string::npos) << slow_run.err;
 }
 
-TEST_F(Cli, AThousandJointsOnTwoBodiesAreWarnedOfBeforeTheRun) {
+TEST_F(Cli, AThousandJointsOnTwoBodiesRunWithoutACostWarning) {
   // The fuzzer's third finding (issue 27's long run): springs.json with
   // 1,435 joints between a few bodies, 7,000 rows that the direct solver
-  // couples densely (issue 29): 4 GB and over 10 s for one substep, while
-  // the cost model, linear in the rows, said nothing. It counts the rows
-  // that share a body now.
+  // coupled densely: 4 GB and over 10 s for one substep, and the cost
+  // model, linear in the rows, said nothing; it was taught to warn. Since
+  // issue 29 those bodies are hubs (direct_solver.h), their rows couple to
+  // their own 6 freedoms only: 33 ms a frame here, and the model, which
+  // knows hubs, no longer warns.
   const std::string scene = std::string(REEVE_FUZZ_REGRESSIONS_DIR) + "/springs_1435_joints_on_two_bodies.json";
   const Result v = reeve("validate " + scene);
   EXPECT_EQ(v.code, 0) << v.err;
-  const std::regex warning(R"(/solver: 10 substeps x 2 iterations a frame at 60 Hz \(direct\) predict about ([0-9.e+]+) s)");
-  std::smatch m;
-  ASSERT_TRUE(std::regex_search(v.err, m, warning)) << v.err;
-  EXPECT_GT(std::stod(m[1]), 3600.0);  // an hour of computing per simulated second, at least
+  EXPECT_EQ(v.err.find("/solver:"), std::string::npos) << v.err;
+  const Result r = reeve("run " + scene + " --frames 1");
+  EXPECT_EQ(r.code, 0) << r.err;
 }
 
 TEST_F(Cli, AWheelCarriedFurtherThanItsSizeInASubstepIsSaidToBeTheCause) {

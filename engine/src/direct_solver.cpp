@@ -197,11 +197,12 @@ void DirectSolver::build(World& world) {
   Eigen::AMDOrdering<int> amd;
   Eigen::AMDOrdering<int>::PermutationType order;
   amd(pattern, order);  // order.indices()[k]: the unknown eliminated k-th
-  // The rows first, each hub after them all: eliminated before its rows, a
-  // light hub's -M (1e-6 kg m^2 for a knuckle) is added to rows' J W J^T of
-  // 1e6 and cancels, and its later pivots came out positive in the hand.
-  // After its rows, a hub's block is -M - J_h^T S^-1 J_h: negative terms
-  // only (S, the rows' block, is positive definite).
+  // The rows first, the hubs after them all: then a hub's block is -M_h -
+  // J_h^T S^-1 J_h, negative terms only (S, the rows' block, is positive
+  // definite), whatever the masses. AMD puts hubs last or nearly anyway
+  // (the same cost on the scaling bench), but a light hub eliminated before
+  // its rows would add its -M (1e-6 kg m^2 for a knuckle) to J W J^T of
+  // 1e6 and lose it.
   std::vector<int> sequence(order.indices().data(), order.indices().data() + unknowns);
   std::stable_partition(sequence.begin(), sequence.end(), [n](int u) { return u < n; });
   position_.assign(unknowns, 0);
@@ -280,7 +281,7 @@ void DirectSolver::build(World& world) {
     slots_.insert(slots_.end(), list.begin(), list.end());
     rows_[r].slots_end = static_cast<int>(slots_.size());
   }
-  for (std::vector<double>* v : {&C_, &alpha_, &lo_, &hi_, &lambda_, &dlambda_, &delta_}) v->assign(n, 0.0);
+  for (std::vector<double>* v : {&C_, &alpha_, &lo_, &hi_, &lambda_, &dlambda_, &delta_, &length_}) v->assign(n, 0.0);
   for (std::vector<double>* v : {&x_, &rhs_}) v->assign(unknowns, 0.0);
   hub_motion_.assign(unknowns - n, 0.0);
   hub_inertia_.assign(hubs_.size(), Mat3::Zero());
@@ -399,11 +400,13 @@ void DirectSolver::evaluatePath(const World& world, int r, double h) {
     const PathConstraint& p = world.path(row.index);
     if (p.points.size() == 2) evaluateSpan(world, r, p.points[0], p.points[1]);
     else evaluateRun(world, r, p.points.data(), p.points.size());
+    length_[r] = C_[r];
     C_[r] -= p.rest_length;
     compliance = p.compliance, damping = p.damping, start_length = p.start_length - p.rest_length;
   } else {
     const DistanceConstraint& c = world.distance(row.index);
     evaluateSpan(world, r, PathPoint{c.a, c.local_a}, PathPoint{c.b, c.local_b});
+    length_[r] = C_[r];
     C_[r] -= c.rest_length;
     compliance = c.compliance, damping = c.damping, start_length = c.start_length - c.rest_length;
   }
@@ -782,11 +785,15 @@ void DirectSolver::factorAndSolve(double tolerance) {
 }
 
 void DirectSolver::leastNormLeaves(const Hub& hub) {
-  // The rigid leaves' lambdas: the least sum dlambda_k^2 delta_k with the
-  // same wrench on the hub, g = J_h^T dlambda. With G = sum g_k g_k^T /
-  // delta_k, dlambda_k = g_k^T G^+ g / delta_k. Their motion is the hub's,
-  // unchanged; what goes is the part no motion can meet, rounding divided
-  // by delta.
+  // Rigid cables that move the hub alone and are more than it has
+  // freedoms for share its load as equal elastic cables would, stiffened
+  // without bound: compliance in proportion to length L_k, so their
+  // tensions minimize sum L_k dlambda_k^2 with the same wrench on the hub,
+  // g = sum g_k dlambda_k (g_k = J_h of cable k):
+  //   G = sum g_k g_k^T / L_k,   dlambda_k = g_k^T G^+ g / L_k.
+  // The hub's motion stays as solved. What goes is the part of dlambda
+  // that moves nothing: the solve's choice among equal answers, and
+  // rounding in redundant rows divided by delta.
   using Vec6 = Eigen::Matrix<double, 6, 1>;
   using Mat6 = Eigen::Matrix<double, 6, 6>;
   const auto gradient = [&](const Entry& e) {
@@ -794,18 +801,22 @@ void DirectSolver::leastNormLeaves(const Hub& hub) {
     for (int d = 0; d < hub.dofs; ++d) g[d] = hubGradient(e, d);
     return g;
   };
+  const auto shared = [&](int r) {
+    return (rows_[r].source == Source::Path || rows_[r].source == Source::Distance) && state_[r] == State::Free &&
+           alpha_[r] == 0.0 && length_[r] > 0.0;
+  };
   Mat6 G = Mat6::Zero();
   Vec6 wrench = Vec6::Zero();
   int count = 0;
   for (int l = hub.first_leaf; l < hub.first_leaf + hub.leaves; ++l) {
     const Entry& e = entries_[leaf_entries_[l]];
-    if (state_[e.row] != State::Free || alpha_[e.row] != 0.0 || delta_[e.row] == 0.0) continue;
+    if (!shared(e.row)) continue;
     const Vec6 g = gradient(e);
-    G += g * g.transpose() / delta_[e.row];
+    G += g * g.transpose() / length_[e.row];
     wrench += g * dlambda_[e.row];
     ++count;
   }
-  if (count <= hub.dofs) return;  // none redundant
+  if (count < 2) return;
   const Eigen::SelfAdjointEigenSolver<Mat6> eigen(G);
   const Vec6& values = eigen.eigenvalues();
   const double floor = 1e-12 * values.cwiseAbs().maxCoeff();
@@ -814,8 +825,7 @@ void DirectSolver::leastNormLeaves(const Hub& hub) {
   y = eigen.eigenvectors() * y;
   for (int l = hub.first_leaf; l < hub.first_leaf + hub.leaves; ++l) {
     const Entry& e = entries_[leaf_entries_[l]];
-    if (state_[e.row] != State::Free || alpha_[e.row] != 0.0 || delta_[e.row] == 0.0) continue;
-    dlambda_[e.row] = gradient(e).dot(y) / delta_[e.row];
+    if (shared(e.row)) dlambda_[e.row] = gradient(e).dot(y) / length_[e.row];
   }
 }
 

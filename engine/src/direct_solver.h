@@ -142,8 +142,9 @@ class DirectSolver {
   /// Returns the largest residual (m or rad) it corrected.
   double refine();
   struct Hub;
-  /// Redistributes the hub's free rigid leaves' dlambda to the least
-  /// delta-weighted norm with the same wrench on it.
+  /// Redistributes the dlambda of the hub's free rigid cables that move it
+  /// alone (its cable leaves) to the least sum of length x dlambda^2 with
+  /// the same wrench on it: the limit of equal elastic cables.
   void leastNormLeaves(const Hub& hub);
   void bodyMotion();
   /// A hub's mass matrix entry (i, j) (kg or kg m^2, world) and the entry's
@@ -180,6 +181,7 @@ class DirectSolver {
   std::vector<int> position_;      // per unknown (rows, then hubs' dofs): in the elimination order
   std::vector<double> hub_motion_;  // per hub dof: the solve's dx_h
   std::vector<double> delta_;       // per row: its regularization (0 off hubs)
+  std::vector<double> length_;      // per path or distance row: its length (m)
   std::vector<int> leaf_entries_;   // per hub, from first_leaf: its leaves' entries
   std::vector<Mat3> hub_inertia_;   // per hub: world inertia this iteration
   std::vector<BodyId> bodies_;    // moving bodies in some row

@@ -20,11 +20,21 @@ constexpr double kGaussSeidelRowIteration_s = 160e-9;
 constexpr double kContactBodyIteration_s = 1.2e-6;
 // The direct solver's matrix couples every two rows on one body: k rows
 // on a body fill k^2 entries and factor like a dense k x k block (k^3 / 3
-// multiply-adds). Negligible along a chain (k of 2 to 6), it is what a
-// thousand joints between two bodies cost (issue 29: 7,000 rows on two
-// bodies took 4 GB and over 10 s a substep, a fuzzer's find).
+// multiply-adds). Negligible along a chain (k of 2 to 6); a body with more
+// than kHubRows (the direct solver's, direct_solver.cpp) is a hub instead,
+// whose k rows couple to its 6 freedoms: 6 k entries, 36 k multiply-adds
+// (before hubs, 7,000 rows on two bodies took 4 GB and over 10 s a
+// substep, a fuzzer's find; issue 29). A body with more than three cables
+// of its own is a hub too, which only makes it cheaper than this says.
 constexpr double kDirectPairIteration_s = 20e-9;
 constexpr double kDirectFlop_s = 1e-9;
+constexpr double kHubRows = 12.0;
+
+// The direct solver's work per iteration on the k rows of one body.
+double coupledCost(double k) {
+  if (k > kHubRows) return kDirectPairIteration_s * 6.0 * k + kDirectFlop_s * 36.0 * k;
+  return kDirectPairIteration_s * k * k + kDirectFlop_s * k * k * k / 3.0;
+}
 
 // Rows of the direct solver per dynamic body: each joint's rows and each
 // cable joint's one row count on both of its bodies.
@@ -59,7 +69,7 @@ double predictedSecondsPerSimulatedSecond(const Scene& scene) {
   const bool direct = settings.solver == SolverKind::Direct;
   double coupled = 0.0;  // the direct solver's work on rows that share a body
   if (direct)
-    for (const double k : rowsPerBody(scene)) coupled += kDirectPairIteration_s * k * k + kDirectFlop_s * k * k * k / 3.0;
+    for (const double k : rowsPerBody(scene)) coupled += coupledCost(k);
   const double row_iteration = direct ? kDirectRowIteration_s : kGaussSeidelRowIteration_s;
   const double substep = kBodySubstep_s * world.bodyCount() + kCableJointSubstep_s * cable_joints +
                          static_cast<double>(settings.iterations) *

@@ -134,7 +134,7 @@ StaticMachine tackleHinged(const ScalingSpec& spec) {
   return m;
 }
 
-StaticMachine tackleRolling(const ScalingSpec& spec) {
+StaticMachine tackleRolling(const ScalingSpec& spec, bool sliding) {
   const TackleLayout layout = tackleLayout(spec, "tackleRolling");
   StaticMachine m = tackleScene(spec, "tackle_rolling", "A K-fall block and tackle rolling on the blocks themselves");
   World& world = *m.scene.world;
@@ -142,7 +142,8 @@ StaticMachine tackleRolling(const ScalingSpec& spec) {
   std::vector<LinkDef> wraps;
   for (int i = 0; i < layout.sheaves; ++i) {
     const BodyId block = layout.lower(i) ? lower : upper;
-    LinkDef wrap = slidingWrap(block, layout.lower(i) ? 1 : -1);
+    LinkDef wrap = sliding ? slidingWrap(block, layout.lower(i) ? 1 : -1)
+                           : LinkDef::rolling(block, layout.lower(i) ? 1 : -1);
     wrap.section = octagon(local(world, block, layout.centre(i)));
     wraps.push_back(wrap);
   }

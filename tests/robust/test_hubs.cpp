@@ -86,6 +86,26 @@ TEST(Hubs, AHingedTackleOfManyFallsCarriesItsLoadEvenly) {
     }
 }
 
+TEST(Hubs, ATackleStuckToItsBlocksSharesItsLoadEvenly) {
+  // The falls of a tackle that roll without slipping on octagons of the two
+  // blocks themselves: each fall a rigid row on the lower block alone (the
+  // upper one is static), K of them on its 6 freedoms. Issue 29 found 64 of
+  // them non-finite or 100 % off; each carries m g (1e-10 measured).
+  for (const StaticsBound& b : kStatics)
+    for (const int k : {16, 64, 256}) {
+      machines::ScalingSpec spec;
+      spec.count = k;
+      spec.gravity = kG;
+      spec.budget = b.budget;
+      machines::StaticMachine tackle = machines::tackleRolling(spec, false);
+      const double error = worstTension(tackle, kFrames);
+      std::printf("[ measured ] stuck tackle of %d falls at %d x %d: tensions within %.1e\n", k, b.budget.substeps,
+                  b.budget.iterations, error);
+      EXPECT_LT(error, 1e-6)
+          << "K = " << k << " at " << b.budget.substeps << " x " << b.budget.iterations;
+    }
+}
+
 // An effector of `mass` kg (a 0.1 m cube) whose top centre is held at the
 // origin by rigid cables from `anchors` (world points, all above it), with
 // `compliance` (m/N per metre of cable: equal elastic cables) or none.

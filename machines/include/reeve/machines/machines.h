@@ -192,8 +192,11 @@ StaticMachine tackleHinged(const ScalingSpec& spec);
 /// wraps octagons (circumradius 0.1 m, a vertex at each side) that are
 /// sections of the two block bodies themselves, frictionless (mu = 0: it
 /// slides, one path constraint); the lower block weighs W = K m: m g per
-/// fall.
-StaticMachine tackleRolling(const ScalingSpec& spec);
+/// fall. Not `sliding`: the cable sticks to the octagons (no-slip rolling
+/// links), so each fall is a row of its own on the lower block, K rigid
+/// rows on its 6 freedoms: redundant, each carrying m g in the limit of
+/// equal elastic falls.
+StaticMachine tackleRolling(const ScalingSpec& spec, bool sliding = true);
 
 /// star_rigid / star_compliant: an effector (a box of 0.1 m sides and
 /// M = K m) hanging on K cables, each from an anchor on a circle of radius

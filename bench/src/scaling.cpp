@@ -46,7 +46,8 @@ const std::vector<Series>& allSeries() {
   static const std::vector<Series> series = {
       {"chain", machines::scalingChain},
       {"tackle_hinged", machines::tackleHinged},
-      {"tackle_rolling", machines::tackleRolling},
+      {"tackle_rolling", [](const ScalingSpec& s) { return machines::tackleRolling(s, true); }},
+      {"tackle_stuck", [](const ScalingSpec& s) { return machines::tackleRolling(s, false); }},
       {"star_rigid", [](const ScalingSpec& s) { return machines::star(s, false); }},
       {"star_compliant", [](const ScalingSpec& s) { return machines::star(s, true); }},
       {"islands", machines::islands},
@@ -59,7 +60,7 @@ const Series& findSeries(const std::string& name) {
   for (const Series& s : allSeries())
     if (s.name == name) return s;
   throw std::invalid_argument("--series: no series called '" + name +
-                              "' (chain, tackle_hinged, tackle_rolling, star_rigid, star_compliant, islands, wound)");
+                              "' (chain, tackle_hinged, tackle_rolling, tackle_stuck, star_rigid, star_compliant, islands, wound)");
 }
 
 // "SxI": substeps x iterations per frame.

@@ -136,7 +136,8 @@ StaticMachine tackleHinged(const ScalingSpec& spec) {
 
 StaticMachine tackleRolling(const ScalingSpec& spec, bool sliding) {
   const TackleLayout layout = tackleLayout(spec, "tackleRolling");
-  StaticMachine m = tackleScene(spec, "tackle_rolling", "A K-fall block and tackle rolling on the blocks themselves");
+  StaticMachine m = tackleScene(spec, sliding ? "tackle_rolling" : "tackle_stuck",
+                                "A K-fall block and tackle rolling on the blocks themselves");
   World& world = *m.scene.world;
   const auto [upper, lower] = addTackleBlocks(world, layout, spec.count * spec.load_kg, layout.fallsCentre());
   std::vector<LinkDef> wraps;

@@ -277,6 +277,7 @@ TEST(ScalingMachines, MeetTheirClosedFormStaticsAtFourWithTheDirectSolver) {
   expectStatics(machines::scalingChain(spec), "chain");
   expectStatics(machines::tackleHinged(spec), "tackle_hinged");
   expectStatics(machines::tackleRolling(spec), "tackle_rolling");
+  expectStatics(machines::tackleRolling(spec, false), "tackle_stuck");
   expectStatics(machines::islands(spec), "islands");
   expectStatics(machines::wound(spec), "wound");
   EXPECT_DOUBLE_EQ(machines::tackleHinged(spec).tension_N, 15.0);  // W / K: the block weighs K m
@@ -304,12 +305,10 @@ TEST(ScalingMachines, TheRigidStarCarriesTheEffectorsWeight) {
   const machines::StaticMachine m = machines::star(spec, false);
   EXPECT_DOUBLE_EQ(m.tension_N, 10.0 / std::cos(std::numbers::pi / 6.0));  // m g / cos theta
   for (int f = 0; f < 5; ++f) m.scene.world->step(1.0 / 60.0);
-  double vertical = 0.0;
-  for (int c = 0; c < 4; ++c) {
-    EXPECT_GE(m.scene.cables->tension(c, 0), 0.0);
-    vertical += m.scene.cables->tension(c, 0) * std::cos(std::numbers::pi / 6.0);
-  }
-  EXPECT_LT(relative(vertical, 4 * 10.0), 1e-4);  // M g, M = K m (8e-6 off: the pair sways)
+  // Redundant (four cables to one point), each carries its share: the
+  // limit of equal elastic cables (DESIGN.md, "One solver for every
+  // topology"). Before hubs one opposite pair carried it all.
+  for (int c = 0; c < 4; ++c) EXPECT_LT(relative(m.scene.cables->tension(c, 0), m.tension_N), 1e-5) << c;
 }
 
 TEST(ScalingMachines, OddFallCountsBalanceToo) {
@@ -318,6 +317,7 @@ TEST(ScalingMachines, OddFallCountsBalanceToo) {
   spec.budget = {10, 2, SolverKind::Direct};
   expectStatics(machines::tackleHinged(spec), "tackle_hinged");
   expectStatics(machines::tackleRolling(spec), "tackle_rolling");
+  expectStatics(machines::tackleRolling(spec, false), "tackle_stuck");
 }
 
 TEST(BenchScaling, RunsTheChainAndPrintsItsTable) {

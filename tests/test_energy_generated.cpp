@@ -441,6 +441,12 @@ const std::set<std::string>& knownCreating() {
       "m06_slider_static gauss-seidel 1x1", "m12_arm_dynamic gauss-seidel 1x1",
       "m13_slider_kinematic gauss-seidel 1x1", "m14_atwood_dynamic gauss-seidel 1x1",
       "m19_arm_static gauss-seidel 1x1",
+      // Gauss-Seidel's one sweep a frame on a driven drum on a kinematic
+      // carrier, winding a load: since the rolling ends are
+      // held on their wheels within a solve (issue 29, item 3) the sweep
+      // winds the drive's turn straight onto the drum, +0.0053 J (1.5 % of
+      // the scale) by 0.18 s; 2.4e-5 at 1 x 10. Not traced further.
+      "m18_drum_kinematic gauss-seidel 1x1",
       // Gauss-Seidel's one sweep a frame on a rail held by a block hung on
       // two ropes: the 87 kg carriage, hauling 86 kg over a sheave, sags off
       // the rail of its 13.5 kg holder (4 cm by 0.1 s, 23 cm by 0.63 s),

@@ -1,5 +1,6 @@
 // `reeve bench extremes`: the stability map.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <stdexcept>
 #include <map>
@@ -56,6 +57,47 @@ Cell findCell(const std::string& key) {
                               "'; keys look like atwood/wheel_ratio=1e-6/30Hz/1x1/gauss-seidel");
 }
 
+// A cell's error against its closed form: the worse of its tension and
+// speed errors where it has them; NaN where it has neither.
+double cellError(const CellResult& r) {
+  double e = std::nan("");
+  for (const double x : {r.tension_error, r.speed_error})
+    if (std::isfinite(x)) e = std::isfinite(e) ? std::max(e, x) : x;
+  return e;
+}
+
+// More iterations at fixed substeps must never give a worse answer (issue
+// 29): per machine, condition, rate, substeps and solver, each iteration
+// count's error against the fewer iterations' before it, beyond rounding
+// (1e-9, or 1 % of the smaller). Returns one line per cell that is worse.
+std::vector<std::string> worseWithIterations(const std::vector<Cell>& cells, const std::vector<CellResult>& results) {
+  std::map<std::string, std::vector<std::pair<int, std::size_t>>> groups;  // without iterations: (iterations, cell)
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    const CellBudget& b = cells[i].budget;
+    groups[cells[i].condition.machine + "/" + cells[i].condition.name + "/" + shortNumber(b.rate_hz) + "/" +
+           std::to_string(b.substeps) + "/" + solverMethodName(b.solver)]
+        .push_back({b.iterations, i});
+  }
+  std::vector<std::string> worse;
+  for (auto& [group, list] : groups) {
+    std::sort(list.begin(), list.end());
+    double best = std::nan("");  // the least error at fewer iterations
+    int best_iterations = 0;
+    for (const auto& [iterations, i] : list) {
+      const double e = cellError(results[i]);
+      if (!std::isfinite(e)) continue;
+      if (std::isfinite(best) && e > 1.01 * best + 1e-9) {
+        char line[512];
+        std::snprintf(line, sizeof line, "%s: error %.3g at %d iterations, %.3g at %d",
+                      cellKey(cells[i].condition, cells[i].budget).c_str(), e, iterations, best, best_iterations);
+        worse.push_back(line);
+      }
+      if (!std::isfinite(best) || e < best) best = e, best_iterations = iterations;
+    }
+  }
+  return worse;
+}
+
 }  // namespace
 
 int extremes(const ExtremesOptions& options) {
@@ -74,9 +116,11 @@ int extremes(const ExtremesOptions& options) {
                "stable", "cause", "key"});
   std::map<std::string, std::pair<int, int>> tally;  // solver: stable, total
   std::vector<std::string> unstable;
+  std::vector<CellResult> results;
   for (std::size_t i = 0; i < cells.size(); ++i) {
     const Cell& cell = cells[i];
     const CellResult r = runCell(cell.condition, cell.budget);
+    results.push_back(r);
     const std::string key = cellKey(cell.condition, cell.budget), solver = solverMethodName(cell.budget.solver);
     table.add({cell.condition.machine, cell.condition.name, shortNumber(cell.budget.rate_hz),
                std::to_string(cell.budget.substeps), std::to_string(cell.budget.iterations), solver,
@@ -96,6 +140,9 @@ int extremes(const ExtremesOptions& options) {
     std::printf("unstable cells, each with the command that reproduces it:\n");
     for (const std::string& line : unstable) std::printf("  %s\n", line.c_str());
   }
+  const std::vector<std::string> worse = worseWithIterations(cells, results);
+  std::printf("cells whose error grows with iterations at fixed substeps (beyond 1 %% + 1e-9): %zu\n", worse.size());
+  for (const std::string& line : worse) std::printf("  %s\n", line.c_str());
   writeOutputs(options.output, table, env, "extremes");
   return 0;
 }

@@ -105,6 +105,16 @@ double CableSystem::length(int c, int j) const {
   return jointEnabled(c, j) ? spanLength(cables_[c], j) : 0.0;
 }
 
+double CableSystem::lengthNow(int c, int j) const {
+  if (!jointEnabled(c, j)) return 0.0;
+  const Cable& cable = cables_[c];
+  const Link &from = cable.links[j], &to = cable.links[cable.joints[j].to];
+  if (!from.rolls() && !to.rolls()) return spanLength(cable, j);
+  const auto anchors = spanAnchors(from, world_.body(from.body), to, world_.body(to.body), cable.joints[j].local_b);
+  if (!anchors) return spanLength(cable, j);
+  return (world_.worldPoint(to.body, anchors->second) - world_.worldPoint(from.body, anchors->first)).norm();
+}
+
 double CableSystem::spanLength(const Cable& cable, int j) const {
   return (endPointOf(cable, j) - startPointOf(cable, j)).norm();
 }

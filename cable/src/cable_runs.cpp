@@ -13,6 +13,19 @@
 namespace reeve {
 namespace {
 
+// A run's end at `anchor` on `link`: where the cable sticks to a rolling
+// circle it is a rolling end, held on the circle while a solve turns the
+// wheel (path_constraint.h: SolvePoint); elsewhere a point fixed on the
+// body (a tie point, a pinhole, a polygon's vertex).
+PathPoint runEnd(const Link& link, const Vec3& anchor) {
+  PathPoint point{link.body, anchor};
+  if (link.rolls() && !link.slides() && link.section.kind == Section::Kind::Circle) {
+    point.roll_axis = Vec3::UnitZ();
+    point.roll_centre = fromPlane(link, Vec2::Zero());
+  }
+  return point;
+}
+
 // Calls f(j, loop) for the first span j of every run: each active link
 // that holds the cable starts one; a closed cable that slides over every
 // link is one loop, started at its first active link.
@@ -222,7 +235,7 @@ void CableSystem::buildRuns(Cable& cable) {
     PathConstraint& path = world_.path(cable.joints[j].path);
     path.points.clear();
     path.weights.clear();
-    path.points.push_back({cable.links[j].body, cable.joints[j].local_a});
+    path.points.push_back(runEnd(cable.links[j], cable.joints[j].local_a));
     double rest = 0.0, chords = 0.0, w = 1.0, heaviest = 1.0;
     path.fed = 0.0;
     walkRun(cable, j, loop, [&](int k) {
@@ -237,7 +250,7 @@ void CableSystem::buildRuns(Cable& cable) {
       if (to.type == LinkType::Pinhole && !last) {
         path.points.push_back({to.body, to.point});
       } else {
-        path.points.push_back({to.body, span.local_b});
+        path.points.push_back(last && !loop ? runEnd(to, span.local_b) : PathPoint{to.body, span.local_b});
         if (to.rolls() && (!last || loop)) {  // the chord to the departure tangent point
           const Vec3& departure = cable.joints[span.to].local_a;
           chords += (departure - span.local_b).norm();

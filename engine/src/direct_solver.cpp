@@ -357,8 +357,13 @@ void DirectSolver::weigh(Entry& e) const {
   e.wang = f.inv_axial > 0.0 ? Vec3(f.axle * (f.inv_axial * f.axle.dot(e.ang))) : Vec3(f.inv_inertia * e.ang);
 }
 
-Vec3 DirectSolver::arm(const World& world, const PathPoint& point, int slot) const {
-  return slot >= 0 ? Vec3(frames_[slot].R * point.local) : Vec3(world.body(point.body).q * point.local);
+SolvePoint DirectSolver::endPoint(const World& world, const PathPoint& point, int slot) const {
+  if (point.roll_axis.isZero()) {
+    SolvePoint p;
+    p.arm = slot >= 0 ? Vec3(frames_[slot].R * point.local) : Vec3(world.body(point.body).q * point.local);
+    return p;
+  }
+  return solvePoint(world.body(point.body), point, true);
 }
 
 void DirectSolver::evaluateSpan(const World& world, int r, const PathPoint& p0, const PathPoint& p1) {
@@ -366,7 +371,8 @@ void DirectSolver::evaluateSpan(const World& world, int r, const PathPoint& p0, 
   const Row& row = rows_[r];
   const int s0 = p0.body == kWorldBody ? -1 : body_index_[p0.body];
   const int s1 = p1.body == kWorldBody ? -1 : body_index_[p1.body];
-  const Vec3 a0 = arm(world, p0, s0), a1 = arm(world, p1, s1);
+  const SolvePoint e0 = endPoint(world, p0, s0), e1 = endPoint(world, p1, s1);
+  const Vec3 &a0 = e0.arm, &a1 = e1.arm;
   const Vec3& x0 = s0 >= 0 ? frames_[s0].state->x : world.body(p0.body).x;
   const Vec3& x1 = s1 >= 0 ? frames_[s1].state->x : world.body(p1.body).x;
   const Vec3 d = (x1 + a1) - (x0 + a0);
@@ -388,7 +394,7 @@ void DirectSolver::evaluateSpan(const World& world, int r, const PathPoint& p0, 
     }
   }
   for (e = row.first_entry; e < row.first_entry + row.entry_count; ++e) weigh(entries_[e]);
-  C_[r] = l;  // minus the rest length, by the caller
+  C_[r] = l + e0.payOut(-u) + e1.payOut(u);  // minus the rest length, by the caller
 }
 
 void DirectSolver::evaluatePath(const World& world, int r, double h) {
@@ -439,10 +445,13 @@ void DirectSolver::evaluateRun(const World& world, int r, const PathPoint* point
   }
   std::vector<Vec3>&arm = run_.arm, &pos = run_.pos;
   std::vector<int>& entry = run_.entry;
+  SolvePoint ends[2];
   for (std::size_t i = 0; i < count; ++i) {
     const BodyId id = points[i].body;
     const int slot = id == kWorldBody ? -1 : body_index_[id];
-    arm[i] = this->arm(world, points[i], slot);
+    const SolvePoint p = endPoint(world, points[i], slot);
+    if (i == 0 || i + 1 == count) ends[i == 0 ? 0 : 1] = p;  // rolling ends are a run's ends
+    arm[i] = p.arm;
     pos[i] = world.body(id).x + arm[i];
     entry[i] = -1;
     for (int e = row.first_entry; slot >= 0 && e < row.first_entry + row.entry_count; ++e)
@@ -471,6 +480,8 @@ void DirectSolver::evaluateRun(const World& world, int r, const PathPoint* point
   }
   for (int e = row.first_entry; e < row.first_entry + row.entry_count; ++e) weigh(entries_[e]);
   C_[r] = length;  // minus the rest length, by the caller
+  if (ends[0].turn != 0.0) C_[r] += ends[0].payOut(-(pos[1] - pos[0]).normalized());
+  if (ends[1].turn != 0.0) C_[r] += ends[1].payOut((pos[count - 1] - pos[count - 2]).normalized());
 }
 
 int DirectSolver::evaluateJoint(World& world, int r, double h) {
@@ -695,14 +706,14 @@ void DirectSolver::solveActiveSet(double tolerance) {
             x_[position_[other]] -= full_[slots_[s].value] * dlambda_[r];
         }
       }
-    factorAndSolve(tolerance);
+    const bool released = factorAndSolve(tolerance);
     if (pass + 1 == kMaxPasses) {  // out of passes: every lambda within its bounds all the same
       for (int r = 0; r < n; ++r)
         dlambda_[r] = std::clamp(lambda_[r] + dlambda_[r], lo_[r], hi_[r]) - lambda_[r];
       bodyMotion();
       break;
     }
-    bool changed = false, capped = false;
+    bool changed = released, capped = false;
     for (int r = 0; r < n; ++r) {
       if (state_[r] == State::Free) {
         const double total = lambda_[r] + dlambda_[r];
@@ -743,7 +754,7 @@ void DirectSolver::solveActiveSet(double tolerance) {
   }
 }
 
-void DirectSolver::factorAndSolve(double tolerance) {
+bool DirectSolver::factorAndSolve(double tolerance) {
   // A row dropped as dependent that the solution leaves unmet may not be
   // dependent, only very light (a pivot of 1e-13 of its terms can be
   // either): solve again with it kept, unless its pivot is at the level of
@@ -755,19 +766,27 @@ void DirectSolver::factorAndSolve(double tolerance) {
   const int n = static_cast<int>(rows_.size());
   std::copy(x_.begin(), x_.end(), rhs_.begin());
   std::fill(keep_.begin(), keep_.end(), 0);
+  int unmet = -1;  // a row truly dependent and left unmet
+  double unmet_residual = 0.0;
   for (int round = 0;; ++round) {
     const int dropped = ldlt_.factor(kDropTolerance, keep_, kRoundingPivot);
     ldlt_.solve(x_.data());
     readSolution();
     if (dropped == 0 || round == 2) break;
     bool rescued = false;
+    unmet = -1;
     for (int r = 0; r < n; ++r) {
       const int k = rows_[r].position;
-      if (state_[r] != State::Free || !ldlt_.dropped(k) || !(ldlt_.pivotRatio(k) > kRoundingPivot)) continue;
+      if (state_[r] != State::Free || !ldlt_.dropped(k)) continue;
+      const bool rounding = !(ldlt_.pivotRatio(k) > kRoundingPivot);
       double residual = C_[r] + alpha_[r] * lambda_[r];
       for (int e = rows_[r].first_entry; e < rows_[r].first_entry + rows_[r].entry_count; ++e)
         residual += entries_[e].lin.dot(dx_[entries_[e].body]) + entries_[e].ang.dot(dphi_[entries_[e].body]);
       if (std::abs(residual) > std::max(tolerance, 1e-6 * std::abs(C_[r]))) {
+        if (rounding) {
+          if (unmet < 0) unmet = r, unmet_residual = residual;
+          continue;
+        }
         keep_[k] = 1;
         rescued = true;
       }
@@ -778,10 +797,44 @@ void DirectSolver::factorAndSolve(double tolerance) {
   // Refinement converges as delta / (delta + the system's own scale) a
   // step: fast where the rows are stiff, slowly along a light hub between
   // heavy loads (a 3 g knuckle under a kilonewton tendon).
-  if (hubs_.empty()) return;
-  for (int step = 0; step < kMaxRefinements; ++step)
-    if (!(refine() > tolerance)) break;
-  for (const Hub& hub : hubs_) leastNormLeaves(hub);
+  if (!hubs_.empty()) {
+    for (int step = 0; step < kMaxRefinements; ++step)
+      if (!(refine() > tolerance)) break;
+    for (const Hub& hub : hubs_) leastNormLeaves(hub);
+  }
+  return unmet >= 0 && releaseAlongDependency(unmet, unmet_residual);
+}
+
+bool DirectSolver::releaseAlongDependency(int r, double residual) {
+  // Row r depends on others (rounding's pivot) and they leave it unmet:
+  // no motion can meet it with these rows held. Along the dependency z
+  // (A z = 0, z_r = 1) the lambdas shift with no motion at all; pulling
+  // row r its way, t z with t = -sign(residual), brings some one-sided
+  // rows to their bound 0 (a stop that would have to pull, a cable that
+  // would have to push). The first to get there is not needed: it lets go
+  // and the next pass solves without it (the ratio test of a pivoting
+  // method). Without this a stack on its stop, a cable tight over it and a
+  // drive pulling that cable made a dependent set that kept the stop and
+  // dropped the cable, for ever (the gym's press at one substep).
+  std::fill(x_.begin(), x_.end(), 0.0);
+  x_[rows_[r].position] = 1.0;
+  ldlt_.solveTransposed(x_.data());
+  const double t = residual > 0.0 ? -1.0 : 1.0;
+  int best = -1;
+  double best_ratio = kInf;
+  for (int j = 0; j < static_cast<int>(rows_.size()); ++j) {
+    if (j == r || state_[j] != State::Free) continue;
+    const double total = lambda_[j] + dlambda_[j], shift = t * x_[rows_[j].position];
+    double ratio;
+    if (lo_[j] == 0.0 && shift < 0.0 && total > 0.0) ratio = total / -shift;
+    else if (hi_[j] == 0.0 && shift > 0.0 && total < 0.0) ratio = -total / shift;
+    else continue;
+    if (ratio < best_ratio) best_ratio = ratio, best = j;
+  }
+  if (best < 0) return false;
+  state_[best] = State::Fixed;
+  dlambda_[best] = -lambda_[best];
+  return true;
 }
 
 void DirectSolver::leastNormLeaves(const Hub& hub) {

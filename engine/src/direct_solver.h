@@ -119,9 +119,9 @@ class DirectSolver {
   /// gradient, which the symmetric system assumes (World::solvePositions).
   void evaluateSpan(const World& world, int row, const PathPoint& p0, const PathPoint& p1);
   void evaluateRun(const World& world, int row, const PathPoint* points, std::size_t count);
-  /// World arm (m) of a path point on the body with index `slot` in
-  /// bodies_ (-1: a body that does not move).
-  Vec3 arm(const World& world, const PathPoint& point, int slot) const;
+  /// A path point as this solve has it (path_constraint.h: solvePoint), on
+  /// the body with index `slot` in bodies_ (-1: a body that does not move).
+  SolvePoint endPoint(const World& world, const PathPoint& point, int slot) const;
   /// Returns the number of rows the joint has.
   int evaluateJoint(World& world, int first_row, double h);
   /// The states of a coordinate's drive and limit rows, which share their
@@ -133,8 +133,13 @@ class DirectSolver {
   void solveActiveSet(double tolerance);
   /// Factors the assembled matrix, solves for x_ and sets dlambda_ and the
   /// bodies' motion, keeping rows wrongly dropped as dependent; then, where
-  /// a hub's rows were regularized, one refinement step.
-  void factorAndSolve(double tolerance);
+  /// a hub's rows were regularized, refinement steps. Returns true when a
+  /// row truly dependent and unmet made a one-sided row let go
+  /// (releaseAlongDependency): the active set changed.
+  bool factorAndSolve(double tolerance);
+  /// Row r, dropped as dependent and left `residual` (m or rad) unmet: fixes
+  /// at 0 the first free one-sided row its dependency brings to its bound.
+  bool releaseAlongDependency(int r, double residual);
   /// dlambda_ and the hubs' motion from the solution in x_.
   void readSolution();
   /// The free rows' residual of the system without the hubs' delta, in

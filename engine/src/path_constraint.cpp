@@ -23,6 +23,19 @@ thread_local Scratch scratch;
 
 }  // namespace
 
+SolvePoint solvePoint(const BodyState& body, const PathPoint& point, bool in_solve) {
+  SolvePoint p;
+  if (!in_solve || point.roll_axis.isZero()) {
+    p.arm = body.q * point.local;
+    return p;
+  }
+  p.axis = body.q * point.roll_axis;
+  p.turn = p.axis.dot(body.solve_turn);
+  p.lever = Eigen::AngleAxisd(-p.turn, p.axis) * (body.q * (point.local - point.roll_centre));
+  p.arm = body.q * point.roll_centre + p.lever;
+  return p;
+}
+
 void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double alpha_tilde, double h) {
   if (!path.enabled) return;
   const size_t n = path.points.size();
@@ -32,9 +45,11 @@ void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double a
   // f_i (the weighted gradient; f = g without weights).
   scratch.fit(n);
   std::vector<Vec3>&arm = scratch.arm, &grad = scratch.grad, &force = scratch.force, &pos = scratch.pos;
+  const SolvePoint first = solvePoint(bodies(path.points[0].body), path.points[0], true);
+  const SolvePoint last = solvePoint(bodies(path.points[n - 1].body), path.points[n - 1], true);
   for (size_t i = 0; i < n; ++i) {
     const BodyState& b = bodies(path.points[i].body);
-    arm[i] = b.q * path.points[i].local;
+    arm[i] = i == 0 ? first.arm : i + 1 == n ? last.arm : b.q * path.points[i].local;
     pos[i] = b.x + arm[i];
     grad[i].setZero();
     force[i].setZero();
@@ -53,6 +68,9 @@ void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double a
     force[i] -= w * u;
     force[i + 1] += w * u;
   }
+  // Rolling ends are a run's ends (its interior points are pinholes and
+  // sliding wraps, on which the cable slides: fixed points).
+  length += first.payOut(grad[0]) + last.payOut(grad[n - 1]);
   const double C = length - path.rest_length;
   if (C <= 0.0 && path.lambda == 0.0) return;  // slack and never pulled
   // w = J_c M^-1 J_f^T: the length's rate of change per unit of lambda,

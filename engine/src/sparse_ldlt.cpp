@@ -126,4 +126,9 @@ void SparseLdlt::solve(double* x) const {
     for (int p = Lp_[j]; p < Lp_[j + 1]; ++p) x[j] -= Lx_[p] * x[Li_[p]];
 }
 
+void SparseLdlt::solveTransposed(double* x) const {
+  for (int j = n_ - 1; j >= 0; --j)
+    for (int p = Lp_[j]; p < Lp_[j + 1]; ++p) x[j] -= Lx_[p] * x[Li_[p]];
+}
+
 }  // namespace reeve

@@ -52,6 +52,9 @@ class SparseLdlt {
   double pivotRatio(int k) const { return pivot_ratio_[k]; }
   /// Solves L D L^T x = b in place (b in, x out; size n), dropped rows 0.
   void solve(double* x) const;
+  /// Solves L^T z = b in place. With b = e_k for a dropped row k this is
+  /// the dependency it was dropped for: A z = L D e_k = 0, z_k = 1.
+  void solveTransposed(double* x) const;
 
  private:
   int n_ = 0;

@@ -366,11 +366,20 @@ double World::pathTension(PathId id) const {
 }
 
 double World::pathLength(PathId id) const {
+  // As the solves measure it: the rolling ends held where the last solve
+  // left them, until the next substep's integration (path_constraint.h).
   const std::vector<PathPoint>& points = paths_[id].points;
+  const std::size_t n = points.size();
+  const SolvePoint first = solvePoint(body(points[0].body), points[0], poses_solved_);
+  const SolvePoint last = solvePoint(body(points[n - 1].body), points[n - 1], poses_solved_);
+  const auto position = [&](std::size_t i) {
+    const BodyState& b = body(points[i].body);
+    return Vec3(b.x + (i == 0 ? first.arm : i + 1 == n ? last.arm : Vec3(b.q * points[i].local)));
+  };
   double length = 0.0;
-  for (size_t i = 0; i + 1 < points.size(); ++i)
-    length += (worldPoint(points[i + 1].body, points[i + 1].local) -
-               worldPoint(points[i].body, points[i].local)).norm();
+  for (size_t i = 0; i + 1 < n; ++i) length += (position(i + 1) - position(i)).norm();
+  if (first.turn != 0.0) length += first.payOut(-(position(1) - position(0)).normalized());
+  if (last.turn != 0.0) length += last.payOut((position(n - 1) - position(n - 2)).normalized());
   return length;
 }
 
@@ -459,6 +468,7 @@ void World::updateDrives(double h) {
 }
 
 void World::integrate(double h) {
+  poses_solved_ = false;
   const Vec3 g = settings_.gravity;
   for (BodyId id = 0; id < bodyCount(); ++id) {
     BodyState& b = bodies_[id];
@@ -505,6 +515,7 @@ void World::solvePositions(double h, bool again) {
   for (DistanceConstraint& c : distances_) c.lambda = 0.0;
   for (PathConstraint& p : paths_) p.lambda = 0.0;
   for (BodyState& b : bodies_) b.impulse = b.angular_impulse = b.solve_turn = Vec3::Zero();
+  poses_solved_ = true;
   const BodyTable table{bodies_.data(), &world_frame_};
   // The damping's dC is the length's change since the substep's start,
   // with the anchors the substep hook has just set.

@@ -19,7 +19,7 @@ std::vector<SceneWarning> sceneWarnings(const Scene& scene) {
       char text[256];
       std::snprintf(text, sizeof text,
                     "cable '%s' span %d starts %.3g m longer than its rest length of %.3g m: the first solve "
-                    "pulls it in at once, and the direct solver may diverge doing so",
+                    "pulls it in at once, a jerk that puts in energy nothing paid for",
                     cable.name.c_str(), j, stretch, rest);
       warnings.push_back({"/cables/" + std::to_string(c) + "/rest_length_m/" + std::to_string(j), text});
     }

@@ -352,6 +352,11 @@ class CableSystem {
   /// bookkeeping's own, as of the last update.
   double restLengthNow(int c, int j) const;
   double storedNow(int c, int k) const;
+  /// Length (m) of joint j of cable c between the tangent points of the
+  /// poses now (the next update's), to compare with restLengthNow: length()
+  /// measures between the last update's anchors, which a wheel a solve
+  /// turned by radians has carried round its rim.
+  double lengthNow(int c, int j) const;
   /// Whether joint j of cable c currently exists (its link is active and
   /// it has not parted).
   bool jointEnabled(int c, int j) const;

@@ -15,11 +15,39 @@
 
 namespace reeve {
 
-/// A point of a path: a body and a body-local position (m).
+/// A point of a path: a body and a body-local position (m). A rolling end
+/// (a cable joint's end on a wheel it does not slip on, paper sec. 4) also
+/// gives the circle it is a tangent point of: body-local unit axle
+/// `roll_axis` (zero: a point fixed on the body) and centre `roll_centre`.
 struct PathPoint {
   BodyId body = 0;
   Vec3 local = Vec3::Zero();
+  Vec3 roll_axis = Vec3::Zero();
+  Vec3 roll_centre = Vec3::Zero();
 };
+
+/// A path point where a solve has put it (issue 29, item 3). A point fixed
+/// on its body turns with it. A rolling end does not: while its body turns
+/// by `turn` about the axle in the solve (BodyState::solve_turn, rad), the
+/// cable stays in touch where it was and winds on or off, so the point is
+/// held at its place on the circle (`lever`, from the circle's centre,
+/// turned back by -turn) and the path is longer by turn x axis . (lever x
+/// dC/dp): what the body-fixed point's gradient says to first order, now
+/// for any turn. Held as a body-fixed point, a wheel a solve turned by
+/// radians swung the span's end round its rim.
+struct SolvePoint {
+  Vec3 arm = Vec3::Zero();    ///< from the body's centre of mass, world (m)
+  Vec3 lever = Vec3::Zero();  ///< a rolling end's, from the circle's centre, world (m)
+  Vec3 axis = Vec3::Zero();   ///< a rolling end's world unit axle; zero for a fixed point
+  double turn = 0.0;          ///< the solve's turn about `axis` (rad)
+  /// The path's length (m) that the turn wound off, for the length's
+  /// gradient `grad` at this point (dC/dp, unit-free).
+  double payOut(const Vec3& grad) const { return turn == 0.0 ? 0.0 : turn * axis.dot(lever.cross(grad)); }
+};
+/// `point` on `body`. `in_solve`: the body's solve_turn is this solve's
+/// (from the start of a position solve until the next substep's
+/// integration); otherwise every point is fixed on its body.
+SolvePoint solvePoint(const BodyState& body, const PathPoint& point, bool in_solve);
 
 /// At least two points; `rest_length` (m), `compliance` (m/N) and
 /// `damping` (N s/m: a force -damping dL/dt on the path's length L, only

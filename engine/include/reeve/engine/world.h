@@ -263,7 +263,9 @@ class World {
   /// every segment, or of a weight-1 segment of a weighted path (segment i
   /// pulls with weights[i] times it); 0 when disabled.
   double pathTension(PathId id) const;
-  /// Current length (m) of a path: the sum of its segments.
+  /// Current length (m) of a path: the sum of its segments, its rolling
+  /// ends held where the last position solve left them on their wheels and
+  /// the cable that solve wound off added (path_constraint.h: SolvePoint).
   double pathLength(PathId id) const;
   /// World position (m) of a body-local point (kWorldBody allowed).
   Vec3 worldPoint(BodyId id, const Vec3& local) const { return body(id).toWorld(local); }
@@ -353,6 +355,9 @@ class World {
   std::vector<ContactManifold> previous_manifolds_;  // the last substep's, sorted by pair (findContacts)
   double time_ = 0.0;
   double last_h_ = 0.0;
+  // The poses are a position solve's (its solve_turn holds what it turned
+  // the bodies by): from a solve's start until the next integration.
+  bool poses_solved_ = false;
   std::optional<NonFiniteState> non_finite_;
   int last_iterations_ = 0;
   const std::atomic<int>* interrupt_ = nullptr;  // setInterruptFlag

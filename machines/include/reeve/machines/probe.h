@@ -17,12 +17,15 @@ inline double axleOffset(const World& world, HingeId id) {
 }
 
 /// Largest strain (length - rest length) / rest length over the enabled
-/// spans of cable `c` that hold cable; 0 when all are slack.
+/// spans of cable `c` that hold cable, as of the poses now (lengthNow,
+/// restLengthNow: a wheel the last solve turned has wound its cable); 0
+/// when all are slack.
 inline double maxStretch(const CableSystem& cables, int c) {
   double worst = 0.0;
   for (int j = 0; j < static_cast<int>(cables.cables()[c].joints.size()); ++j) {
-    if (!cables.jointEnabled(c, j) || cables.restLength(c, j) <= 0.0) continue;
-    worst = std::max(worst, (cables.length(c, j) - cables.restLength(c, j)) / cables.restLength(c, j));
+    const double rest = cables.restLengthNow(c, j);
+    if (!cables.jointEnabled(c, j) || rest <= 0.0) continue;
+    worst = std::max(worst, (cables.lengthNow(c, j) - rest) / rest);
   }
   return worst;
 }

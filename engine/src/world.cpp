@@ -11,7 +11,7 @@
 
 #include <Eigen/LU>
 
-#include "direct_solver.h"
+#include "direct/direct_solver.h"
 
 namespace reeve {
 namespace {

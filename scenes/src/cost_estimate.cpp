@@ -21,7 +21,7 @@ constexpr double kContactBodyIteration_s = 1.2e-6;
 // The direct solver's matrix couples every two rows on one body: k rows
 // on a body fill k^2 entries and factor like a dense k x k block (k^3 / 3
 // multiply-adds). Negligible along a chain (k of 2 to 6); a body with more
-// than kHubRows (the direct solver's, direct_solver.cpp) is a hub instead,
+// than kHubRows (the direct solver's, direct/direct_solver.cpp) is a hub instead,
 // whose k rows couple to its 6 freedoms: 6 k entries, 36 k multiply-adds
 // (before hubs, 7,000 rows on two bodies took 4 GB and over 10 s a
 // substep, a fuzzer's find; issue 29). A body with more than three cables

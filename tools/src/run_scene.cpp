@@ -76,10 +76,10 @@ std::string breachMessage(const CableBreach& breach, const World& world) {
   if (breach.fastest >= 0)
     message += "; body " + bodyName(world, breach.fastest) + " turned " + turn + " rad in that substep";
   return message +
-         ". The solve diverged: a span far past its rest length asks its wheels to turn further in one solve "
-         "than their body-fixed span ends can follow. Nothing of that frame was written. Check that the rest "
-         "lengths fit the bodies' poses (a span that starts stretched is pulled in by the first solve at any "
-         "substep count); if a fast motion stretched it, try more substeps";
+         ". The solve diverged, or turned a wheel further than the cable on it allows (a load hauled into its "
+         "wheel). Nothing of that frame was written. Check that the rest lengths fit the bodies' poses (a span "
+         "that starts stretched is pulled in by the first solve at any substep count); if a fast motion "
+         "stretched it, try more substeps";
 }
 
 void createParent(const fs::path& file) {

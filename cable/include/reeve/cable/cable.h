@@ -379,11 +379,11 @@ class CableSystem {
   std::optional<std::string> invariantViolation() const;
   /// The first update() after which invariantViolation() held something
   /// (checked after every update, in every build), or nothing. Reachable
-  /// from a scene, not only from a bug: a direct solve that must turn a
-  /// wheel radians (a span that starts, or is jerked, far past its rest
-  /// length) swings the wheel's body-fixed span ends round the rim and can
-  /// diverge, turning wheels thousands of radians (DESIGN, open problems).
-  /// Runners stop there, as at World::firstNonFinite().
+  /// from a scene, not only from a bug: a load hauled into the last wheel
+  /// of hilbert3 run past its duration (issue 29, item 4), and before
+  /// issue 29 a direct solve that had to turn a wheel radians (its span
+  /// ends then swung round the rim). Runners stop there, as at
+  /// World::firstNonFinite().
   const std::optional<CableBreach>& firstBreach() const { return breach_; }
   /// Sets the rest length (m, >= 0) of joint j of cable c: a winch paying
   /// out or hauling in cable, or slack given after set-up.

@@ -1,4 +1,8 @@
-// The direct solver (SolverKind::Direct, world.h). Each iteration takes
+// The direct solver (SolverKind::Direct, world.h), one class over the files
+// of this folder: direct_solver.cpp (the row layout, the substep, the
+// iteration), rows.cpp (each row's value and gradient at the current
+// poses), active_set.cpp (the bounded rows' solve), hubs.cpp (bodies with
+// many rows) and sparse_ldlt (the factorization). Each iteration takes
 // every joint row and every cable path at the current poses, linearized,
 // and solves them together instead of one after another:
 //   (J W J^T + alpha~) dlambda = -C - alpha~ lambda,   dx = W J^T dlambda,
@@ -50,12 +54,21 @@
 
 #include "reeve/engine/body.h"
 #include "reeve/engine/path_constraint.h"
-#include "joint_row_sets.h"
+#include "../joint_row_sets.h"
 #include "sparse_ldlt.h"
 
 namespace reeve {
 
 class World;
+
+namespace direct {
+/// Whether a body moves under the solver (not static, not kinematic).
+inline bool moves(const BodyState& body) { return body.moves(); }
+/// A row lists the bodies it moves and the kinematic ones it pushes on: a
+/// kinematic body's entries weigh nothing (W = 0) and couple no rows, but
+/// record the impulse it took (the work it does: World::addKinematicWork).
+inline bool listed(const BodyState& body) { return body.moves() || body.kinematic; }
+}  // namespace direct
 
 class DirectSolver {
  public:
@@ -146,6 +159,9 @@ class DirectSolver {
   /// x_ (0 for the other unknowns), solved with the last factor and added.
   /// Returns the largest residual (m or rad) it corrected.
   double refine();
+  /// The hubs' part of the matrix in full_ (couplings J_h, masses -M_h)
+  /// and each row's delta.
+  void assembleHubs();
   struct Hub;
   /// Redistributes the dlambda of the hub's free rigid cables that move it
   /// alone (its cable leaves) to the least sum of length x dlambda^2 with

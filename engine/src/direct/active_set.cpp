@@ -1,0 +1,227 @@
+// The direct solver's active set: the free rows' system solved, rows that
+// leave their bounds fixed at them, slack rows the motion would stretch
+// joined in, rows dependent on others dropped or kept, and a dependent row
+// left unmet letting a one-sided row go.
+#include "direct_solver.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace reeve {
+namespace {
+
+using joint_rows::kInf;
+
+// A pivot this small against the terms it is the difference of marks a row
+// that depends on earlier ones (sparse_ldlt.h): rounding leaves such a
+// pivot near 1e-16 of them (the last span of a belt over rotors, however
+// uneven their masses). A light wheel between heavy loads leaves the ratio
+// of their masses: 1e-6 for a 1e-6 kg wheel under 1 kg loads, 5e-13 for a
+// 1e-9 kg wheel under 1000 kg, both kept.
+constexpr double kDropTolerance = 1e-13;
+constexpr double kRoundingPivot = 1e-15;
+// Active-set passes per iteration; almost always one or two are enough.
+constexpr int kMaxPasses = 8;
+// Refinement steps at most per solve (factorAndSolve).
+constexpr int kMaxRefinements = 4;
+
+}  // namespace
+
+void DirectSolver::bodyMotion() {
+  // dx = W J^T dlambda, but for hubs: their own unknowns.
+  std::fill(dx_.begin(), dx_.end(), Vec3::Zero());
+  std::fill(dphi_.begin(), dphi_.end(), Vec3::Zero());
+  for (const Entry& e : entries_) {
+    if (hub_of_[e.body] >= 0) continue;
+    const double dl = dlambda_[e.row];
+    dx_[e.body] += dl * e.wlin;
+    dphi_[e.body] += dl * e.wang;
+  }
+  const int n = static_cast<int>(rows_.size());
+  for (const Hub& hub : hubs_) {
+    const double* m = &hub_motion_[hub.first - n];
+    if (hub.dofs == 1) {
+      dphi_[hub.body] = frames_[hub.body].axle * m[0];
+      continue;
+    }
+    dx_[hub.body] = Vec3(m[0], m[1], m[2]);
+    dphi_[hub.body] = Vec3(m[3], m[4], m[5]);
+  }
+}
+
+void DirectSolver::readSolution() {
+  const int n = static_cast<int>(rows_.size());
+  for (int r = 0; r < n; ++r) dlambda_[r] = x_[rows_[r].position];
+  for (std::size_t u = 0; u < hub_motion_.size(); ++u) hub_motion_[u] = x_[position_[n + u]];
+  bodyMotion();
+}
+
+void DirectSolver::solveActiveSet(double tolerance) {
+  const int n = static_cast<int>(rows_.size());
+  std::fill(full_.begin(), full_.end(), 0.0);
+  for (const Pair& p : pairs_) {
+    const Entry &e1 = entries_[p.e1], &e2 = entries_[p.e2];
+    full_[p.slot] += e1.lin.dot(e2.wlin) + e1.ang.dot(e2.wang);
+  }
+  assembleHubs();
+  std::vector<double>& A = ldlt_.values();
+  for (int pass = 0; pass < kMaxPasses; ++pass) {
+    // The free rows' system: fixed rows move to the right-hand side, and
+    // fixed and off rows become identity rows (x = their known dlambda).
+    std::copy(full_.begin(), full_.end(), A.begin());
+    bool all_free = true;
+    for (int r = 0; r < n; ++r) {
+      const Row& row = rows_[r];
+      if (state_[r] == State::Free) {
+        A[row.diagonal] += alpha_[r] + delta_[r];
+        x_[row.position] = -C_[r] - alpha_[r] * lambda_[r];
+        continue;
+      }
+      all_free = false;
+      for (int s = row.slots_begin; s < row.slots_end; ++s) A[slots_[s].value] = 0.0;
+      A[row.diagonal] = 1.0;
+      if (state_[r] == State::Off) dlambda_[r] = 0.0;
+      x_[row.position] = dlambda_[r];
+    }
+    for (std::size_t u = n; u < position_.size(); ++u) x_[position_[u]] = 0.0;  // a hub's: M dx_h = J_h^T dlambda
+    if (!all_free)
+      for (int r = 0; r < n; ++r) {
+        if (state_[r] != State::Fixed) continue;
+        for (int s = rows_[r].slots_begin; s < rows_[r].slots_end; ++s) {
+          const int other = slots_[s].other_row;
+          if (other >= n || state_[other] == State::Free)
+            x_[position_[other]] -= full_[slots_[s].value] * dlambda_[r];
+        }
+      }
+    const bool released = factorAndSolve(tolerance);
+    if (pass + 1 == kMaxPasses) {  // out of passes: every lambda within its bounds all the same
+      for (int r = 0; r < n; ++r)
+        dlambda_[r] = std::clamp(lambda_[r] + dlambda_[r], lo_[r], hi_[r]) - lambda_[r];
+      bodyMotion();
+      break;
+    }
+    bool changed = released, capped = false;
+    for (int r = 0; r < n; ++r) {
+      if (state_[r] == State::Free) {
+        const double total = lambda_[r] + dlambda_[r];
+        if (total > hi_[r] || total < lo_[r]) {
+          state_[r] = State::Fixed;
+          dlambda_[r] = std::clamp(total, lo_[r], hi_[r]) - lambda_[r];
+          changed = true;
+          capped |= total > hi_[r] ? hi_[r] != 0.0 : lo_[r] != 0.0;
+        }
+      } else if (state_[r] == State::Off) {
+        // Would the others' motion violate this one-sided row?
+        double predicted = C_[r];
+        for (int e = rows_[r].first_entry; e < rows_[r].first_entry + rows_[r].entry_count; ++e)
+          predicted += entries_[e].lin.dot(dx_[entries_[e].body]) + entries_[e].ang.dot(dphi_[entries_[e].body]);
+        if ((hi_[r] == 0.0 && predicted > 0.0) || (lo_[r] == 0.0 && predicted < 0.0)) {
+          state_[r] = State::Free;
+          changed = true;
+          // A limit its drive could not keep to: the drive keeps what it
+          // did this pass, the limit the rest (driveAgainstLimit).
+          if (const int d = drive_of_[r]; d >= 0 && state_[d] == State::Free) {
+            state_[d] = State::Fixed;
+            dlambda_[d] = std::clamp(lambda_[d] + dlambda_[d], lo_[d], hi_[d]) - lambda_[d];
+          }
+        }
+      }
+    }
+    // A drive held at its maximum force or torque from now on: the one-sided
+    // rows the uncapped drive let go slack (fixed at 0) are solved again
+    // against the capped one. Fixed for good, the span that a motor lifting
+    // a load over a wheel on its axle slackened in the first pass stayed
+    // slack and the load fell (issue 28, item 7). Each drive caps once, so
+    // this cannot cycle.
+    if (capped)
+      for (int r = 0; r < n; ++r)
+        if (state_[r] == State::Fixed && (lambda_[r] + dlambda_[r] == 0.0) && (lo_[r] == 0.0 || hi_[r] == 0.0))
+          state_[r] = State::Free;
+    if (!changed) break;
+  }
+}
+
+bool DirectSolver::factorAndSolve(double tolerance) {
+  // A row dropped as dependent that the solution leaves unmet may not be
+  // dependent, only very light (a pivot of 1e-13 of its terms can be
+  // either): solve again with it kept, unless its pivot is at the level of
+  // rounding (1e-15 of its terms), which no very light body comes near
+  // (1e-12 times lighter gives 5e-13); kept, it is still dropped there,
+  // as another row may now be the dependent one. A truly dependent row is
+  // met by the others' motion (a belt's last span) or cannot be (then no
+  // solve can).
+  const int n = static_cast<int>(rows_.size());
+  std::copy(x_.begin(), x_.end(), rhs_.begin());
+  std::fill(keep_.begin(), keep_.end(), 0);
+  int unmet = -1;  // a row truly dependent and left unmet
+  double unmet_residual = 0.0;
+  for (int round = 0;; ++round) {
+    const int dropped = ldlt_.factor(kDropTolerance, keep_, kRoundingPivot);
+    ldlt_.solve(x_.data());
+    readSolution();
+    if (dropped == 0 || round == 2) break;
+    bool rescued = false;
+    unmet = -1;
+    for (int r = 0; r < n; ++r) {
+      const int k = rows_[r].position;
+      if (state_[r] != State::Free || !ldlt_.dropped(k)) continue;
+      const bool rounding = !(ldlt_.pivotRatio(k) > kRoundingPivot);
+      double residual = C_[r] + alpha_[r] * lambda_[r];
+      for (int e = rows_[r].first_entry; e < rows_[r].first_entry + rows_[r].entry_count; ++e)
+        residual += entries_[e].lin.dot(dx_[entries_[e].body]) + entries_[e].ang.dot(dphi_[entries_[e].body]);
+      if (std::abs(residual) > std::max(tolerance, 1e-6 * std::abs(C_[r]))) {
+        if (rounding) {
+          if (unmet < 0) unmet = r, unmet_residual = residual;
+          continue;
+        }
+        keep_[k] = 1;
+        rescued = true;
+      }
+    }
+    if (!rescued) break;
+    std::copy(rhs_.begin(), rhs_.end(), x_.begin());
+  }
+  // Refinement converges as delta / (delta + the system's own scale) a
+  // step: fast where the rows are stiff, slowly along a light hub between
+  // heavy loads (a 3 g knuckle under a kilonewton tendon).
+  if (!hubs_.empty()) {
+    for (int step = 0; step < kMaxRefinements; ++step)
+      if (!(refine() > tolerance)) break;
+    for (const Hub& hub : hubs_) leastNormLeaves(hub);
+  }
+  return unmet >= 0 && releaseAlongDependency(unmet, unmet_residual);
+}
+
+bool DirectSolver::releaseAlongDependency(int r, double residual) {
+  // Row r depends on others (rounding's pivot) and they leave it unmet:
+  // no motion can meet it with these rows held. Along the dependency z
+  // (A z = 0, z_r = 1) the lambdas shift with no motion at all; pulling
+  // row r its way, t z with t = -sign(residual), brings some one-sided
+  // rows to their bound 0 (a stop that would have to pull, a cable that
+  // would have to push). The first to get there is not needed: it lets go
+  // and the next pass solves without it (the ratio test of a pivoting
+  // method). Without this a stack on its stop, a cable tight over it and a
+  // drive pulling that cable made a dependent set that kept the stop and
+  // dropped the cable, for ever (the gym's press at one substep).
+  std::fill(x_.begin(), x_.end(), 0.0);
+  x_[rows_[r].position] = 1.0;
+  ldlt_.solveTransposed(x_.data());
+  const double t = residual > 0.0 ? -1.0 : 1.0;
+  int best = -1;
+  double best_ratio = kInf;
+  for (int j = 0; j < static_cast<int>(rows_.size()); ++j) {
+    if (j == r || state_[j] != State::Free) continue;
+    const double total = lambda_[j] + dlambda_[j], shift = t * x_[rows_[j].position];
+    double ratio;
+    if (lo_[j] == 0.0 && shift < 0.0 && total > 0.0) ratio = total / -shift;
+    else if (hi_[j] == 0.0 && shift > 0.0 && total < 0.0) ratio = -total / shift;
+    else continue;
+    if (ratio < best_ratio) best_ratio = ratio, best = j;
+  }
+  if (best < 0) return false;
+  state_[best] = State::Fixed;
+  dlambda_[best] = -lambda_[best];
+  return true;
+}
+
+}  // namespace reeve

@@ -1,0 +1,373 @@
+// The direct solver's layout (describe, build), its substep (prepare)
+// and its iteration (iterate): linearize (rows.cpp), solve the active set
+// (active_set.cpp, hubs.cpp), move the bodies.
+#include "direct_solver.h"
+
+#include <algorithm>
+#include <cassert>
+
+#include <Eigen/OrderingMethods>
+#include <Eigen/SparseCore>
+
+#include "reeve/engine/correction.h"
+#include "reeve/engine/world.h"
+
+namespace reeve {
+namespace {
+
+using joint_rows::kInf;
+using joint_rows::Vec6;
+
+// A body with more rows than this is a hub (direct_solver.h): its rows
+// would fill more of the matrix than its own motion does. So is one with
+// more cable spans than this that move it alone (leaves): four cables to
+// one point are already redundant, which a hub's leaves resolve by the
+// least norm (leastNormLeaves) and the rows' matrix cannot.
+constexpr int kHubRows = 12;
+constexpr int kHubCableLeaves = 3;
+
+// The number of rows of a joint with `bilateral` locked rows and the
+// given drive and limits (JointRowSet's layout).
+int jointRowCount(int bilateral, bool driven, bool limited) { return bilateral + (driven ? 1 : 0) + (limited ? 2 : 0); }
+
+bool moves(const World& world, BodyId id) { return direct::moves(world.body(id)); }
+bool listed(const World& world, BodyId id) { return direct::listed(world.body(id)); }
+
+}  // namespace
+
+void DirectSolver::describe(World& world, std::vector<int>& sig) const {
+  sig.clear();
+  const auto joint = [&](Source source, int index, BodyId a, BodyId b, int rows) {
+    if (!moves(world, a) && !moves(world, b)) return;
+    sig.insert(sig.end(), {static_cast<int>(source), index, rows, listed(world, a) ? a : kWorldBody,
+                           listed(world, b) ? b : kWorldBody});
+  };
+  for (int i = 0; i < static_cast<int>(world.hinges().size()); ++i) {
+    const HingeJoint& j = world.hinges()[i];
+    const bool rotor = world.body(j.a).isRotor() || world.body(j.b).isRotor();
+    joint(Source::Hinge, i, j.a, j.b,
+          jointRowCount(rotor ? 0 : 5, j.drive.mode != HingeDrive::Mode::None, j.limit.enabled));
+  }
+  for (int i = 0; i < static_cast<int>(world.prismatics().size()); ++i) {
+    const PrismaticJoint& j = world.prismatics()[i];
+    joint(Source::Prismatic, i, j.a, j.b,
+          jointRowCount(5, j.drive.mode != PrismaticDrive::Mode::None, j.limit.enabled));
+  }
+  for (int i = 0; i < static_cast<int>(world.sphericals().size()); ++i) {
+    const SphericalJoint& j = world.sphericals()[i];
+    joint(Source::Spherical, i, j.a, j.b,
+          jointRowCount(3, false, j.twist_limit.enabled) + (j.swing_limit.enabled ? 1 : 0));
+  }
+  for (int i = 0; i < static_cast<int>(world.fixedJoints().size()); ++i) {
+    const FixedJoint& j = world.fixedJoints()[i];
+    joint(Source::Fixed, i, j.a, j.b, 6);
+  }
+  for (int i = 0; i < world.distanceCount(); ++i) {
+    const DistanceConstraint& c = world.distance(i);
+    if (c.enabled) joint(Source::Distance, i, c.a, c.b, 1);
+  }
+  for (int i = 0; i < world.pathCount(); ++i) {
+    const PathConstraint& p = world.path(i);
+    if (!p.enabled || !p.weights.empty()) continue;  // weighted paths: World::solvePositions
+    const std::size_t head = sig.size();
+    sig.insert(sig.end(), {static_cast<int>(Source::Path), i, 1});
+    for (const PathPoint& point : p.points)
+      if (listed(world, point.body) && std::find(sig.begin() + head + 3, sig.end(), point.body) == sig.end())
+        sig.push_back(point.body);
+    if (std::none_of(sig.begin() + head + 3, sig.end(), [&](int id) { return moves(world, id); })) {
+      sig.resize(head);  // nothing in it moves
+      continue;
+    }
+    sig.insert(sig.begin() + head + 3, static_cast<int>(sig.size() - head - 3));  // body count
+  }
+}
+
+void DirectSolver::build(World& world) {
+  // Rows and their entries from the signature, joints as [source, index,
+  // rows, a, b] (kWorldBody for a body that does not move), paths as
+  // [source, index, 1, count, bodies...].
+  rows_.clear();
+  entries_.clear();
+  bodies_.clear();
+  body_index_.assign(world.bodyCount(), -1);
+  const auto bodyIndex = [&](BodyId id) {
+    if (body_index_[id] < 0) {
+      body_index_[id] = static_cast<int>(bodies_.size());
+      bodies_.push_back(id);
+    }
+    return body_index_[id];
+  };
+  for (std::size_t k = 0; k < signature_.size();) {
+    const auto source = static_cast<Source>(signature_[k]);
+    const int index = signature_[k + 1], count = signature_[k + 2];
+    std::vector<BodyId> moving;
+    if (source == Source::Path) {
+      moving.assign(signature_.begin() + k + 4, signature_.begin() + k + 4 + signature_[k + 3]);
+      k += 4 + signature_[k + 3];
+    } else {
+      for (const BodyId id : {signature_[k + 3], signature_[k + 4]})
+        if (id != kWorldBody) moving.push_back(id);
+      k += 5;
+    }
+    for (int r = 0; r < count; ++r) {
+      Row row{source, index, static_cast<int>(entries_.size()), static_cast<int>(moving.size()), 0, 0, 0, 0};
+      for (const BodyId id : moving) {
+        Entry e;
+        e.body = bodyIndex(id);
+        e.row = static_cast<int>(rows_.size());
+        entries_.push_back(e);
+      }
+      rows_.push_back(row);
+    }
+  }
+  const int n = static_cast<int>(rows_.size());
+  // The moving bodies' rows; a body with many is a hub, its motion an
+  // unknown after the rows.
+  std::vector<std::vector<int>> on_body(bodies_.size());
+  for (int r = 0; r < n; ++r)
+    for (int e = rows_[r].first_entry; e < rows_[r].first_entry + rows_[r].entry_count; ++e)
+      if (!world.body(bodies_[entries_[e].body]).kinematic) on_body[entries_[e].body].push_back(e);
+  hubs_.clear();
+  hub_of_.assign(bodies_.size(), -1);
+  int unknowns = n;
+  std::vector<int> moving(n, 0);  // per row: its moving bodies
+  for (const auto& list : on_body)
+    for (const int e : list) ++moving[entries_[e].row];
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    int cable_leaves = 0;
+    for (const int e : on_body[b]) {
+      const Source source = rows_[entries_[e].row].source;
+      cable_leaves += moving[entries_[e].row] == 1 && (source == Source::Path || source == Source::Distance);
+    }
+    if (static_cast<int>(on_body[b].size()) <= kHubRows && cable_leaves <= kHubCableLeaves) continue;
+    const int dofs = world.body(bodies_[b]).isRotor() ? 1 : 6;
+    hub_of_[b] = static_cast<int>(hubs_.size());
+    hubs_.push_back({static_cast<int>(b), dofs, unknowns, 0, 0});
+    unknowns += dofs;
+  }
+  // Rows that share a moving body that is not a hub are coupled; a hub's
+  // rows are coupled to its motion, and its motion within itself. Order
+  // them all to keep the factor sparse (approximate minimum degree).
+  std::vector<Eigen::Triplet<double>> triplets;
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    const auto& list = on_body[b];
+    if (hub_of_[b] < 0) {
+      for (const int e1 : list)
+        for (const int e2 : list) triplets.emplace_back(entries_[e1].row, entries_[e2].row, 1.0);
+      continue;
+    }
+    const Hub& hub = hubs_[hub_of_[b]];
+    for (const int e : list)
+      for (int d = 0; d < hub.dofs; ++d) {
+        triplets.emplace_back(entries_[e].row, hub.first + d, 1.0);
+        triplets.emplace_back(hub.first + d, entries_[e].row, 1.0);
+      }
+    for (int i = 0; i < hub.dofs; ++i)
+      for (int j = 0; j < hub.dofs; ++j) triplets.emplace_back(hub.first + i, hub.first + j, 1.0);
+  }
+  Eigen::SparseMatrix<double> pattern(unknowns, unknowns);
+  pattern.setFromTriplets(triplets.begin(), triplets.end());
+  Eigen::AMDOrdering<int> amd;
+  Eigen::AMDOrdering<int>::PermutationType order;
+  amd(pattern, order);  // order.indices()[k]: the unknown eliminated k-th
+  // The rows first, the hubs after them all: then a hub's block is -M_h -
+  // J_h^T S^-1 J_h, negative terms only (S, the rows' block, is positive
+  // definite), whatever the masses. AMD puts hubs last or nearly anyway
+  // (the same cost on the scaling bench), but a light hub eliminated before
+  // its rows would add its -M (1e-6 kg m^2 for a knuckle) to J W J^T of
+  // 1e6 and lose it.
+  std::vector<int> sequence(order.indices().data(), order.indices().data() + unknowns);
+  std::stable_partition(sequence.begin(), sequence.end(), [n](int u) { return u < n; });
+  position_.assign(unknowns, 0);
+  for (int k = 0; k < unknowns; ++k) position_[sequence[k]] = k;
+  for (int r = 0; r < n; ++r) rows_[r].position = position_[r];
+  // One matrix term per pair of entries on a body, per entry on a hub and
+  // dof, and per pair of a hub's dofs.
+  pairs_.clear();
+  couplings_.clear();
+  mass_slots_.clear();
+  std::vector<std::pair<int, int>> upper;
+  const auto add = [&](int u1, int u2) {
+    const int p = position_[u1], q = position_[u2];
+    upper.emplace_back(std::min(p, q), std::max(p, q));
+  };
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    const auto& list = on_body[b];
+    if (hub_of_[b] >= 0) continue;
+    for (std::size_t i = 0; i < list.size(); ++i)
+      for (std::size_t j = i; j < list.size(); ++j) {
+        pairs_.push_back({list[i], list[j], 0});
+        add(entries_[list[i]].row, entries_[list[j]].row);
+      }
+  }
+  for (int h = 0; h < static_cast<int>(hubs_.size()); ++h)
+    for (const int e : on_body[hubs_[h].body])
+      for (int d = 0; d < hubs_[h].dofs; ++d) {
+        couplings_.push_back({e, h, d, 0});
+        add(entries_[e].row, hubs_[h].first + d);
+      }
+  for (int h = 0; h < static_cast<int>(hubs_.size()); ++h) {
+    const Hub& hub = hubs_[h];
+    for (int i = 0; i < hub.dofs; ++i)
+      for (int j = i; j < hub.dofs; ++j) {
+        mass_slots_.push_back({h, i, j, 0});
+        add(hub.first + i, hub.first + j);
+      }
+  }
+  for (int r = 0; r < n; ++r) add(r, r);  // a row on hubs alone has no pair
+  const std::vector<int> slot = ldlt_.analyze(unknowns, upper);
+  std::vector<char> negative(unknowns, 0);
+  for (const Hub& hub : hubs_)
+    for (int d = 0; d < hub.dofs; ++d) negative[position_[hub.first + d]] = 1;
+  ldlt_.setNegativePivots(std::move(negative));
+  for (Row& row : rows_) row.diagonal = ldlt_.diagonalSlot(row.position);
+  std::vector<std::vector<Slot>> coupled(n);
+  std::size_t next = 0;
+  for (Pair& pair : pairs_) {
+    pair.slot = slot[next++];
+    const int r1 = entries_[pair.e1].row, r2 = entries_[pair.e2].row;
+    if (r1 == r2) continue;
+    coupled[r1].push_back({pair.slot, r2});
+    coupled[r2].push_back({pair.slot, r1});
+  }
+  for (Coupling& c : couplings_) {
+    c.slot = slot[next++];
+    coupled[entries_[c.entry].row].push_back({c.slot, hubs_[c.hub].first + c.dof});
+  }
+  for (MassSlot& m : mass_slots_) m.slot = slot[next++];
+  // A hub's leaves: rows that move it alone (the other end static or
+  // kinematic), which share its load side by side.
+  leaf_entries_.clear();
+  for (Hub& hub : hubs_) {
+    hub.first_leaf = static_cast<int>(leaf_entries_.size());
+    for (const int e : on_body[hub.body])
+      if (moving[entries_[e].row] == 1) leaf_entries_.push_back(e);
+    hub.leaves = static_cast<int>(leaf_entries_.size()) - hub.first_leaf;
+  }
+  slots_.clear();
+  for (int r = 0; r < n; ++r) {
+    auto& list = coupled[r];
+    std::sort(list.begin(), list.end(), [](const Slot& x, const Slot& y) { return x.value < y.value; });
+    list.erase(std::unique(list.begin(), list.end(), [](const Slot& x, const Slot& y) { return x.value == y.value; }),
+               list.end());
+    rows_[r].slots_begin = static_cast<int>(slots_.size());
+    slots_.insert(slots_.end(), list.begin(), list.end());
+    rows_[r].slots_end = static_cast<int>(slots_.size());
+  }
+  for (std::vector<double>* v : {&C_, &alpha_, &lo_, &hi_, &lambda_, &dlambda_, &delta_, &length_}) v->assign(n, 0.0);
+  for (std::vector<double>* v : {&x_, &rhs_}) v->assign(unknowns, 0.0);
+  hub_motion_.assign(unknowns - n, 0.0);
+  hub_inertia_.assign(hubs_.size(), Mat3::Zero());
+  keep_.assign(unknowns, 0);
+  state_.assign(n, State::Free);
+  pulled_.assign(n, false);
+  drive_of_.assign(n, -1);
+  mirror_.assign(n, nullptr);
+  dir_.assign(n, Vec6::Zero());
+  linear_a_.assign(n, nullptr);
+  angular_a_.assign(n, nullptr);
+  full_.assign(ldlt_.values().size(), 0.0);
+  const std::size_t m = bodies_.size();
+  frames_.assign(m, BodyFrame{});
+  dx_.assign(m, Vec3::Zero());
+  dphi_.assign(m, Vec3::Zero());
+}
+
+void DirectSolver::prepare(World& world, double h, bool again) {
+  describe(world, scratch_);
+  if (scratch_ != signature_) {
+    signature_ = scratch_;  // a copy: scratch_ keeps its capacity for the next substeps
+    build(world);
+  }
+  // What stays put over the substep: inverse masses, rotors' axles (they
+  // turn about them), and the paths' bounds and lambdas (their compliance
+  // term with their value, evaluatePath: damping changes it).
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    BodyState& b = world.body(bodies_[i]);
+    BodyFrame& f = frames_[i];
+    f.state = &b;  // the World's bodies stay where they are while it steps
+    f.inv_mass = b.inv_mass;
+    f.inv_axial = b.isRotor() ? b.rotor_axis.dot(b.inv_inertia * b.rotor_axis) : 0.0;
+    f.axle = b.q * b.rotor_axis;
+  }
+  for (std::size_t r = 0; r < rows_.size(); ++r) {
+    const Row& row = rows_[r];
+    if (row.source != Source::Path && row.source != Source::Distance) continue;
+    bool unilateral = true;
+    lo_[r] = -kInf;
+    if (row.source == Source::Path) {
+      PathConstraint& p = world.path(row.index);
+      mirror_[r] = &p.lambda;
+      if (std::isfinite(p.max_tension)) lo_[r] = -p.max_tension * h * h;  // a winch's pull, at most
+    } else {
+      DistanceConstraint& c = world.distance(row.index);
+      mirror_[r] = &c.lambda;
+      unilateral = c.unilateral;
+    }
+    hi_[r] = unilateral ? 0.0 : kInf;
+    linear_a_[r] = angular_a_[r] = nullptr;
+  }
+  // A cable that pulled at the end of the last substep starts this one in
+  // the active set, even if it is exactly taut (C = 0) after integration:
+  // otherwise a long taut cable would join in one span per pass.
+  if (!again)
+    for (std::size_t r = 0; r < rows_.size(); ++r) pulled_[r] = lambda_[r] < 0.0;
+  std::fill(lambda_.begin(), lambda_.end(), 0.0);
+}
+
+bool DirectSolver::converged(double tolerance) const {
+  if (!(tolerance > 0.0)) return false;
+  for (std::size_t r = 0; r < rows_.size(); ++r) {
+    if (state_[r] == State::Off) {  // met unless violated (a limit its drive is to lift off)
+      if ((hi_[r] == 0.0 && C_[r] > tolerance) || (lo_[r] == 0.0 && C_[r] < -tolerance)) return false;
+      continue;
+    }
+    if (state_[r] != State::Free) continue;
+    const double residual = C_[r] + alpha_[r] * lambda_[r];
+    // A row held at a bound is met when it asks to go further.
+    if ((lambda_[r] >= hi_[r] && residual <= 0.0) || (lambda_[r] <= lo_[r] && residual >= 0.0)) continue;
+    if (std::abs(residual) > tolerance) return false;
+  }
+  return true;
+}
+
+bool DirectSolver::iterate(World& world, double h) {
+  if (rows_.empty()) return false;
+  evaluate(world, h);
+  // A residual C left in a substep h is a force error of about C m / h^2:
+  // the tolerance, met at h = 1/600 s (4e-5 N per kg), shrinks with h^2
+  // below that, or at 10,000 substeps of a 60 Hz frame a 1:100 Atwood
+  // machine's solve stopped before it started and reported no tension.
+  // (Tolerance 0, to time every iteration, still meets rows to 1e-10 m.)
+  constexpr double kToleranceStep = 1.0 / 600.0;  // s
+  const double scale = std::min(1.0, (h / kToleranceStep) * (h / kToleranceStep));
+  const double tolerance = world.settings().tolerance * scale;
+  if (converged(tolerance)) return false;
+  solveActiveSet(tolerance > 0.0 ? tolerance : 1e-10 * scale);
+  for (std::size_t i = 0; i < frames_.size(); ++i) {
+    BodyState& b = *frames_[i].state;
+    // The exact rotation: a light wheel may turn radians in one solve, and
+    // the first-order rotateBy() would turn it less than the solve asked.
+    if (frames_[i].inv_mass > 0.0) b.x += dx_[i];
+    rotateExactly(b.q, dphi_[i]);
+    b.solve_turn += dphi_[i];
+  }
+  for (const Entry& e : entries_) {
+    BodyState& b = *frames_[e.body].state;
+    b.impulse += dlambda_[e.row] * e.lin;
+    b.angular_impulse += dlambda_[e.row] * e.ang;
+  }
+  for (std::size_t r = 0; r < rows_.size(); ++r) {
+    const double dl = dlambda_[r];
+    if (dl == 0.0) continue;
+    lambda_[r] += dl;
+    if (mirror_[r]) *mirror_[r] = lambda_[r];
+    if (linear_a_[r]) {  // a joint row: its impulse on a (joint_rows::solveRows)
+      *linear_a_[r] -= dl * dir_[r].head<3>();
+      *angular_a_[r] += dl * dir_[r].tail<3>();
+    }
+  }
+  return true;
+}
+
+}  // namespace reeve

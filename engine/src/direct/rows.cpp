@@ -1,0 +1,295 @@
+// The direct solver's rows at the current poses, linearized: each joint's
+// rows (joint_rows.h) and each path's or distance constraint's one, their
+// values C, compliance terms, bounds and gradients (the entries).
+#include "direct_solver.h"
+
+#include <cassert>
+#include <cmath>
+
+#include "reeve/engine/correction.h"
+#include "reeve/engine/world.h"
+
+namespace reeve {
+namespace {
+
+bool listed(const World& world, BodyId id) { return direct::listed(world.body(id)); }
+
+using joint_rows::JointRowSet;
+using joint_rows::kInf;
+using joint_rows::Vec6;
+
+}  // namespace
+
+void DirectSolver::evaluateBodies() {
+  for (BodyFrame& f : frames_) {
+    const BodyState& b = *f.state;
+    f.R = b.q.toRotationMatrix();
+    if (f.inv_axial == 0.0) f.inv_inertia = f.R * b.inv_inertia * f.R.transpose();
+  }
+}
+
+void DirectSolver::weigh(Entry& e) const {
+  // W J: a rotor's angular part is u u^T / I_u (prepare()).
+  const BodyFrame& f = frames_[e.body];
+  e.wlin = f.inv_mass * e.lin;
+  e.wang = f.inv_axial > 0.0 ? Vec3(f.axle * (f.inv_axial * f.axle.dot(e.ang))) : Vec3(f.inv_inertia * e.ang);
+}
+
+SolvePoint DirectSolver::endPoint(const World& world, const PathPoint& point, int slot) const {
+  if (point.roll_axis.isZero()) {
+    SolvePoint p;
+    p.arm = slot >= 0 ? Vec3(frames_[slot].R * point.local) : Vec3(world.body(point.body).q * point.local);
+    return p;
+  }
+  return solvePoint(world.body(point.body), point, true);
+}
+
+void DirectSolver::evaluateSpan(const World& world, int r, const PathPoint& p0, const PathPoint& p1) {
+  // A plain span: C = |p1 - p0| - rest, gradient -u at p0 and u at p1.
+  const Row& row = rows_[r];
+  const int s0 = p0.body == kWorldBody ? -1 : body_index_[p0.body];
+  const int s1 = p1.body == kWorldBody ? -1 : body_index_[p1.body];
+  const SolvePoint e0 = endPoint(world, p0, s0), e1 = endPoint(world, p1, s1);
+  const Vec3 &a0 = e0.arm, &a1 = e1.arm;
+  const Vec3& x0 = s0 >= 0 ? frames_[s0].state->x : world.body(p0.body).x;
+  const Vec3& x1 = s1 >= 0 ? frames_[s1].state->x : world.body(p1.body).x;
+  const Vec3 d = (x1 + a1) - (x0 + a0);
+  const double l = d.norm();
+  const Vec3 u = l >= 1e-12 ? Vec3(d / l) : Vec3::Zero();
+  int e = row.first_entry;
+  if (s0 >= 0) {
+    entries_[e].lin = -u;
+    entries_[e].ang = u.cross(a0);
+    ++e;
+  }
+  if (s1 >= 0) {
+    if (s1 == s0) {  // both ends on one body
+      entries_[e - 1].lin.setZero();
+      entries_[e - 1].ang += a1.cross(u);
+    } else {
+      entries_[e].lin = u;
+      entries_[e].ang = a1.cross(u);
+    }
+  }
+  for (e = row.first_entry; e < row.first_entry + row.entry_count; ++e) weigh(entries_[e]);
+  C_[r] = l + e0.payOut(-u) + e1.payOut(u);  // minus the rest length, by the caller
+}
+
+void DirectSolver::evaluatePath(const World& world, int r, double h) {
+  // C = sum of segment lengths - rest, dC/dp_i = u_{i-1} - u_i (a distance
+  // constraint is a two-point path, pull-only if unilateral).
+  const Row& row = rows_[r];
+  double compliance, damping, start_length;
+  if (row.source == Source::Path) {
+    const PathConstraint& p = world.path(row.index);
+    if (p.points.size() == 2) evaluateSpan(world, r, p.points[0], p.points[1]);
+    else evaluateRun(world, r, p.points.data(), p.points.size());
+    length_[r] = C_[r];
+    C_[r] -= p.rest_length;
+    compliance = p.compliance, damping = p.damping, start_length = p.start_length - p.rest_length;
+  } else {
+    const DistanceConstraint& c = world.distance(row.index);
+    evaluateSpan(world, r, PathPoint{c.a, c.local_a}, PathPoint{c.b, c.local_b});
+    length_[r] = C_[r];
+    C_[r] -= c.rest_length;
+    compliance = c.compliance, damping = c.damping, start_length = c.start_length - c.rest_length;
+  }
+  // Taut (C >= 0: a cable exactly at its rest length touches too), or
+  // already pulling: in the active set.
+  const bool unilateral = hi_[r] == 0.0;
+  state_[r] = !unilateral || C_[r] >= 0.0 || lambda_[r] < 0.0 || pulled_[r] ? State::Free : State::Off;
+  // Damping (correction.h: dampedRow) on a row in the set, as Gauss-Seidel
+  // damps a row taut or pulling; its gradient is C's, so the system keeps
+  // its matrix J W J^T and only C and alpha~ change. start_length is the
+  // start's C here: dC = C - (start length - rest length).
+  const double alpha_tilde = compliance / (h * h);
+  if (damping == 0.0 || state_[r] != State::Free) {
+    alpha_[r] = alpha_tilde;
+    return;
+  }
+  const DampedRow damped = dampedRow(C_[r], alpha_tilde, alpha_tilde * h * damping, C_[r] - start_length);
+  C_[r] = damped.C;
+  alpha_[r] = damped.alpha_tilde;
+}
+
+void DirectSolver::evaluateRun(const World& world, int r, const PathPoint* points, std::size_t count) {
+  // A run through pinholes: a body holding several points gets the sum of
+  // their gradients.
+  const Row& row = rows_[r];
+  if (run_.arm.size() < count) {  // grown to the longest path, then kept
+    run_.arm.resize(count);
+    run_.pos.resize(count);
+    run_.entry.resize(count);
+  }
+  std::vector<Vec3>&arm = run_.arm, &pos = run_.pos;
+  std::vector<int>& entry = run_.entry;
+  SolvePoint ends[2];
+  for (std::size_t i = 0; i < count; ++i) {
+    const BodyId id = points[i].body;
+    const int slot = id == kWorldBody ? -1 : body_index_[id];
+    const SolvePoint p = endPoint(world, points[i], slot);
+    if (i == 0 || i + 1 == count) ends[i == 0 ? 0 : 1] = p;  // rolling ends are a run's ends
+    arm[i] = p.arm;
+    pos[i] = world.body(id).x + arm[i];
+    entry[i] = -1;
+    for (int e = row.first_entry; slot >= 0 && e < row.first_entry + row.entry_count; ++e)
+      if (entries_[e].body == slot) entry[i] = e;
+  }
+  for (int e = row.first_entry; e < row.first_entry + row.entry_count; ++e) {
+    entries_[e].lin.setZero();
+    entries_[e].ang.setZero();
+  }
+  double length = 0.0;
+  Vec3 prev_u = Vec3::Zero();
+  for (std::size_t i = 0; i < count; ++i) {
+    Vec3 u = Vec3::Zero();
+    if (i + 1 < count) {
+      const Vec3 d = pos[i + 1] - pos[i];
+      const double l = d.norm();
+      length += l;
+      if (l >= 1e-12) u = d / l;
+    }
+    if (entry[i] >= 0) {
+      const Vec3 grad = prev_u - u;
+      entries_[entry[i]].lin += grad;
+      entries_[entry[i]].ang += arm[i].cross(grad);
+    }
+    prev_u = u;
+  }
+  for (int e = row.first_entry; e < row.first_entry + row.entry_count; ++e) weigh(entries_[e]);
+  C_[r] = length;  // minus the rest length, by the caller
+  if (ends[0].turn != 0.0) C_[r] += ends[0].payOut(-(pos[1] - pos[0]).normalized());
+  if (ends[1].turn != 0.0) C_[r] += ends[1].payOut((pos[count - 1] - pos[count - 2]).normalized());
+}
+
+int DirectSolver::evaluateJoint(World& world, int r, double h) {
+  const double inv_h2 = 1.0 / (h * h);
+  // All the joint's rows at once.
+  const Row& first = rows_[r];
+  JointRowSet set;
+  BodyId a, b;
+  Vec3 *linear_a, *angular_a;
+  double compliance;
+  switch (first.source) {
+    case Source::Hinge: {
+      HingeJoint& j = world.hinge(first.index);
+      joint_rows::hingeRowSet(j, world.body(j.a), world.body(j.b), h, set);
+      a = j.a, b = j.b, linear_a = &j.impulse_point, angular_a = &j.impulse_axis, compliance = j.compliance;
+      break;
+    }
+    case Source::Prismatic: {
+      PrismaticJoint& j = world.prismatic(first.index);
+      joint_rows::prismaticRowSet(j, world.body(j.a), world.body(j.b), set);
+      a = j.a, b = j.b, linear_a = &j.impulse_linear, angular_a = &j.impulse_angular, compliance = j.compliance;
+      break;
+    }
+    case Source::Spherical: {
+      SphericalJoint& j = world.spherical(first.index);
+      joint_rows::sphericalRowSet(j, world.body(j.a), world.body(j.b), set);
+      a = j.a, b = j.b, linear_a = &j.impulse_linear, angular_a = &j.impulse_angular, compliance = j.compliance;
+      break;
+    }
+    default: {
+      FixedJoint& j = world.fixedJoint(first.index);
+      joint_rows::fixedRowSet(j, world.body(j.a), world.body(j.b), set);
+      a = j.a, b = j.b, linear_a = &j.impulse_linear, angular_a = &j.impulse_angular, compliance = j.compliance;
+      break;
+    }
+  }
+  const int count = set.bilateral.count + set.clamped_count;
+  assert(r + count <= static_cast<int>(rows_.size()));
+  assert(rows_[r + count - 1].source == first.source && rows_[r + count - 1].index == first.index);
+  const bool a_moves = listed(world, a), b_moves = listed(world, b);
+  for (int k = 0; k < count; ++k, ++r) {
+    const bool bilateral = k < set.bilateral.count;
+    const int c = k - set.bilateral.count;
+    const Vec6 s = bilateral ? Vec6(set.bilateral.dirs.col(k)) : set.clamped[c].dir;
+    // Row C along s = [s_p; s_w]: b's anchor along s_p, a's rotation
+    // relative to b about s_w (joint_rows.h), so
+    //   J_a = [-s_p; -(r_a x s_p) + s_w],  J_b = [s_p; r_b x s_p - s_w].
+    const Vec3 sp = s.head<3>(), sw = s.tail<3>();
+    int e = rows_[r].first_entry;
+    if (a_moves) {
+      entries_[e].lin = -sp;
+      entries_[e].ang = sw - set.r_a.cross(sp);
+      ++e;
+    }
+    if (b_moves) {
+      entries_[e].lin = sp;
+      entries_[e].ang = set.r_b.cross(sp) - sw;
+    }
+    for (e = rows_[r].first_entry; e < rows_[r].first_entry + rows_[r].entry_count; ++e) weigh(entries_[e]);
+    dir_[r] = s;
+    linear_a_[r] = linear_a;
+    angular_a_[r] = angular_a;
+    if (bilateral) {
+      C_[r] = set.bilateral.values[k];
+      // The compliance term's lambda is the joint's impulse so far along
+      // this row's present direction, as joint_rows::solveRows takes it: a
+      // row's direction may turn within the substep (a hinge's axis rows).
+      lambda_[r] = s.head<3>().dot(-*linear_a) + s.tail<3>().dot(*angular_a);
+      alpha_[r] = compliance * inv_h2;
+      lo_[r] = -kInf;
+      hi_[r] = kInf;
+      mirror_[r] = nullptr;
+      state_[r] = State::Free;
+    } else {
+      const joint_rows::ClampedRow& clamped = set.clamped[c];
+      C_[r] = clamped.C;
+      alpha_[r] = clamped.alpha;  // a spring drive's; 0 for the rest
+      lo_[r] = clamped.lo;
+      hi_[r] = clamped.hi;
+      mirror_[r] = clamped.lambda;
+      lambda_[r] = *clamped.lambda;
+      state_[r] = set.active[c] ? State::Free : State::Off;
+    }
+  }
+  if (set.drive >= 0) driveAgainstLimit(r - set.clamped_count, set);
+  return count;
+}
+
+void DirectSolver::driveAgainstLimit(int first_clamped, const JointRowSet& set) {
+  // A rigid drive and a limit on one coordinate are one direction twice: a
+  // limit in touch makes them dependent, and the factorization would keep
+  // either. The limit wins, as in Gauss-Seidel (joint_rows.h). Linearized,
+  // the drive asks the coordinate to change by -C_d and a lower limit
+  // allows no less than -C_l (an upper one no more than -C_u): a drive
+  // asking past the limit pushes with all it has (an unlimited one with
+  // what it has so far) and the limit takes the rest; a drive asking to
+  // stay within it does the moving alone, and the limit joins in again
+  // (solveActiveSet) only if the drive cannot. A spring's drive row is
+  // compliant, so not dependent on the limit: the two are solved together
+  // and the spring pulls with its stiffness times its stretch at the limit.
+  const int d = first_clamped + set.drive;
+  const bool rigid = alpha_[d] == 0.0;
+  for (const int limit : {set.lower, set.upper}) {
+    if (limit < 0) continue;
+    const int l = first_clamped + limit;
+    drive_of_[l] = rigid ? d : -1;
+    if (!rigid || state_[l] != State::Free) continue;
+    const bool lower = limit == set.lower;
+    const bool past = lower ? C_[d] > C_[l] : C_[d] < C_[l];
+    if (!past) {
+      state_[l] = State::Off;
+      continue;
+    }
+    const double bound = lower ? lo_[d] : hi_[d];
+    state_[d] = State::Fixed;
+    dlambda_[d] = std::isfinite(bound) ? bound - lambda_[d] : 0.0;
+  }
+}
+
+void DirectSolver::evaluate(World& world, double h) {
+  evaluateBodies();
+  const int n = static_cast<int>(rows_.size());
+  for (int r = 0; r < n;) {
+    if (rows_[r].source == Source::Path || rows_[r].source == Source::Distance) {
+      evaluatePath(world, r, h);
+      ++r;
+    } else {
+      r += evaluateJoint(world, r, h);
+    }
+  }
+}
+
+}  // namespace reeve

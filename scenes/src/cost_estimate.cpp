@@ -28,7 +28,7 @@ constexpr double kContactBodyIteration_s = 1.2e-6;
 // of its own is a hub too, which only makes it cheaper than this says.
 constexpr double kDirectPairIteration_s = 20e-9;
 constexpr double kDirectFlop_s = 1e-9;
-constexpr double kHubRows = 12.0;
+constexpr double kHubRows = 24.0;
 
 // The direct solver's work per iteration on the k rows of one body.
 double coupledCost(double k) {

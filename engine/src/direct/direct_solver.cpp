@@ -19,11 +19,15 @@ using joint_rows::kInf;
 using joint_rows::Vec6;
 
 // A body with more rows than this is a hub (direct_solver.h): its rows
-// would fill more of the matrix than its own motion does. So is one with
+// would fill more of the matrix than its own motion does, and cost more
+// than the hub's refinement steps. At 12 the hand's knuckles (21 rows,
+// 3 g under heavy tendons) were hubs and the hand took 0.28 ms a frame at
+// 1 x 20 where its rows take 0.13 (refining there needs several steps).
+// So is one with
 // more cable spans than this that move it alone (leaves): four cables to
 // one point are already redundant, which a hub's leaves resolve by the
 // least norm (leastNormLeaves) and the rows' matrix cannot.
-constexpr int kHubRows = 12;
+constexpr int kHubRows = 24;
 constexpr int kHubCableLeaves = 3;
 
 // The number of rows of a joint with `bilateral` locked rows and the

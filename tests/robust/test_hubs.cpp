@@ -23,8 +23,9 @@ constexpr double kG = 10.0;
 // read, as `reeve bench scaling` does.
 constexpr int kFrames = 13;
 
-// The largest relative error of any span's tension against `expected` (N),
-// after `frames` frames of 1/60 s; infinite if the state is not finite.
+// The largest relative error of any span's tension against the machine's
+// closed form (tension_N), after `frames` frames of 1/60 s; infinite if the
+// state is not finite.
 double worstTension(machines::StaticMachine& m, int frames) {
   for (int f = 0; f < frames; ++f) m.scene.world->step(1.0 / 60.0);
   double worst = 0.0;

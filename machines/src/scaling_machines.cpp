@@ -55,14 +55,18 @@ std::pair<BodyId, BodyId> addTackleBlocks(World& world, const TackleLayout& layo
 // A world point as a point of `body` (which has not been turned).
 Vec3 local(const World& world, BodyId body, const Vec3& p) { return p - world.body(body).x; }
 
-// The tie and end links of a tackle's cable round `interior`.
-std::vector<LinkDef> tackleLinks(const World& world, const TackleLayout& layout, BodyId upper, BodyId lower,
-                                 std::vector<LinkDef> interior) {
+// A tackle's cable, "rope": tied to one block, round `interior`, ending on
+// the upper block.
+void addTackleRope(StaticMachine& m, const TackleLayout& layout, BodyId upper, BodyId lower,
+                   std::vector<LinkDef> interior) {
+  const World& world = *m.scene.world;
   const BodyId tied = layout.tiedToLower() ? lower : upper;
-  std::vector<LinkDef> links = {LinkDef::attachment(tied, local(world, tied, layout.tie()))};
-  links.insert(links.end(), interior.begin(), interior.end());
-  links.push_back(LinkDef::attachment(upper, local(world, upper, layout.end())));
-  return links;
+  CableDef cable;
+  cable.name = "rope";
+  cable.links = {LinkDef::attachment(tied, local(world, tied, layout.tie()))};
+  cable.links.insert(cable.links.end(), interior.begin(), interior.end());
+  cable.links.push_back(LinkDef::attachment(upper, local(world, upper, layout.end())));
+  m.scene.cables->addCable(cable);
 }
 
 // An octagon of circumradius r about `centre` (m, body-local), with a
@@ -127,10 +131,7 @@ StaticMachine tackleHinged(const ScalingSpec& spec) {
     world.addHinge({sheave, block, at, Vec3::UnitZ()});
     wraps.push_back(LinkDef::rolling(sheave, layout.lower(i) ? 1 : -1));  // under lower ones, over upper ones
   }
-  CableDef cable;
-  cable.name = "rope";
-  cable.links = tackleLinks(world, layout, upper, lower, wraps);
-  m.scene.cables->addCable(cable);
+  addTackleRope(m, layout, upper, lower, wraps);
   return m;
 }
 
@@ -148,10 +149,7 @@ StaticMachine tackleRolling(const ScalingSpec& spec, bool sliding) {
     wrap.section = octagon(local(world, block, layout.centre(i)));
     wraps.push_back(wrap);
   }
-  CableDef cable;
-  cable.name = "rope";
-  cable.links = tackleLinks(world, layout, upper, lower, wraps);
-  m.scene.cables->addCable(cable);
+  addTackleRope(m, layout, upper, lower, wraps);
   return m;
 }
 

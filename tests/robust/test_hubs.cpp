@@ -54,11 +54,12 @@ TEST(Hubs, ARigidStarSharesItsLoadEquallyAtEveryCountAndMass) {
   // of K m: from K = 4 they are redundant (three would fix the point), and
   // each carries m g / cos 30 in the limit of equal elastic cables. Before
   // hubs the whole load went to one pair (K = 4, 16) or the solve diverged
-  // (K >= 64, tensions 1e14 x).
+  // (K >= 64, tensions 1e14 x). K = 1024 at 1 kg only (CI time).
   for (const StaticsBound& b : kStatics)
-    for (const int k : {4, 16, 64, 256})
+    for (const int k : {4, 16, 64, 256, 1024})
       for (const double m : {1e-3, 1.0, 1e3})
         for (const bool compliant : {false, true}) {
+          if (k == 1024 && m != 1.0) continue;
           machines::ScalingSpec spec;
           spec.count = k;
           spec.load_kg = m;

@@ -34,7 +34,7 @@ constexpr int kHubCableLeaves = 3;
 // given drive and limits (JointRowSet's layout).
 int jointRowCount(int bilateral, bool driven, bool limited) { return bilateral + (driven ? 1 : 0) + (limited ? 2 : 0); }
 
-bool moves(const World& world, BodyId id) { return direct::moves(world.body(id)); }
+bool moves(const World& world, BodyId id) { return world.body(id).moves(); }
 bool listed(const World& world, BodyId id) { return direct::listed(world.body(id)); }
 
 }  // namespace

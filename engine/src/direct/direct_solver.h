@@ -62,8 +62,6 @@ namespace reeve {
 class World;
 
 namespace direct {
-/// Whether a body moves under the solver (not static, not kinematic).
-inline bool moves(const BodyState& body) { return body.moves(); }
 /// A row lists the bodies it moves and the kinematic ones it pushes on: a
 /// kinematic body's entries weigh nothing (W = 0) and couple no rows, but
 /// record the impulse it took (the work it does: World::addKinematicWork).

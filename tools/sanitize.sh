@@ -54,5 +54,15 @@ long+='|Elastic\.ADrumWinds|Capstan\.HaulingAndLoweringTraceTheTwoBranches'
 # through), the ball joint tumbling into its limits and the beads on rods
 # at four budgets (20 s here; the chains take the rail's rows through).
 long+='|EnergyLedger/JointChains\..*(direct_(10_x_2|32_x_32)|gauss_seidel_(1_x_10|10_x_2|32_x_32))'
-long+='|SphericalJoint\.ABodyTumblingIntoItsSwingAndTwistLimits|PrismaticJoint\.ABeadOn)'
+long+='|SphericalJoint\.ABodyTumblingIntoItsSwingAndTwistLimits|PrismaticJoint\.ABeadOn'
+# Issue 29: the hub machines at many K, the fast jerk at four iteration
+# counts and the stretched span pulled in (10 s here; the rigid star of the
+# bench's tests and the fuzzer's joints on two bodies take the hubs through,
+# every rolling scene the held rolling ends); hilbert2_loose's whole
+# Gauss-Seidel run and the winch reversing over a drum at four budgets (15
+# and 10 s here; hilbert2's run and the capstan's other tests take that
+# code through).
+long+='|Hubs\.|SnapTaut\.MoreIterations|Cli\.ASpanStartingFarPast'
+long+='|Invariants/EveryShippedScene\.InvariantsHoldAfterEverySubstep/hilbert2_loose_gauss_seidel'
+long+='|Capstan\.AWinchReversingOverAFixedDrum)'
 ctest --test-dir build-sanitize --output-on-failure -j2 -E "$long"

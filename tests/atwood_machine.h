@@ -13,8 +13,11 @@ struct Atwood {
   CableSystem cables{world};
   BodyId box1, box2, wheel;
   int cable;
-  Atwood(double m1_, double m2_, int substeps, int iterations) : m1(m1_), m2(m2_) {
+  Atwood(double m1_, double m2_, int substeps, int iterations, double M_ = 2.0,
+         Projection projection = Projection::End)
+      : m1(m1_), m2(m2_), M(M_) {
     world.settings().gravity = Vec3(0, -g, 0);
+    world.settings().projection = projection;
     world.settings().substeps = substeps;
     world.settings().iterations = iterations;
     BodyDef w;

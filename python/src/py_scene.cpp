@@ -216,6 +216,18 @@ void bindScene(py::module_& m) {
           },
           "The solver: \"direct\" (every joint and cable solved together) or \"gauss-seidel\".")
       .def_property(
+          "projection",
+          [](const SettingsView& v) {
+            return std::string(v.world().settings().projection == Projection::Start ? "start" : "end");
+          },
+          [](SettingsView& v, const std::string& name) {
+            if (name != "start" && name != "end")
+              throw py::value_error("projection: expected \"end\" or \"start\", got \"" + name + "\"");
+            v.world().settings().projection = name == "start" ? Projection::Start : Projection::End;
+          },
+          "The direct solver's projection: \"end\" (XPBD, dissipative) or \"start\" (SHAKE: a pendulum keeps "
+          "its swing energy); Gauss-Seidel always projects at the end.")
+      .def_property(
           "gravity_m_per_s2",
           [](const SettingsView& v) {
             const Vec3 g = v.world().settings().gravity;

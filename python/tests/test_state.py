@@ -107,8 +107,12 @@ def test_settings_are_writable_within_the_schema_ranges(scenes):
             scene.settings.method) == (40, 1, 120.0, "gauss-seidel")
     scene.step(12)
     assert scene.time_s == pytest.approx(0.1, rel=1e-12)
+    assert s.projection == "end"
+    s.projection = "start"
+    assert scene.settings.projection == "start"
     for name, bad in [("substeps", 0), ("substeps", 100001), ("iterations", 0), ("iterations", 100001),
-                      ("frame_rate_hz", 0.0), ("frame_rate_hz", 2e6), ("method", "jacobi")]:
+                      ("frame_rate_hz", 0.0), ("frame_rate_hz", 2e6), ("method", "jacobi"),
+                      ("projection", "middle")]:
         with pytest.raises(ValueError, match=name):
             setattr(scene.settings, name, bad)
 

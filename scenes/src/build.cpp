@@ -17,7 +17,7 @@ constexpr const char* kMethod = "direct";
 constexpr double kDurationS = 5.0;
 const Vec3 kGravity(0.0, -9.81, 0.0);
 
-SolverSettings solverOf(const nlohmann::json& solver) {
+SolverSettings solverOf(const nlohmann::json& solver, const std::string& source) {
   SolverSettings settings;
   settings.gravity =
       solver.contains("gravity_m_per_s2") ? vec3(solver.at("gravity_m_per_s2")) : kGravity;
@@ -25,6 +25,12 @@ SolverSettings solverOf(const nlohmann::json& solver) {
   settings.iterations = solver.value("iterations", kIterations);
   // The schema allows only the known names.
   settings.solver = *solverMethodFromName(solver.value("method", std::string(kMethod)));
+  if (solver.value("projection", std::string("end")) == "start") {
+    if (settings.solver != SolverKind::Direct)
+      throw SceneError(source, "/solver/projection", "\"end\" with method \"gauss-seidel\" (the start projection is the direct solver's)",
+                       "\"start\"");
+    settings.projection = Projection::Start;
+  }
   settings.max_linear_speed = solver.value("max_linear_speed_m_per_s", settings.max_linear_speed);
   settings.max_angular_speed = solver.value("max_angular_speed_rad_per_s", settings.max_angular_speed);
   return settings;
@@ -78,7 +84,7 @@ Scene buildScene(const nlohmann::json& document, const std::string& source) {
                          " frames at solver/frame_rate_hz " + number(scene.frame_rate_hz),
                      number(scene.duration_s) + " s (" + number(frames) + " frames)");
 
-  scene.world = std::make_unique<World>(solverOf(solver));
+  scene.world = std::make_unique<World>(solverOf(solver, source));
   scene.cables = std::make_unique<CableSystem>(*scene.world);
   const BodyNames names = addBodies(document.at("bodies"), *scene.world, source);
   if (const auto ground = document.find("ground"); ground != document.end())

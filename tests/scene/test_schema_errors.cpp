@@ -46,7 +46,7 @@ TEST(SchemaErrors, AttachmentWithoutPoint) {
 
 TEST(SchemaErrors, UnknownFieldNameIsEscapedInThePointer) {
   expectError(baseWith(R"("solver": {})", R"("solver": {"a/b~c": 1})"), "/solver/a~1b~0c",
-              "no property \"a/b~c\" (allowed: frame_rate_hz, substeps, iterations, method, "
+              "no property \"a/b~c\" (allowed: frame_rate_hz, substeps, iterations, method, projection, "
               "max_linear_speed_m_per_s, max_angular_speed_rad_per_s, gravity_m_per_s2)",
               "\"a/b~c\"");
 }

@@ -27,6 +27,12 @@ TEST(SemanticErrors, HingeToItself) {
               "/hinges/0/other", "a body other than the hinge's body \"wheel\"", "\"wheel\"");
 }
 
+TEST(SemanticErrors, TheStartProjectionIsTheDirectSolvers) {
+  expectError(baseWith(R"("solver": {})", R"("solver": {"method": "gauss-seidel", "projection": "start"})"),
+              "/solver/projection",
+              "\"end\" with method \"gauss-seidel\" (the start projection is the direct solver's)", "\"start\"");
+}
+
 TEST(SemanticErrors, ZeroHingeAxis) {
   expectError(baseWith(R"("axis": [0, 0, 1])", R"("axis": [0, 0, 0])"), "/hinges/0/axis",
               "a non-zero hinge axis", "[0,0,0]");

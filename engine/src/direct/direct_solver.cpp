@@ -29,6 +29,10 @@ using joint_rows::Vec6;
 // least norm (leastNormLeaves) and the rows' matrix cannot.
 constexpr int kHubRows = 24;
 constexpr int kHubCableLeaves = 3;
+// Projection::Start: the largest relative turn of a row's gradient over
+// the substep that keeps it (chooseStartRows). A pendulum at 1 x 10 turns
+// its 0.05; a 1 cm spool at 6 m/s, 1.
+constexpr double kStartTurnLimit = 0.2;
 
 // The number of rows of a joint with `bilateral` locked rows and the
 // given drive and limits (JointRowSet's layout).
@@ -317,6 +321,52 @@ void DirectSolver::prepare(World& world, double h, bool again) {
   if (!again)
     for (std::size_t r = 0; r < rows_.size(); ++r) pulled_[r] = lambda_[r] < 0.0;
   std::fill(lambda_.begin(), lambda_.end(), 0.0);
+  first_iteration_ = true;
+  if (world.settings().projection == Projection::Start) linearizeAtStart(world, h);
+  else start_.clear();
+}
+
+void DirectSolver::linearizeAtStart(World& world, double h) {
+  // The rows at the poses the substep started from (x_prev, q_prev): the
+  // joints' anchors and the cables' attachments turn back with their
+  // bodies; a rolling end stays where the cable update put it (endPoint).
+  for (const BodyId id : bodies_) {
+    BodyState& b = world.body(id);
+    std::swap(b.x, b.x_prev);
+    std::swap(b.q, b.q_prev);
+  }
+  at_start_ = true;
+  evaluate(world, h);
+  at_start_ = false;
+  for (const BodyId id : bodies_) {
+    BodyState& b = world.body(id);
+    std::swap(b.x, b.x_prev);
+    std::swap(b.q, b.q_prev);
+  }
+  start_ = entries_;
+}
+
+void DirectSolver::chooseStartRows() {
+  // SHAKE's projection along G(x_n) must reach the constraint from x~; a
+  // row whose gradient turns much over the substep (a spool spinning a
+  // radian, a snap) would not converge in a few iterations, or not at all.
+  // Such a row keeps the gradient at the poses solved, |G_n - G|_W >
+  // kStartTurnLimit |G|_W (|g|_W^2 = g W g^T, the row's own diagonal).
+  use_start_.assign(rows_.size(), 0);
+  for (std::size_t r = 0; r < rows_.size(); ++r) {
+    const Row& row = rows_[r];
+    double norm = 0.0, change = 0.0;
+    for (int e = row.first_entry; e < row.first_entry + row.entry_count; ++e) {
+      const Entry& now = entries_[e];
+      Entry d = now;
+      d.lin = start_[e].lin - now.lin;
+      d.ang = start_[e].ang - now.ang;
+      weigh(d);
+      norm += now.lin.dot(now.wlin) + now.ang.dot(now.wang);
+      change += d.lin.dot(d.wlin) + d.ang.dot(d.wang);
+    }
+    use_start_[r] = change <= kStartTurnLimit * kStartTurnLimit * norm;
+  }
 }
 
 bool DirectSolver::converged(double tolerance) const {
@@ -338,6 +388,16 @@ bool DirectSolver::converged(double tolerance) const {
 bool DirectSolver::iterate(World& world, double h) {
   if (rows_.empty()) return false;
   evaluate(world, h);
+  if (!start_.empty()) {
+    if (first_iteration_) chooseStartRows();
+    for (std::size_t r = 0; r < rows_.size(); ++r) {
+      if (!use_start_[r]) continue;
+      const Row& row = rows_[r];
+      std::copy(start_.begin() + row.first_entry, start_.begin() + row.first_entry + row.entry_count,
+                entries_.begin() + row.first_entry);
+    }
+  }
+  first_iteration_ = false;
   // A residual C left in a substep h is a force error of about C m / h^2:
   // the tolerance, met at h = 1/600 s (4e-5 N per kg), shrinks with h^2
   // below that, or at 10,000 substeps of a 60 Hz frame a 1:100 Atwood

@@ -115,6 +115,15 @@ class DirectSolver {
   void build(World& world);
   /// Fills C, bounds, activity and the entries' gradients of every row.
   void evaluate(World& world, double h);
+  /// Projection::Start (world.h): the entries' gradients at the substep's
+  /// start poses, into start_; each iteration then moves the bodies along
+  /// them, with C at the poses solved (SHAKE): the iteration
+  ///   (G_n W G_n^T + alpha~) dlambda = -C(x) - alpha~ lambda,  dx = W G_n^T dlambda
+  /// converges to x = x~ + W G_n^T lambda with C(x) + alpha~ lambda = 0.
+  void linearizeAtStart(World& world, double h);
+  /// Which rows take their start gradient (use_start_), at the first
+  /// iteration of a substep.
+  void chooseStartRows();
   void evaluateBodies();
   /// The entry's W J from its gradient.
   void weigh(Entry& e) const;
@@ -179,6 +188,10 @@ class DirectSolver {
   } run_;
   std::vector<Row> rows_;
   std::vector<Entry> entries_;
+  std::vector<Entry> start_;      // entries_ at the substep's start (linearizeAtStart); empty: Projection::End
+  bool at_start_ = false;         // evaluating at the start poses
+  bool first_iteration_ = false;  // the substep's first iterate() is next
+  std::vector<char> use_start_;   // per row: moves along start_ (chooseStartRows)
   std::vector<Pair> pairs_;
   std::vector<Slot> slots_;  // other_row >= rows_.size(): a hub's unknown
   struct Hub {

@@ -36,6 +36,14 @@ void DirectSolver::weigh(Entry& e) const {
 }
 
 SolvePoint DirectSolver::endPoint(const World& world, const PathPoint& point, int slot) const {
+  // At the start poses a rolling end is where the cable update put it, not
+  // turned back with its wheel: the tangent point is geometry, not
+  // material (the wheel may have turned a radian under it).
+  if (at_start_ && !point.roll_axis.isZero()) {
+    SolvePoint p;
+    p.arm = world.body(point.body).q_pred * point.local;
+    return p;
+  }
   if (point.roll_axis.isZero()) {
     SolvePoint p;
     p.arm = slot >= 0 ? Vec3(frames_[slot].R * point.local) : Vec3(world.body(point.body).q * point.local);

@@ -1,0 +1,146 @@
+// Numerical damping (issue 29): a pendulum's swing energy kept over 100
+// periods. XPBD projects each row along its gradient at the end of the
+// substep, which is first order and loses (omega h)^2 of the energy a
+// substep; the direct solver projects along the gradient at the substep's
+// start (SHAKE), which keeps it to a bounded O(h^2) oscillation.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "atwood_machine.h"
+#include "reeve/scene/scene.h"
+
+namespace reeve {
+namespace {
+
+constexpr double kG = 9.81;
+
+// A 1 kg bob 1 m below its pivot, released at `angle` rad: held by a cable
+// (`holder` "cable"), a hinge or a ball joint.
+std::string pendulum(const std::string& holder, double angle, int substeps, int iterations, const char* projection) {
+  const double x = std::sin(angle), y = -std::cos(angle);
+  std::string s = R"({"name": "pendulum", "duration_s": 1,
+    "solver": {"frame_rate_hz": 60, "substeps": )" +
+                  std::to_string(substeps) + R"(, "iterations": )" + std::to_string(iterations) +
+                  R"(, "projection": ")" + projection + R"("},
+    "bodies": [{"name": "pin", "shape": {"type": "sphere", "radius_m": 0.01}, "static": true, "position_m": [0, 0, 0]},
+               {"name": "bob", "shape": {"type": "sphere", "radius_m": 0.05}, "mass_kg": 1.0,
+                "position_m": [)" +
+                  std::to_string(x) + ", " + std::to_string(y) + ", 0]}]";
+  if (holder == "cable")
+    s += R"(, "cables": [{"name": "rope", "links": [
+      {"body": "pin", "type": "attachment", "point_m": [0, 0, 0]},
+      {"body": "bob", "type": "attachment", "point_m": [0, 0, 0]}]}]})";
+  else if (holder == "hinge")
+    s += R"(, "hinges": [{"body": "bob", "anchor_m": [0, 0, 0], "axis": [0, 0, 1]}]})";
+  else
+    s += R"(, "joints": [{"type": "spherical", "body": "bob", "anchor_m": [0, 0, 0]}]})";
+  return s;
+}
+
+struct Swing {
+  double oscillation = 0.0;  // largest |E - E_0| / E_swing: the stored velocity is a half step's, O(h omega)
+  double drift = 0.0;        // the mean of E over the last period less over the first, / E_swing / periods
+  double amplitude = 0.0;    // the swing energy at the last turning point less at the first, / E_swing
+};
+
+Swing swing(const std::string& holder, double angle, int substeps, int iterations, const char* projection,
+            int periods) {
+  Scene scene = parseScene(pendulum(holder, angle, substeps, iterations, projection), "<pendulum>");
+  World& world = *scene.world;
+  const BodyId bob = 1;
+  const auto total = [&] {
+    const WorldEnergy e = world.energy();
+    return e.kinetic + e.gravity + e.elastic;
+  };
+  const double bottom = -kG;  // -m g . x at the lowest point, 1 m below the pin
+  const double e0 = total(), swing0 = e0 - bottom;
+  const double period = 2.0 * 3.14159265358979 * std::sqrt(1.0 / kG);
+  const int per = static_cast<int>(std::lround(period * 60.0));
+  const int frames = periods * per;
+  // Heights, to find the turning points (a parabola through the highest
+  // frame and its neighbours).
+  std::vector<double> y(1, world.body(bob).x.y()), e(1, e0);
+  for (int f = 0; f < frames; ++f) {
+    world.step(1.0 / 60.0);
+    y.push_back(world.body(bob).x.y());
+    e.push_back(total());
+  }
+  Swing out;
+  for (const double v : e) out.oscillation = std::max(out.oscillation, std::abs(v - e0) / swing0);
+  double first = 0.0, last = 0.0;
+  for (int k = 0; k < per; ++k) first += e[1 + k] / per, last += e[frames - per + 1 + k] / per;
+  out.drift = (last - first) / swing0 / (periods - 1);
+  std::vector<double> peaks;
+  for (int k = 1; k + 1 < static_cast<int>(y.size()); ++k)
+    if (y[k] > y[k - 1] && y[k] > y[k + 1]) {
+      const double a = 0.5 * (y[k - 1] + y[k + 1]) - y[k], b = 0.5 * (y[k + 1] - y[k - 1]);
+      peaks.push_back(y[k] - b * b / (4.0 * a));
+    }
+  if (peaks.size() >= 2 && peaks.front() > -1.0) out.amplitude = (peaks.back() - peaks.front()) / (peaks.front() + 1.0);
+  return out;
+}
+
+TEST(SwingEnergy, AtTheStartProjectionAPendulumKeepsItsSwingEnergyFor100Periods) {
+  // A 1 m pendulum released at 0.1 rad, held by a cable, a hinge and a
+  // ball joint. Its swing energy (the height of each turning point) after
+  // 100 periods: measured within 6e-7 of the start's at 10 x 2 and 1 x 10
+  // (the issue asks 1e-3 and 1e-2; 3e-7 at 32 x 32). The energy read each frame ripples by
+  // h omega / 2 of it: the stored velocity (x - x_prev) / h is the half
+  // step's, paired with the end's height; bounded, not drift.
+  const double omega = std::sqrt(kG / 1.0);
+  for (const char* holder : {"cable", "hinge", "ball"})
+    for (const auto& [n, it] : {std::pair{10, 2}, {1, 10}}) {
+      const Swing s = swing(holder, 0.1, n, it, "start", 100);
+      const double h_omega = omega / (60.0 * n);
+      std::printf("[ measured ] start, %-5s %2d x %2d: swing energy after 100 periods %+.2e, drift a period %+.2e, "
+                  "ripple %.2e (h omega %.2e)\n",
+                  holder, n, it, s.amplitude, s.drift, s.oscillation, h_omega);
+      EXPECT_LT(std::abs(s.amplitude), 1e-5) << holder << " " << n << " x " << it;
+      EXPECT_LT(std::abs(s.drift), 1e-6) << holder << " " << n << " x " << it;
+      EXPECT_LT(s.oscillation, h_omega) << holder << " " << n << " x " << it;
+    }
+}
+
+TEST(SwingEnergy, AtTheEndProjectionXpbdLosesTheSwingAndNeverGainsIt) {
+  // XPBD as written (the default, and Gauss-Seidel always): each substep
+  // loses about (omega h)^2 of the energy. Measured after 100 periods:
+  // -96 % at 10 x 2, -64 % at 32 x 2 (-28 % at 100 x 2), all of it at
+  // 1 x 10; more substeps lose less.
+  double previous = -1.0;
+  for (const int n : {10, 32}) {
+    const Swing s = swing("hinge", 0.1, n, 2, "end", 100);
+    std::printf("[ measured ] end, hinge %3d x 2: swing energy after 100 periods %+.2e\n", n, s.amplitude);
+    EXPECT_LT(s.amplitude, 0.0);
+    EXPECT_GT(s.amplitude, previous);
+    previous = s.amplitude;
+  }
+}
+
+TEST(SwingEnergy, TheStartProjectionKeepsTheAtwoodMachinesExactAtEveryWheelMass) {
+  // Straight spans over a rotor: the start's gradients are the end's, so
+  // both projections give one answer, which test_atwood holds to its
+  // closed form; wheels from 1e-6 to 1e6 kg, one substep and ten.
+  for (const double M : {1e-6, 2.0, 1e6})
+    for (const auto& [n, it] : {std::pair{1, 1}, {10, 2}}) {
+      Atwood end(1.0, 2.0, n, it, M, Projection::End), start(1.0, 2.0, n, it, M, Projection::Start);
+      for (int f = 0; f < 30; ++f) {
+        end.world.step(1.0 / 60.0);
+        start.world.step(1.0 / 60.0);
+      }
+      const double v = std::abs(end.world.body(end.box2).v.y());
+      EXPECT_NEAR(start.world.body(start.box2).v.y(), end.world.body(end.box2).v.y(), 1e-12 * v) << M;
+      EXPECT_NEAR(start.world.body(start.wheel).omega.z(), end.world.body(end.wheel).omega.z(), 1e-12 * v / end.r) << M;
+      for (const int span : {0, 1}) {
+        const double T = end.cables.tension(end.cable, span);
+        EXPECT_NEAR(start.cables.tension(start.cable, span), T, 1e-12 * T) << M << " span " << span;
+      }
+    }
+}
+
+}  // namespace
+}  // namespace reeve

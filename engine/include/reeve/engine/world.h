@@ -312,8 +312,11 @@ class World {
   /// has come (HingeDrive::until) and sets scheduled drives' targets.
   void updateDrives(double h);
   void integrate(double h);
-  /// `again`: the substep's solve done again (ResolveCheck).
+  /// `again`: the substep's solve done again (ResolveCheck). Prepares
+  /// the rows, then one of the two methods' solves of the substep:
   void solvePositions(double h, bool again);
+  void solveDirect(double h, bool again);  // direct/direct_step.cpp
+  void sweepGaussSeidel(double h);         // gauss_seidel/gauss_seidel.cpp
   /// solvePositions, again while a ResolveCheck asks (kMaxResolves).
   void solvePositionsChecked(double h);
   /// The interrupt flag is raised (setInterruptFlag); read, not cleared.

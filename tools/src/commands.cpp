@@ -47,6 +47,12 @@ int simulate(const RunOptions& o) {
   if (o.substeps) scene.world->settings().substeps = *o.substeps;
   if (o.iterations) scene.world->settings().iterations = *o.iterations;
   if (!o.solver.empty()) scene.world->settings().solver = *solverMethodFromName(o.solver);
+  if (!o.projection.empty()) scene.world->settings().projection = o.projection == "start" ? Projection::Start : Projection::End;
+  if (scene.world->settings().solver == SolverKind::GaussSeidel && scene.world->settings().projection == Projection::Start) {
+    std::fprintf(stderr, "reeve: the start projection (%s) is the direct solver's, not gauss-seidel's: pass --projection end "
+                 "or --solver direct\n", o.projection.empty() ? "the scene's solver/projection" : "--projection start");
+    return kExitUsage;
+  }
   const int frames = o.frames.value_or(scene.frameCount());
   const RunOutputs outputs{o.png_dir, o.video, o.csv, o.events, o.width, o.height, o.force, o.scene, o.strict};
   checkRunOutputs(outputs, frames);  // before the warnings: a refused output is the one message
@@ -63,9 +69,10 @@ int simulate(const RunOptions& o) {
   }
   printEnergyCreated(r);
   printSpansRunOut(r);
-  std::printf("reeve: simulated %d frames of '%s' (%.3f s, %d substeps x %d iterations, %s) in %.3f ms/frame of physics\n",
+  std::printf("reeve: simulated %d frames of '%s' (%.3f s, %d substeps x %d iterations, %s%s) in %.3f ms/frame of physics\n",
               done, scene.name.c_str(), done * dt, scene.world->settings().substeps,
               scene.world->settings().iterations, solverMethodName(scene.world->settings().solver),
+              scene.world->settings().projection == Projection::Start ? ", start projection" : "",
               1e3 * r.physics_s / std::max(done, 1));
   if (!o.png_dir.empty() && done > 0)
     std::printf("  PNG frames: %s .. %s\n", (o.png_dir / frameName(0)).c_str(), frameName(done - 1).c_str());

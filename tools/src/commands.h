@@ -16,6 +16,7 @@ struct RunOptions {
   std::string scene;  ///< empty: the built-in default scene
   std::optional<int> frames, substeps, iterations;
   std::string solver;  ///< "direct" or "gauss-seidel" (checked by the parser); empty: the scene's
+  std::string projection;  ///< "end" or "start" (checked by the parser); empty: the scene's
   std::filesystem::path png_dir, video, csv, events;
   int width = 1280, height = 720;
   bool force = false;

@@ -38,6 +38,10 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--solver", run.solver,
                       "direct (joints and cables solved together) or gauss-seidel (the paper's); overrides the scene")
       ->check(CLI::IsMember({"direct", "gauss-seidel"}));
+  run_cmd->add_option("--projection", run.projection,
+                      "The direct solver's: end (XPBD, loses a swing's energy) or start (SHAKE, keeps it); overrides "
+                      "the scene")
+      ->check(CLI::IsMember({"end", "start"}));
   run_cmd->add_option("--png", run.png_dir, "Write frame_NNNNN.png files into this folder");
   run_cmd->add_option("--video", run.video, "Write an H.264 MP4 video (needs the ffmpeg program)");
   run_cmd->add_option("--csv", run.csv, "Write time, body positions and cable tensions per frame");

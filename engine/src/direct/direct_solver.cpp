@@ -31,7 +31,9 @@ constexpr int kHubRows = 24;
 constexpr int kHubCableLeaves = 3;
 // Projection::Start: the largest relative turn of a row's gradient over
 // the substep that keeps it (chooseStartRows). A pendulum at 1 x 10 turns
-// its 0.05; a 1 cm spool at 6 m/s, 1.
+// its 0.05; a 1 cm spool at 6 m/s, 1. At 0.3 and 0.4 a double pendulum at
+// 1 x 10 keeps its energy (4e-2 of 2 m g L; -44 % at 0.2), but a tie point
+// riding round a spool at 2 iterations makes energy (spool.json).
 constexpr double kStartTurnLimit = 0.2;
 
 // The number of rows of a joint with `bilateral` locked rows and the

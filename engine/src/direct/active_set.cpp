@@ -65,6 +65,8 @@ void DirectSolver::solveActiveSet(double tolerance) {
   }
   assembleHubs();
   std::vector<double>& A = ldlt_.values();
+  released_ = -1;
+  may_release_ = true;
   for (int pass = 0; pass < kMaxPasses; ++pass) {
     // The free rows' system: fixed rows move to the right-hand side, and
     // fixed and off rows become identity rows (x = their known dlambda).
@@ -101,6 +103,24 @@ void DirectSolver::solveActiveSet(double tolerance) {
       break;
     }
     bool changed = released, capped = false;
+    // A row let go along a dependency that this solve, without it, now
+    // violates was needed after all: the dependent row it was let go for
+    // cannot be met, and the others stay as they were (a stack landing on
+    // its stop while the cable it hangs from is tight over a handle on its
+    // own stop: letting the stop go sank the stack into it, at every
+    // landing of the gym at 1 x 2).
+    if (!released && released_ >= 0) {
+      const int r = released_;
+      released_ = -1;
+      double predicted = C_[r];
+      for (int e = rows_[r].first_entry; e < rows_[r].first_entry + rows_[r].entry_count; ++e)
+        predicted += entries_[e].lin.dot(dx_[entries_[e].body]) + entries_[e].ang.dot(dphi_[entries_[e].body]);
+      if ((lo_[r] == 0.0 && predicted < -tolerance) || (hi_[r] == 0.0 && predicted > tolerance)) {
+        state_[r] = State::Free;
+        may_release_ = false;
+        continue;
+      }
+    }
     for (int r = 0; r < n; ++r) {
       if (state_[r] == State::Free) {
         const double total = lambda_[r] + dlambda_[r];
@@ -189,7 +209,7 @@ bool DirectSolver::factorAndSolve(double tolerance) {
       if (!(refine() > tolerance)) break;
     for (const Hub& hub : hubs_) leastNormLeaves(hub);
   }
-  return unmet >= 0 && releaseAlongDependency(unmet, unmet_residual);
+  return unmet >= 0 && may_release_ && releaseAlongDependency(unmet, unmet_residual);
 }
 
 bool DirectSolver::releaseAlongDependency(int r, double residual) {
@@ -221,6 +241,7 @@ bool DirectSolver::releaseAlongDependency(int r, double residual) {
   if (best < 0) return false;
   state_[best] = State::Fixed;
   dlambda_[best] = -lambda_[best];
+  released_ = best;
   return true;
 }
 

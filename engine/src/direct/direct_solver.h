@@ -226,6 +226,11 @@ class DirectSolver {
   std::vector<double> C_, alpha_, lo_, hi_, lambda_, dlambda_;
   std::vector<double> x_, rhs_;  // right-hand side, then solution, in elimination order (every unknown)
   std::vector<char> keep_;        // per position: a row not to drop (factorAndSolve)
+  // The row the last pass let go along a dependency (releaseAlongDependency),
+  // or -1; and whether this solve may still let one go (not once a release
+  // had to be undone: solveActiveSet).
+  int released_ = -1;
+  bool may_release_ = true;
   std::vector<State> state_;
   std::vector<char> pulled_;  // per row: its lambda was < 0 when the last substep ended
   std::vector<int> drive_of_;  // per limit row: the row of its coordinate's drive, or -1

@@ -201,7 +201,7 @@ TEST(Gym, ReleasedTheStackFallsBackOntoItsStopWithoutSinkingIntoIt) {
   // stack falls, dragging the handle back, and lands on its stop at up to
   // 3 m/s (a rigid rail limit, so it must not pass it); everything ends at
   // rest at its stop.
-  for (const Budget b : {kBudgets[0], kBudgets[1], Budget{1, 2}, Budget{2, 10}})
+  for (const Budget b : {kBudgets[0], Budget{2, 10}})  // one substep a frame: the test below
   for (const std::string handle : {"lat", "leg", "press"}) {
     Gym m(b);
     SCOPED_TRACE(testing::Message() << handle << ", " << b.substeps << " x " << b.iterations);

@@ -104,27 +104,6 @@ TEST_F(Cli, EventsAreLoggedAsJsonLinesAndStoredCableIsInTheCsv) {
   EXPECT_NE(header.find("string.link1.stored_m"), std::string::npos) << header;
 }
 
-TEST_F(Cli, TheStartProjectionIsTheSceneOrTheFlagsAndTheDirectSolversOnly) {
-  const std::string scene = write("swing.json", R"({"name": "swing", "duration_s": 0.1,
-    "solver": {"projection": "start"},
-    "bodies": [{"name": "bob", "shape": {"type": "sphere", "radius_m": 0.05}, "mass_kg": 1, "position_m": [0.1, -1, 0]}],
-    "joints": [{"type": "spherical", "body": "bob", "anchor_m": [0, 0, 0]}]})");
-  const Result from_scene = reeve("run " + scene);
-  ASSERT_EQ(from_scene.code, 0) << from_scene.err;
-  EXPECT_NE(from_scene.out.find("direct, start projection)"), std::string::npos) << from_scene.out;
-  const Result ended = reeve("run " + scene + " --projection end");
-  ASSERT_EQ(ended.code, 0) << ended.err;
-  EXPECT_EQ(ended.out.find("start projection"), std::string::npos) << ended.out;
-  const Result swept = reeve("run " + scene + " --solver gauss-seidel");
-  EXPECT_EQ(swept.code, 64);
-  EXPECT_NE(swept.err.find("the start projection (the scene's solver/projection) is the direct solver's"),
-            std::string::npos) << swept.err;
-  const Result flagged = reeve("run --frames 2 --projection start --solver gauss-seidel");
-  EXPECT_EQ(flagged.code, 64);
-  EXPECT_NE(flagged.err.find("(--projection start)"), std::string::npos) << flagged.err;
-  EXPECT_EQ(reeve("run --frames 2 --projection middle").code, 64);
-}
-
 TEST_F(Cli, ExistingOutputsAreNotOverwrittenWithoutForce) {
   const std::string csv = write("keep.csv", "my data\n");
   const Result r = reeve("run --frames 2 --csv " + csv);
@@ -406,6 +385,27 @@ TEST_F(Cli, SolverMethodComesFromTheSceneUnlessOverridden) {
   const Result bad = reeve("run " + atwood + " --solver jacobi");
   EXPECT_EQ(bad.code, 64);
   EXPECT_NE(bad.err.find("--solver: jacobi not in {direct,gauss-seidel}"), std::string::npos) << bad.err;
+}
+
+TEST_F(Cli, TheStartProjectionIsTheSceneOrTheFlagsAndTheDirectSolversOnly) {
+  const std::string scene = write("swing.json", R"({"name": "swing", "duration_s": 0.1,
+    "solver": {"projection": "start"},
+    "bodies": [{"name": "bob", "shape": {"type": "sphere", "radius_m": 0.05}, "mass_kg": 1, "position_m": [0.1, -1, 0]}],
+    "joints": [{"type": "spherical", "body": "bob", "anchor_m": [0, 0, 0]}]})");
+  const Result from_scene = reeve("run " + scene);
+  ASSERT_EQ(from_scene.code, 0) << from_scene.err;
+  EXPECT_NE(from_scene.out.find("direct, start projection)"), std::string::npos) << from_scene.out;
+  const Result ended = reeve("run " + scene + " --projection end");
+  ASSERT_EQ(ended.code, 0) << ended.err;
+  EXPECT_EQ(ended.out.find("start projection"), std::string::npos) << ended.out;
+  const Result swept = reeve("run " + scene + " --solver gauss-seidel");
+  EXPECT_EQ(swept.code, 64);
+  EXPECT_NE(swept.err.find("the start projection (the scene's solver/projection) is the direct solver's"),
+            std::string::npos) << swept.err;
+  const Result flagged = reeve("run --frames 2 --projection start --solver gauss-seidel");
+  EXPECT_EQ(flagged.code, 64);
+  EXPECT_NE(flagged.err.find("(--projection start)"), std::string::npos) << flagged.err;
+  EXPECT_EQ(reeve("run --frames 2 --projection middle").code, 64);
 }
 
 TEST_F(Cli, UsageErrorsAndHelp) {

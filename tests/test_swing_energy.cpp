@@ -46,7 +46,6 @@ std::string pendulum(const std::string& holder, double angle, int substeps, int 
 
 struct Swing {
   double oscillation = 0.0;  // largest |E - E_0| / E_swing: the stored velocity is a half step's, O(h omega)
-  double drift = 0.0;        // the mean of E over the last period less over the first, / E_swing / periods
   double amplitude = 0.0;    // the swing energy at the last turning point less at the first, / E_swing
 };
 
@@ -62,21 +61,16 @@ Swing swing(const std::string& holder, double angle, int substeps, int iteration
   const double bottom = -mass_kg * kG;  // -m g . x at the lowest point, 1 m below the pin
   const double e0 = total(), swing0 = e0 - bottom;
   const double period = 2.0 * 3.14159265358979 * std::sqrt(1.0 / kG);
-  const int per = static_cast<int>(std::lround(period * 60.0));
-  const int frames = periods * per;
+  const int frames = static_cast<int>(std::lround(periods * period * 60.0));
   // Heights, to find the turning points (a parabola through the highest
   // frame and its neighbours).
-  std::vector<double> y(1, world.body(bob).x.y()), e(1, e0);
+  std::vector<double> y(1, world.body(bob).x.y());
+  Swing out;
   for (int f = 0; f < frames; ++f) {
     world.step(1.0 / 60.0);
     y.push_back(world.body(bob).x.y());
-    e.push_back(total());
+    out.oscillation = std::max(out.oscillation, std::abs(total() - e0) / swing0);
   }
-  Swing out;
-  for (const double v : e) out.oscillation = std::max(out.oscillation, std::abs(v - e0) / swing0);
-  double first = 0.0, last = 0.0;
-  for (int k = 0; k < per; ++k) first += e[1 + k] / per, last += e[frames - per + 1 + k] / per;
-  out.drift = (last - first) / swing0 / (periods - 1);
   std::vector<double> peaks;
   for (int k = 1; k + 1 < static_cast<int>(y.size()); ++k)
     if (y[k] > y[k - 1] && y[k] > y[k + 1]) {
@@ -91,19 +85,20 @@ TEST(SwingEnergy, AtTheStartProjectionAPendulumKeepsItsSwingEnergyFor100Periods)
   // A 1 m pendulum released at 0.1 rad, held by a cable, a hinge and a
   // ball joint. Its swing energy (the height of each turning point) after
   // 100 periods: measured within 6e-7 of the start's at 10 x 2 and 1 x 10
-  // (the issue asks 1e-3 and 1e-2; 3e-7 at 32 x 32). The energy read each frame ripples by
-  // h omega / 2 of it: the stored velocity (x - x_prev) / h is the half
-  // step's, paired with the end's height; bounded, not drift.
+  // (3e-7 at 32 x 32); held to 1e-5, a hundredth of what the issue asks
+  // (1e-3 and 1e-2), where the end projection loses 96 to 100 %. The
+  // energy read each frame ripples by h omega / 2 of it (the stored
+  // velocity (x - x_prev) / h is the half step's, paired with the end's
+  // height): bounded, not drift; held to h omega.
   const double omega = std::sqrt(kG / 1.0);
   for (const char* holder : {"cable", "hinge", "ball"})
     for (const auto& [n, it] : {std::pair{10, 2}, {1, 10}}) {
       const Swing s = swing(holder, 0.1, n, it, "start", 100);
       const double h_omega = omega / (60.0 * n);
-      std::printf("[ measured ] start, %-5s %2d x %2d: swing energy after 100 periods %+.2e, drift a period %+.2e, "
-                  "ripple %.2e (h omega %.2e)\n",
-                  holder, n, it, s.amplitude, s.drift, s.oscillation, h_omega);
+      std::printf("[ measured ] start, %-5s %2d x %2d: swing energy after 100 periods %+.2e, ripple %.2e (h omega "
+                  "%.2e)\n",
+                  holder, n, it, s.amplitude, s.oscillation, h_omega);
       EXPECT_LT(std::abs(s.amplitude), 1e-5) << holder << " " << n << " x " << it;
-      EXPECT_LT(std::abs(s.drift), 1e-6) << holder << " " << n << " x " << it;
       EXPECT_LT(s.oscillation, h_omega) << holder << " " << n << " x " << it;
     }
 }
@@ -124,23 +119,22 @@ TEST(SwingEnergy, AtTheEndProjectionXpbdLosesTheSwingAndNeverGainsIt) {
 }
 
 TEST(SwingEnergy, TheStartProjectionKeepsTheAtwoodMachinesExactAtEveryWheelMass) {
-  // Straight spans over a rotor: the start's gradients are the end's, so
-  // both projections give one answer, which test_atwood holds to its
-  // closed form; wheels from 1e-6 to 1e6 kg, one substep and ten.
+  // Straight spans over a rotor: the start's gradients are the end's. Under
+  // a constant acceleration a = (m2 - m1) g / (m1 + m2 + I / r^2) each
+  // substep adds a h to the velocity, so after t it is a t exactly, and
+  // the tensions are m1 (g + a) and m2 (g - a); wheels from 1e-6 to 1e6 kg,
+  // one substep and ten. Speeds to 1e-9, or to the rounding of positions
+  // near 3 m read over a substep (1e-15 x 3 m / h < 1e-12 m/s) where the
+  // 1e6 kg wheel leaves a at 1e-5 m/s^2.
   for (const double M : {1e-6, 2.0, 1e6})
     for (const auto& [n, it] : {std::pair{1, 1}, {10, 2}}) {
-      Atwood end(1.0, 2.0, n, it, M, Projection::End), start(1.0, 2.0, n, it, M, Projection::Start);
-      for (int f = 0; f < 30; ++f) {
-        end.world.step(1.0 / 60.0);
-        start.world.step(1.0 / 60.0);
-      }
-      const double v = std::abs(end.world.body(end.box2).v.y());
-      EXPECT_NEAR(start.world.body(start.box2).v.y(), end.world.body(end.box2).v.y(), 1e-12 * v) << M;
-      EXPECT_NEAR(start.world.body(start.wheel).omega.z(), end.world.body(end.wheel).omega.z(), 1e-12 * v / end.r) << M;
-      for (const int span : {0, 1}) {
-        const double T = end.cables.tension(end.cable, span);
-        EXPECT_NEAR(start.cables.tension(start.cable, span), T, 1e-12 * T) << M << " span " << span;
-      }
+      Atwood m(1.0, 2.0, n, it, M, Projection::Start);
+      for (int f = 0; f < 30; ++f) m.world.step(1.0 / 60.0);
+      const double a = m.acceleration(), t = m.world.time(), speed = 1e-9 * a * t + 1e-12;
+      EXPECT_NEAR(-m.world.body(m.box2).v.y(), a * t, speed) << M << " kg, " << n << " x " << it;
+      EXPECT_NEAR(-m.world.body(m.wheel).omega.z() * m.r, a * t, speed) << M << " kg, " << n << " x " << it;
+      EXPECT_NEAR(m.cables.tension(m.cable, 0), m.m1 * (m.g + a), 1e-9 * m.m1 * m.g) << M << " kg";
+      EXPECT_NEAR(m.cables.tension(m.cable, 1), m.m2 * (m.g - a), 1e-9 * m.m2 * m.g) << M << " kg";
     }
 }
 
@@ -193,8 +187,11 @@ TEST(SwingEnergy, ADoublePendulumKeepsItsEnergyAtTheStartProjection) {
       const double end = (total() - e0) / scale;
       std::printf("[ measured ] double pendulum, %s, %2d x %2d: energy after 10 s %+.2e of 2 m g L, largest change %.2e\n",
                   projection, n, it, end, worst);
-      if (std::string(projection) == "end") EXPECT_LT(end, -0.1) << n << " x " << it;  // XPBD's loss
-      else if (n == 10) EXPECT_LT(worst, 1e-2);
+      if (std::string(projection) == "end") {
+        EXPECT_LT(end, -0.1) << n << " x " << it;  // XPBD's loss
+      } else if (n == 10) {
+        EXPECT_LT(worst, 1e-2);
+      }
     }
 }
 

@@ -49,6 +49,13 @@ void DirectSolver::bodyMotion() {
   }
 }
 
+double DirectSolver::predictedValue(int r) const {
+  double value = C_[r];
+  for (int e = rows_[r].first_entry; e < rows_[r].first_entry + rows_[r].entry_count; ++e)
+    value += entries_[e].lin.dot(dx_[entries_[e].body]) + entries_[e].ang.dot(dphi_[entries_[e].body]);
+  return value;
+}
+
 void DirectSolver::readSolution() {
   const int n = static_cast<int>(rows_.size());
   for (int r = 0; r < n; ++r) dlambda_[r] = x_[rows_[r].position];
@@ -68,6 +75,8 @@ void DirectSolver::solveActiveSet(double tolerance) {
   released_ = -1;
   may_release_ = true;
   for (int pass = 0; pass < kMaxPasses; ++pass) {
+    const int let_go = released_;  // by the last pass: this one solves without it
+    released_ = -1;
     // The free rows' system: fixed rows move to the right-hand side, and
     // fixed and off rows become identity rows (x = their known dlambda).
     std::copy(full_.begin(), full_.end(), A.begin());
@@ -109,14 +118,10 @@ void DirectSolver::solveActiveSet(double tolerance) {
     // its stop while the cable it hangs from is tight over a handle on its
     // own stop: letting the stop go sank the stack into it, at every
     // landing of the gym at 1 x 2).
-    if (!released && released_ >= 0) {
-      const int r = released_;
-      released_ = -1;
-      double predicted = C_[r];
-      for (int e = rows_[r].first_entry; e < rows_[r].first_entry + rows_[r].entry_count; ++e)
-        predicted += entries_[e].lin.dot(dx_[entries_[e].body]) + entries_[e].ang.dot(dphi_[entries_[e].body]);
-      if ((lo_[r] == 0.0 && predicted < -tolerance) || (hi_[r] == 0.0 && predicted > tolerance)) {
-        state_[r] = State::Free;
+    if (let_go >= 0) {
+      const double predicted = predictedValue(let_go);
+      if ((lo_[let_go] == 0.0 && predicted < -tolerance) || (hi_[let_go] == 0.0 && predicted > tolerance)) {
+        state_[let_go] = State::Free;
         may_release_ = false;
         continue;
       }
@@ -132,9 +137,7 @@ void DirectSolver::solveActiveSet(double tolerance) {
         }
       } else if (state_[r] == State::Off) {
         // Would the others' motion violate this one-sided row?
-        double predicted = C_[r];
-        for (int e = rows_[r].first_entry; e < rows_[r].first_entry + rows_[r].entry_count; ++e)
-          predicted += entries_[e].lin.dot(dx_[entries_[e].body]) + entries_[e].ang.dot(dphi_[entries_[e].body]);
+        const double predicted = predictedValue(r);
         if ((hi_[r] == 0.0 && predicted > 0.0) || (lo_[r] == 0.0 && predicted < 0.0)) {
           state_[r] = State::Free;
           changed = true;
@@ -186,9 +189,7 @@ bool DirectSolver::factorAndSolve(double tolerance) {
       const int k = rows_[r].position;
       if (state_[r] != State::Free || !ldlt_.dropped(k)) continue;
       const bool rounding = !(ldlt_.pivotRatio(k) > kRoundingPivot);
-      double residual = C_[r] + alpha_[r] * lambda_[r];
-      for (int e = rows_[r].first_entry; e < rows_[r].first_entry + rows_[r].entry_count; ++e)
-        residual += entries_[e].lin.dot(dx_[entries_[e].body]) + entries_[e].ang.dot(dphi_[entries_[e].body]);
+      const double residual = predictedValue(r) + alpha_[r] * lambda_[r];
       if (std::abs(residual) > std::max(tolerance, 1e-6 * std::abs(C_[r]))) {
         if (rounding) {
           if (unmet < 0) unmet = r, unmet_residual = residual;

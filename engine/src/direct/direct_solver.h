@@ -162,6 +162,9 @@ class DirectSolver {
   bool releaseAlongDependency(int r, double residual);
   /// dlambda_ and the hubs' motion from the solution in x_.
   void readSolution();
+  /// Row r's value C + J (dx, dphi) once the bodies make the motion solved
+  /// (m or rad, linearized).
+  double predictedValue(int r) const;
   /// The free rows' residual of the system without the hubs' delta, in
   /// x_ (0 for the other unknowns), solved with the last factor and added.
   /// Returns the largest residual (m or rad) it corrected.
@@ -226,7 +229,7 @@ class DirectSolver {
   std::vector<double> C_, alpha_, lo_, hi_, lambda_, dlambda_;
   std::vector<double> x_, rhs_;  // right-hand side, then solution, in elimination order (every unknown)
   std::vector<char> keep_;        // per position: a row not to drop (factorAndSolve)
-  // The row the last pass let go along a dependency (releaseAlongDependency),
+  // The row this pass let go along a dependency (releaseAlongDependency),
   // or -1; and whether this solve may still let one go (not once a release
   // had to be undone: solveActiveSet).
   int released_ = -1;

@@ -131,10 +131,10 @@ TEST(Spool, ASpanWoundEmptyIsReportedWhenItsTiePointReachesTheRim) {
   // Issue 28, item 9: a motor winds a cable onto a 0.1 m pulley (a hybrid
   // end with 0.5 m stored) at 5 rad/s, hauling a slider on a rail along the
   // line that touches the pulley's bottom; 1 m of span runs out at
-  // 1 / (5 x 0.1) = 2 s, the slider's tie point at the rim. Nothing in the
-  // model stops the wheel there (it slips on and draws the tie point into
-  // it, DESIGN "Energy ledger", item 9), so the span running out is
-  // reported, once per running out and never before it, at every budget.
+  // 1 / (5 x 0.1) = 2 s, the slider's tie point at the rim, where it jams
+  // (test_jam.cpp; the unlimited motor then fights the rail and the jam),
+  // and the span running out is reported, once per running out and never
+  // before it, at every budget.
   // The cable's total length is kept throughout. (Gauss-Seidel's
   // unconverged solve lets the wheel pay cable back out as the tie point
   // nears the rim: the slider is drawn past the rim's lowest point with the
@@ -178,8 +178,8 @@ TEST(Spool, ASpanWoundEmptyIsReportedWhenItsTiePointReachesTheRim) {
 TEST(Spool, ALoadHauledUpIntoItsDrumIsReportedWhenItsTiePointIsDrawnInside) {
   // Issue 28, item 9, the crane's two-blocking: a capped motor (5 N m,
   // 5 rad/s) winds a 1 kg load hanging 1 m below a 0.1 m drum up to it;
-  // its tie point reaches the drum at 1 / (5 x 0.1) = 2 s, is carried round
-  // with the rim and drawn inside it, where no tangent from it exists:
+  // its tie point reaches the drum at 1 / (5 x 0.1) = 2 s and jams there
+  // (test_jam.cpp), the motor turning drum and load round together:
   // reported, once, within 0.2 s of reaching the rim. Gauss-Seidel at one
   // sweep a frame lags behind the motor and does not get there in 2.5 s.
   for (const test::Budget& b : test::kFourBudgets) {

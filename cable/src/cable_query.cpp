@@ -18,7 +18,7 @@ std::vector<CableEvent> CableSystem::takeEvents() {
 }
 
 bool CableSystem::jointEnabled(int c, int j) const {
-  return cables_[c].links[j].active && !cables_[c].joints[j].parted;
+  return cables_[c].links[j].active && !cables_[c].joints[j].parted && !cables_[c].joints[j].jammed;
 }
 
 double CableSystem::tension(int c, int j) const {
@@ -177,8 +177,10 @@ std::optional<std::string> CableSystem::invariantViolation() const {
 
 double CableSystem::totalLength(int c) const {
   double total = 0.0;
-  for (int j = 0; j < static_cast<int>(cables_[c].joints.size()); ++j) total += restLength(c, j);
-  for (const Link& l : cables_[c].links) total += l.stored;
+  const Cable& cable = cables_[c];
+  for (int j = 0; j < static_cast<int>(cable.joints.size()); ++j)
+    if (cable.links[j].active && !cable.joints[j].parted) total += cable.joints[j].rest_length;  // jammed too
+  for (const Link& l : cable.links) total += l.stored;
   return total;
 }
 

@@ -36,7 +36,7 @@ void forEachRun(const Cable& cable, F f) {
   for (int j = 0; j < joints; ++j)
     if (cable.links[j].active && !cable.links[j].slides()) {
       held = true;
-      if (!cable.joints[j].parted) f(j, false);
+      if (!cable.joints[j].parted && !cable.joints[j].jammed) f(j, false);
     }
   if (held || !cable.closed) return;
   for (int j = 0; j < joints; ++j)
@@ -139,6 +139,8 @@ void CableSystem::switchSlips(Cable& cable, double h) {
   for (int k = 0; k < n; ++k) {
     Link& link = cable.links[k];
     if (!link.active || !hasFriction(link) || cable.joints[k].parted) continue;
+    // A wheel holding a jammed tie point holds its cable too (cable_jam.cpp).
+    if (cable.joints[k].jammed || cable.joints[previousActive(cable, k)].jammed) continue;
     if (link.slipping) {
       // Sticks when the slip stopped, or will have by the next update at
       // its present deceleration (a substep's lag is a substep of friction

@@ -94,14 +94,15 @@ void CableSystem::updateJoint(Cable& cable, int c, int j, double time_s) {
   Link& from = cable.links[j];
   CableJoint& joint = cable.joints[j];
   Link& to = cable.links[joint.to];
-  if (!from.active || joint.parted || (!from.rolls() && !to.rolls())) return;
+  if (!from.active || joint.parted || joint.jammed || (!from.rolls() && !to.rolls())) return;
   const auto anchors = spanAnchors(from, world_.body(from.body), to, world_.body(to.body), joint.local_b);
   if (!anchors) {  // overlapping sections, or a tie point inside its wheel: keep the old anchors
     // A tie point drawn inside the wheel it is wound onto has run its span
-    // out too (a load hauled up into its drum; item 9).
+    // out too (a load hauled up into its drum; item 9), and jams there.
     if (from.rolls() != to.rolls() && !joint.ran_out)
       events_.push_back({CableEvent::Kind::SpanRunsOut, time_s, c, j, (from.rolls() ? from : to).orientation});
     joint.ran_out |= from.rolls() != to.rolls();
+    if (joint.ran_out) jam(cable, j);
     return;
   }
   // Alg. 1 l. 4-5 and Alg. 2 l. 8-9: the anchors turned with their bodies
@@ -132,6 +133,7 @@ void CableSystem::updateJoint(Cable& cable, int c, int j, double time_s) {
   }
   joint.local_a = anchors->first;
   joint.local_b = anchors->second;
+  if (joint.ran_out) jam(cable, j);
 }
 
 double CableSystem::restOfArc(const Cable& cable, int k, int j, double arc) const {
@@ -249,6 +251,7 @@ void CableSystem::mergeEmptyLinks(Cable& cable, int c, double time_s) {
     in.to = out.to;
     in.local_b = out.local_b;
     in.rest_length += out.rest_length + link.stored;
+    in.jammed = false;  // a jammed span merged away: its tie point is held by its ball, the cable reaches it
     link.unwindAll();
     link.active = false;
     link.side = std::numeric_limits<double>::quiet_NaN();  // measured afresh from the next update
@@ -267,7 +270,7 @@ void CableSystem::splitAtCrossedLinks(Cable& cable, int c, double time_s) {
   // centre changed sides of it, between its ends.
   const int n = static_cast<int>(cable.links.size());
   for (int j = 0; j < static_cast<int>(cable.joints.size()); ++j) {
-    if (!cable.links[j].active || cable.joints[j].parted) continue;
+    if (!cable.links[j].active || cable.joints[j].parted || cable.joints[j].jammed) continue;
     CableJoint& in = cable.joints[j];
     for (int k = (j + 1) % n; k != in.to; k = (k + 1) % n) {
       Link& mid = cable.links[k];

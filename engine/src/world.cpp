@@ -408,6 +408,7 @@ void World::step(double dt) {
     integrate(h);
     if (!non_finite_) checkFinite(time_ + h, false, h);  // born before any constraint spreads it
     for (auto& hook : hooks_) hook(*this, h);
+    if (rotors_dirty_) refreshRotors();  // a hook added a joint (a cable's jam) to a rotor
     const bool contacts = hasContacts();
     if (contacts) findContacts();
     else if (!contacts_.empty()) {  // the ground was removed

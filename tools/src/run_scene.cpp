@@ -116,9 +116,12 @@ std::string spanRunsOutMessage(const CableEvent& e, const Scene& scene) {
   std::snprintf(when, sizeof when, "%.6g", e.time_s);
   return "cable '" + cable.name + "' ran out between " + bodyName(world, a.body) + " (link " + std::to_string(e.link) +
          ") and " + bodyName(world, b.body) + " at t = " + when + " s: " + bodyName(world, (a.rolls() ? a : b).body) +
-         " wound more cable than the span held (a tie point reached its rim). Nothing in the model stops the wheel "
-         "there: it slips on, and the tie point is drawn into it. Stop the drive before, or give the span more "
-         "cable";
+         " wound more cable than the span held (a tie point reached its rim). " +
+         (cable.joints[e.link].jammed
+              ? "The tie point jammed there: a ball joint holds it to the wheel from now on (a hook block hauled "
+                "into its sheave), and the drive stalls against it or turns the two together"
+              : "The tie point is not at the rim (an unconverged solve): the wheel slips on the cable") +
+         ". Stop the drive before, or give the span more cable";
 }
 
 std::optional<std::string> stopReason(const Scene& scene) {

@@ -205,6 +205,9 @@ struct CableJoint {
   /// The span ran out: a wheel at an end wound more cable than it held
   /// (SpanRunsOut), and it has not held cable since.
   bool ran_out = false;
+  /// The span ran out between a wheel and a tie point, which jammed there
+  /// (CableSystem::jam): no row; a ball joint holds the tie point on the rim.
+  bool jammed = false;
 };
 
 /// A link switch, merge or split (paper Alg. 2), or a break, for logs.
@@ -213,8 +216,9 @@ struct CableJoint {
 /// a wrap it slides over, or a wheel whose stored cable ran out; the span
 /// beyond goes slack for good. SpanRunsOut: the span leaving `link` ran out
 /// of cable, a wheel at its end winding more than it held (a tie point
-/// reached the wheel's rim, or two wheels met; issue 28, item 9): the
-/// wheel slips on from there, which nothing in the model stops.
+/// reached the wheel's rim, or two wheels met; issue 28, item 9). A tie
+/// point at the rim jams there (CableJoint::jammed: a ball joint to the
+/// wheel); otherwise the wheel slips on the cable.
 struct CableEvent {
   enum class Kind { HybridRunsOut, HybridRollsAgain, Merge, Split, Break, RunsOff, SpanRunsOut };
   Kind kind;
@@ -357,8 +361,8 @@ class CableSystem {
   /// measures between the last update's anchors, which a wheel a solve
   /// turned by radians has carried round its rim.
   double lengthNow(int c, int j) const;
-  /// Whether joint j of cable c currently exists (its link is active and
-  /// it has not parted).
+  /// Whether joint j of cable c currently exists (its link is active, it
+  /// has not parted, and it is not jammed: CableJoint::jammed).
   bool jointEnabled(int c, int j) const;
   /// Slip speed (m/s) of link k of cable c: cable sliding forward (towards
   /// link k + 1) over the body or through the hole, measured as the last
@@ -379,11 +383,11 @@ class CableSystem {
   std::optional<std::string> invariantViolation() const;
   /// The first update() after which invariantViolation() held something
   /// (checked after every update, in every build), or nothing. Reachable
-  /// from a scene, not only from a bug: a load hauled into the last wheel
-  /// of hilbert3 run past its duration (issue 29, item 4), and before
-  /// issue 29 a direct solve that had to turn a wheel radians (its span
-  /// ends then swung round the rim). Runners stop there, as at
-  /// World::firstNonFinite().
+  /// from a scene, not only from a bug: before issue 29, a load hauled
+  /// into the last wheel of hilbert3 run past its duration (dragged on
+  /// through the wheels; it jams now) and a direct solve that had to turn
+  /// a wheel radians (its span ends then swung round the rim). Runners
+  /// stop there, as at World::firstNonFinite().
   const std::optional<CableBreach>& firstBreach() const { return breach_; }
   /// Sets the rest length (m, >= 0) of joint j of cable c: a winch paying
   /// out or hauling in cable, or slack given after set-up.
@@ -427,6 +431,9 @@ class CableSystem {
   /// do not roll); nullopt without tangents.
   std::optional<std::pair<double, double>> pendingPayOut(const Cable& cable, int j) const;
   void updateJoint(Cable& cable, int c, int j, double time_s);
+  /// Span j ran out at time_s: a tie point drawn into its wheel jams there
+  /// (cable_jam.cpp). Returns whether it jammed.
+  bool jam(Cable& cable, int j);
   /// The winch's substep (WinchDef) of `h` (s) starting at `start_s`: what
   /// it paid out stalled in the last solve, then what it reels in this one.
   void reel(Cable& cable, double start_s, double h);
@@ -493,6 +500,7 @@ class CableSystem {
   World& world_;
   std::vector<Cable> cables_;
   std::vector<CableEvent> events_;
+  std::vector<std::pair<BodyId, BodyId>> jams_;  // (wheel, tie point's body) held by a ball joint
   std::vector<BodyId> rolling_bodies_;  // bodies with a rolling or hybrid link
   std::vector<Quat> last_q_;            // per body: orientation at the last update
   std::vector<double> turn_;            // per body, rad (measureTurns)

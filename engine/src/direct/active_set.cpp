@@ -63,6 +63,29 @@ void DirectSolver::readSolution() {
   bodyMotion();
 }
 
+void DirectSolver::warmStartCaps() {
+  // A motor stalled against a brake through a rigid chain: both drive rows
+  // free make the first pass's system dependent and inconsistent (the
+  // motor's speed and the brake's are tied), and whether rounding shows
+  // the dependency decides the pass: dropped, the drives' lambdas of 1e8
+  // are capped in the next pass; not dropped (once in a second with
+  // hilbert3's 10 g wheels), the brake held the far drum still while the
+  // motor wound on, and the next substep kicked every wheel to 105 rad/s.
+  // A row that ended the last iteration at its cap starts this one there,
+  // as active-set methods warm-start (Nocedal and Wright, sec. 16.5): the
+  // system is then consistent from the first pass. solveActiveSet lets it
+  // off its cap again if the solve asks for less.
+  std::fill(warm_.begin(), warm_.end(), 0);
+  for (std::size_t r = 0; r < rows_.size(); ++r) {
+    if (at_cap_[r] == 0 || state_[r] != State::Free) continue;
+    const double cap = at_cap_[r] > 0 ? hi_[r] : lo_[r];
+    if (!std::isfinite(cap) || cap == 0.0) continue;
+    state_[r] = State::Fixed;
+    dlambda_[r] = cap - lambda_[r];
+    warm_[r] = 1;
+  }
+}
+
 void DirectSolver::solveActiveSet(double tolerance) {
   const int n = static_cast<int>(rows_.size());
   std::fill(full_.begin(), full_.end(), 0.0);
@@ -74,6 +97,7 @@ void DirectSolver::solveActiveSet(double tolerance) {
   std::vector<double>& A = ldlt_.values();
   released_ = -1;
   may_release_ = true;
+  settled_ = false;
   for (int pass = 0; pass < kMaxPasses; ++pass) {
     const int let_go = released_;  // by the last pass: this one solves without it
     released_ = -1;
@@ -126,6 +150,23 @@ void DirectSolver::solveActiveSet(double tolerance) {
         continue;
       }
     }
+    // A row held at its cap by warmStartCaps is freed again (once) if the
+    // solve asks for less: the residual C + J dx + alpha lambda grows with
+    // lambda, so at the upper cap a positive one asks for less. The motion
+    // the cap made then says nothing about the other rows (a drive reversed
+    // at its limit pushed on into it): solve again before judging them.
+    bool uncapped = false;
+    for (int r = 0; r < n; ++r) {
+      if (!warm_[r] || state_[r] != State::Fixed) continue;
+      const double total = lambda_[r] + dlambda_[r];
+      const double residual = predictedValue(r) + alpha_[r] * total;
+      if ((total >= hi_[r] && residual > tolerance) || (total <= lo_[r] && residual < -tolerance)) {
+        state_[r] = State::Free;
+        warm_[r] = 0;
+        uncapped = true;
+      }
+    }
+    if (uncapped) continue;
     for (int r = 0; r < n; ++r) {
       if (state_[r] == State::Free) {
         const double total = lambda_[r] + dlambda_[r];
@@ -160,7 +201,10 @@ void DirectSolver::solveActiveSet(double tolerance) {
       for (int r = 0; r < n; ++r)
         if (state_[r] == State::Fixed && (lambda_[r] + dlambda_[r] == 0.0) && (lo_[r] == 0.0 || hi_[r] == 0.0))
           state_[r] = State::Free;
-    if (!changed) break;
+    if (!changed) {
+      settled_ = true;
+      break;
+    }
   }
 }
 

@@ -271,6 +271,9 @@ void DirectSolver::build(World& world) {
   keep_.assign(unknowns, 0);
   state_.assign(n, State::Free);
   pulled_.assign(n, false);
+  at_cap_.assign(n, 0);
+  at_cap_start_.assign(n, 0);
+  warm_.assign(n, 0);
   drive_of_.assign(n, -1);
   mirror_.assign(n, nullptr);
   dir_.assign(n, Vec6::Zero());
@@ -322,6 +325,9 @@ void DirectSolver::prepare(World& world, double h, bool again) {
   // otherwise a long taut cable would join in one span per pass.
   if (!again)
     for (std::size_t r = 0; r < rows_.size(); ++r) pulled_[r] = lambda_[r] < 0.0;
+  // A solve done again starts from the caps the first one started from.
+  if (again) at_cap_ = at_cap_start_;
+  else at_cap_start_ = at_cap_;
   std::fill(lambda_.begin(), lambda_.end(), 0.0);
   first_iteration_ = true;
   if (world.settings().projection == Projection::Start) linearizeAtStart(world, h);
@@ -409,6 +415,7 @@ bool DirectSolver::iterate(World& world, double h) {
   const double scale = std::min(1.0, (h / kToleranceStep) * (h / kToleranceStep));
   const double tolerance = world.settings().tolerance * scale;
   if (converged(tolerance)) return false;
+  warmStartCaps();
   solveActiveSet(tolerance > 0.0 ? tolerance : 1e-10 * scale);
   for (std::size_t i = 0; i < frames_.size(); ++i) {
     BodyState& b = *frames_[i].state;
@@ -422,6 +429,16 @@ bool DirectSolver::iterate(World& world, double h) {
     BodyState& b = *frames_[e.body].state;
     b.impulse += dlambda_[e.row] * e.lin;
     b.angular_impulse += dlambda_[e.row] * e.ang;
+  }
+  // The caps the next iteration starts from: a settled active set's. One
+  // that ran out of passes clamps whatever it had (a motor spinning a
+  // 512-wheel chain up included, and starting there threw the chain about)
+  // and leaves the caps as they were.
+  for (std::size_t r = 0; r < rows_.size() && settled_; ++r) {
+    const double total = lambda_[r] + dlambda_[r];
+    const bool cap_hi = std::isfinite(hi_[r]) && hi_[r] != 0.0 && total >= hi_[r];
+    const bool cap_lo = std::isfinite(lo_[r]) && lo_[r] != 0.0 && total <= lo_[r];
+    at_cap_[r] = cap_hi ? 1 : cap_lo ? -1 : 0;
   }
   for (std::size_t r = 0; r < rows_.size(); ++r) {
     const double dl = dlambda_[r];

@@ -148,6 +148,9 @@ class DirectSolver {
   /// direction, when a limit is touched and the drive is rigid;
   /// `first_clamped` is the row of the joint's first clamped row.
   void driveAgainstLimit(int first_clamped, const joint_rows::JointRowSet& set);
+  /// Rows that ended the last iteration (or substep) at a force or torque
+  /// cap (a capped drive, a winch's pull) start this one held at it.
+  void warmStartCaps();
   /// Solves the active set; leaves dlambda_ and the bodies' dx, dphi.
   /// `tolerance` (m or rad): what counts as a met row.
   void solveActiveSet(double tolerance);
@@ -236,6 +239,12 @@ class DirectSolver {
   bool may_release_ = true;
   std::vector<State> state_;
   std::vector<char> pulled_;  // per row: its lambda was < 0 when the last substep ended
+  // Per row: +1 (-1) when its lambda ended the last iteration at a finite,
+  // non-zero upper (lower) bound, else 0 (warmStartCaps); and whether this
+  // solve started it held there.
+  std::vector<signed char> at_cap_, at_cap_start_;  // ... and as this substep started
+  std::vector<char> warm_;
+  bool settled_ = false;  // the last solveActiveSet ended with no change, not out of passes
   std::vector<int> drive_of_;  // per limit row: the row of its coordinate's drive, or -1
   std::vector<double*> mirror_;
   std::vector<Eigen::Matrix<double, 6, 1>> dir_;  // joint_rows::Vec6

@@ -110,7 +110,9 @@ nlohmann::ordered_json hilbertSceneJson(const HilbertSpec& spec) {
   doc["name"] = name;
   std::string description =
       "Paper Fig. 18 / Fig. 1 right, written by `reeve generate hilbert --level " + std::to_string(spec.level) +
-      (spec.slack_m > 0.0 ? " --slack " + json(spec.slack_m).dump() : std::string()) + "`: " + std::to_string(n) +
+      (spec.slack_m > 0.0 ? " --slack " + json(spec.slack_m).dump() : std::string()) +
+      (braked != (spec.level < 3) ? (braked ? " --end brake" : " --end load") : std::string()) +
+      (spec.wheel_kg != 1.0 ? " --wheel-kg " + json(spec.wheel_kg).dump() : std::string()) + "`: " + std::to_string(n) +
       " wheels at the points of a level-" + std::to_string(spec.level) +
       " 3D Hilbert curve, one cable along it. Each wheel is hinged to the world at its centre with its axis normal "
       "to the curve's turn there, so its cable plane holds the directions of both spans that meet it; where the "

@@ -10,7 +10,10 @@ namespace reeve {
 
 int generateHilbertCommand(const GenerateHilbertOptions& options) {
   namespace fs = std::filesystem;
-  const machines::HilbertSpec spec = machines::hilbertSceneSpec(options.level, options.slack_m);
+  machines::HilbertSpec spec = machines::hilbertSceneSpec(options.level, options.slack_m);
+  if (options.end == "brake") spec.brake_torque_Nm = 10.0;
+  if (options.end == "load") spec.brake_torque_Nm = 0.0;
+  if (options.wheel_kg > 0.0) spec.wheel_kg = options.wheel_kg;
   const nlohmann::ordered_json doc = machines::hilbertSceneJson(spec);
   const fs::path out = options.output.empty() ? fs::path(doc["name"].get<std::string>() + ".json") : options.output;
   if (fs::exists(out) && !options.force) {

@@ -88,6 +88,12 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 4));
   hilbert_cmd->add_option("--slack", hilbert.slack_m, "Slack of every span, m (default 0: taut)")
       ->check(CLI::NonNegativeNumber);
+  hilbert_cmd->add_option("--end", hilbert.end,
+                          "brake (a drum braked with 10 N m, the paper's) or load (10 kg, 3 m down); "
+                          "default: brake up to level 2, load from level 3")
+      ->check(CLI::IsMember({"brake", "load"}));
+  hilbert_cmd->add_option("--wheel-kg", hilbert.wheel_kg, "Mass of every wheel, kg (default 1)")
+      ->check(CLI::PositiveNumber);
   hilbert_cmd->add_option("-o,--output", hilbert.output,
                           "Output scene (default hilbert<level>.json, or hilbert<level>_loose.json with slack)");
   hilbert_cmd->add_flag("--force", hilbert.force, "Overwrite an existing output file");

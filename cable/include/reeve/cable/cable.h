@@ -431,7 +431,7 @@ class CableSystem {
   /// do not roll); nullopt without tangents.
   std::optional<std::pair<double, double>> pendingPayOut(const Cable& cable, int j) const;
   void updateJoint(Cable& cable, int c, int j, double time_s);
-  /// Span j ran out at time_s: a tie point drawn into its wheel jams there
+  /// Span j ran out: a tie point drawn into its wheel jams there
   /// (cable_jam.cpp). Returns whether it jammed.
   bool jam(Cable& cable, int j);
   /// The winch's substep (WinchDef) of `h` (s) starting at `start_s`: what

@@ -101,9 +101,7 @@ TEST_F(Cli, TheBrakedLevel3HilbertMachineIsOneCommandAwayAndRunsAtThePapersBudge
   std::string header, row, last;
   std::getline(csv, header);
   while (std::getline(csv, row)) last = row;
-  std::vector<std::string> names, values;
-  for (std::stringstream h(header); std::getline(h, row, ',');) names.push_back(row);
-  for (std::stringstream v(last); std::getline(v, row, ',');) values.push_back(row);
+  const std::vector<std::string> names = split(header), values = split(last);
   ASSERT_EQ(names.size(), values.size());
   int spans = 0;
   for (std::size_t i = 0; i < names.size(); ++i) {

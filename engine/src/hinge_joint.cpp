@@ -54,7 +54,7 @@ double hingeAngle(const HingeJoint& j, const Quat& q_a, const Quat& q_b) {
   return joint_rows::signedAngle(q_b * j.frame.ref_b, q_a * j.frame.ref_a, q_a * j.frame.axis_a);
 }
 
-void prepareHingeJoint(HingeJoint& j, const BodyState& a, const BodyState& b, double h) {
+void prepareHingeJoint(HingeJoint& j, const BodyState& a, const BodyState& b, double h, double braking_inverse_inertia) {
   j.impulse_point.setZero();
   j.impulse_axis.setZero();
   joint_rows::DriveSpec drive{kindOf(j.drive.mode), j.drive.target, j.drive.max_torque, j.drive.stiffness,
@@ -63,11 +63,6 @@ void prepareHingeJoint(HingeJoint& j, const BodyState& a, const BodyState& b, do
     joint_rows::prepareCoordinate(j.angle, drive, 0.0, 0.0, h);
     return;
   }
-  // An angle drive brakes in time for the inertia of both bodies about the
-  // axis through the anchor (exact for one body on a world hinge).
-  const Vec3 u = a.q * j.frame.axis_a;
-  const double inverse_inertia = joint_rows::inverseInertiaAbout(a, j.frame.anchor_a, u) +
-                                 joint_rows::inverseInertiaAbout(b, j.frame.anchor_b, u);
   // The angle at the substep's start, through whole turns: a target of
   // 8 rad is 8 rad, not 8 - 2 pi.
   const double start = hingeAngleTotal(j, a.q_prev, b.q_prev);
@@ -77,13 +72,13 @@ void prepareHingeJoint(HingeJoint& j, const BodyState& a, const BodyState& b, do
     // 2 e_0 + e_- (joint_rows::DriveSpec::error_offset). Before the first
     // substep, e_- from the bodies' relative spin.
     const double e0 = start - j.drive.target;
-    const double e_minus = std::isnan(j.spring_previous) ? e0 - h * u.dot(a.omega - b.omega)
+    const double e_minus = std::isnan(j.spring_previous) ? e0 - h * (a.q * j.frame.axis_a).dot(a.omega - b.omega)
                                                          : j.spring_previous - j.drive.target;
     j.spring_previous = start;
     drive.stiffness *= 0.25;
     drive.error_offset = 2.0 * e0 + e_minus;
   }
-  joint_rows::prepareCoordinate(j.angle, drive, start, inverse_inertia, h);
+  joint_rows::prepareCoordinate(j.angle, drive, start, braking_inverse_inertia, h);
 }
 
 void solveHingeJoint(HingeJoint& j, BodyState& a, BodyState& b, double h) {

@@ -141,9 +141,24 @@ void prepareCoordinate(JointCoordinate& c, const DriveSpec& drive, double start,
         c.drive_compliance = 1.0 / (k_eff * h * h);
         break;
       }
+      // Time-optimal in steps of h: the fastest speed v this substep from
+      // which the drive, slowing by at most a h a substep (a = max_effort /
+      // inertia), still stops at the target, moving h v, h (v - a h), ...,
+      // h (v - m a h), then 0 (the last speed at most a h: stopped in one
+      // substep). That covers h ((m + 1) v - a h m (m + 1) / 2) = |e|, the
+      // m full steps fitting where a h^2 m (m + 1) / 2 <= |e|. Near the
+      // target (m = 0) it is |e| / h, met in one substep. The continuous
+      // sqrt(2 a |e|) overshot by up to a h^2 / 2 per stop.
       double speed = std::abs(e) / h;
-      if (!unlimited)
-        speed = std::min(speed, std::sqrt(2.0 * drive.max_effort * inverse_inertia * std::abs(e)));
+      if (!unlimited) {
+        const double a = drive.max_effort * inverse_inertia;
+        if (a > 0.0) {
+          const double m = std::floor(0.5 * (std::sqrt(1.0 + 8.0 * std::abs(e) / (a * h * h)) - 1.0));
+          speed = std::abs(e) / (h * (m + 1.0)) + 0.5 * a * h * m;
+        } else {
+          speed = 0.0;  // nothing it can move
+        }
+      }
       c.drive_step = std::copysign(speed * h, e);
       break;
     }

@@ -62,7 +62,8 @@ double prismaticSlide(const PrismaticJoint& j, const Vec3& x_a, const Quat& q_a,
   return d.dot(q_b * j.axis_b);
 }
 
-void preparePrismaticJoint(PrismaticJoint& j, const BodyState& a, const BodyState& b, double h) {
+void preparePrismaticJoint(PrismaticJoint& j, const BodyState& a, const BodyState& b, double h,
+                           double braking_inverse_mass) {
   j.impulse_linear.setZero();
   j.impulse_angular.setZero();
   joint_rows::DriveSpec drive{kindOf(j.drive.mode), j.drive.target, j.drive.max_force, j.drive.stiffness,
@@ -71,8 +72,6 @@ void preparePrismaticJoint(PrismaticJoint& j, const BodyState& a, const BodyStat
     joint_rows::prepareCoordinate(j.slide, drive, 0.0, 0.0, h);
     return;
   }
-  // The orientation is locked, so a position drive brakes in time for the
-  // two masses alone: 1/m_eff = 1/m_a + 1/m_b.
   const double start = prismaticSlide(j, a.x_prev, a.q_prev, b.x_prev, b.q_prev);
   if (j.drive.isTrapezoidalSpring()) {
     // The trapezoidal rule, as a hinge's (prepareHingeJoint). Before the
@@ -91,7 +90,7 @@ void preparePrismaticJoint(PrismaticJoint& j, const BodyState& a, const BodyStat
     drive.stiffness *= 0.25;
     drive.error_offset = 2.0 * e0 + e_minus;
   }
-  joint_rows::prepareCoordinate(j.slide, drive, start, a.inv_mass + b.inv_mass, h);
+  joint_rows::prepareCoordinate(j.slide, drive, start, braking_inverse_mass, h);
 }
 
 void solvePrismaticJoint(PrismaticJoint& j, BodyState& a, BodyState& b, double h) {

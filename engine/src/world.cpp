@@ -214,6 +214,7 @@ bool World::rotorHingeChanged() const {
 
 void World::refreshRotors() {
   rotors_dirty_ = false;
+  buildJointGraph();
   rotors_for_ = settings_.solver;
   for (BodyId id = 0; id < bodyCount(); ++id) {
     BodyState& b = bodies_[id];
@@ -508,8 +509,10 @@ void World::integrate(double h) {
 }
 
 void World::solvePositions(double h, bool again) {
-  for (HingeJoint& j : hinges_) prepareHingeJoint(j, body(j.a), body(j.b), h);
-  for (PrismaticJoint& j : prismatics_) preparePrismaticJoint(j, body(j.a), body(j.b), h);
+  for (int i = 0; i < static_cast<int>(hinges_.size()); ++i)
+    prepareHingeJoint(hinges_[i], body(hinges_[i].a), body(hinges_[i].b), h, brakingInverseInertia(i));
+  for (int i = 0; i < static_cast<int>(prismatics_.size()); ++i)
+    preparePrismaticJoint(prismatics_[i], body(prismatics_[i].a), body(prismatics_[i].b), h, brakingInverseMass(i));
   for (SphericalJoint& j : sphericals_) prepareSphericalJoint(j);
   for (FixedJoint& j : fixeds_) prepareFixedJoint(j);
   for (DistanceConstraint& c : distances_) c.lambda = 0.0;

@@ -120,8 +120,11 @@ HingeJoint makeHingeJoint(const HingeDef& def, const BodyState& a, const BodySta
 
 /// Starts a substep of `h` s, after integration: clears the lambdas and
 /// impulses and sets up the drive from the poses at the start of the
-/// substep (x_prev, q_prev; see JointCoordinate and joint_rows.h).
-void prepareHingeJoint(HingeJoint& joint, const BodyState& a, const BodyState& b, double h);
+/// substep (x_prev, q_prev; see JointCoordinate and joint_rows.h). A
+/// capped angle drive brakes in time for `braking_inverse_inertia`
+/// (1 / (kg m^2) about its axis: World::brakingInverseInertia).
+void prepareHingeJoint(HingeJoint& joint, const BodyState& a, const BodyState& b, double h,
+                       double braking_inverse_inertia);
 
 /// One Gauss-Seidel visit over a substep of `h` s: the point and axis rows
 /// (alpha~ = compliance / h^2) as one block, solved together with each

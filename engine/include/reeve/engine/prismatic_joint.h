@@ -88,9 +88,10 @@ PrismaticJoint makePrismaticJoint(const PrismaticDef& def, const BodyState& a,
 
 /// Starts a substep of `h` s, after integration: clears the lambdas and
 /// impulses and sets up the drive from the poses at the start of the
-/// substep (x_prev, q_prev).
+/// substep (x_prev, q_prev). A capped position drive brakes in time for
+/// `braking_inverse_mass` (1 / kg: World::brakingInverseMass).
 void preparePrismaticJoint(PrismaticJoint& joint, const BodyState& a, const BodyState& b,
-                           double h);
+                           double h, double braking_inverse_mass);
 
 /// One Gauss-Seidel visit over a substep of `h` s: the orientation and
 /// cross-rail rows (alpha~ = compliance / h^2) as one block, solved together

@@ -304,6 +304,28 @@ class World {
   /// turns them back into free bodies for Gauss-Seidel (SolverKind), when
   /// the solver or the bodies and joints changed since the last step.
   void refreshRotors();
+  /// Rebuilds joint_graph_ from the joints (refreshRotors).
+  void buildJointGraph();
+  /// The moving bodies joined to `start` by joints other than edge
+  /// `skip_edge` of joint_graph_, stopping at static and kinematic ones
+  /// (ground); nullopt if they reach `other` (a closed loop). Empty when
+  /// start is ground.
+  std::optional<std::vector<BodyId>> driveAssembly(BodyId start, BodyId other, int skip_edge) const;
+  /// 1 / (kg m^2): driveAssembly(start, ...) as one rigid body, about the
+  /// world axis `u` through `anchor`; 0 for none, -1 for a closed loop.
+  double assemblyInverseInertia(BodyId start, BodyId other, int skip_edge, const Vec3& anchor, const Vec3& u) const;
+  /// 1 / kg: driveAssembly's total mass; 0 for none, -1 for a closed loop.
+  double assemblyInverseMass(BodyId start, BodyId other, int skip_edge) const;
+  /// What a capped angle drive on hinge `hinge` brakes in time for
+  /// (prepareHingeJoint): the inverse inertias about its axis of the two
+  /// sides it turns apart, each side every body joined to it by other
+  /// joints, carried as if welded (an upper bound on the inertia, so the
+  /// drive never brakes too late for what its joints carry; cables are
+  /// not followed). 1 / (kg m^2); the two bodies alone in a closed loop.
+  double brakingInverseInertia(int hinge) const;
+  /// The same for a capped position drive on prismatic joint
+  /// `prismatic`: 1 / kg, the two sides' total masses.
+  double brakingInverseMass(int prismatic) const;
   /// A rotor's hinge made compliant since refreshRotors(): no rotor then.
   bool rotorHingeChanged() const;
   /// The hinge wrenches of rotors, which have no hinge rows (direct solver).
@@ -386,6 +408,9 @@ class World {
   WorldEnergy flows_;         // the summed work and losses (energy.h); its state fields unused
   std::unique_ptr<DirectSolver> direct_;
   bool rotors_dirty_ = true;  // bodies or joints added since refreshRotors()
+  // Per body, its joints' other bodies and edge numbers (hinges, then
+  // prismatics, sphericals, fixed joints, each in order); world excluded.
+  std::vector<std::vector<std::pair<BodyId, int>>> joint_graph_;
   SolverKind rotors_for_ = SolverKind::GaussSeidel;
 };
 

@@ -73,15 +73,20 @@ void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double a
   length += first.payOut(grad[0]) + last.payOut(grad[n - 1]);
   const double C = length - path.rest_length;
   if (C <= 0.0 && path.lambda == 0.0) return;  // slack and never pulled
+  // The angular gradient of vector v at point i (SolvePoint::moment: a
+  // rolling end's part along its axle is the cable it pays out per radian).
+  const auto moment = [&](size_t i, const Vec3& v) {
+    return i == 0 ? first.moment(v) : i + 1 == n ? last.moment(v) : Vec3(arm[i].cross(v));
+  };
   // w = J_c M^-1 J_f^T: the length's rate of change per unit of lambda,
   // summed over bodies, pairs of points on one body interacting.
   double w = 0.0;
   for (size_t i = 0; i < n; ++i) {
     const BodyState& bi = bodies(path.points[i].body);
-    const Vec3 ti = arm[i].cross(grad[i]);
+    const Vec3 ti = moment(i, grad[i]);
     for (size_t j = 0; j < n; ++j) {
       if (path.points[j].body != path.points[i].body) continue;
-      w += bi.inv_mass * grad[i].dot(force[j]) + ti.dot(bi.applyInvInertia(arm[j].cross(force[j])));
+      w += bi.inv_mass * grad[i].dot(force[j]) + ti.dot(bi.applyInvInertia(moment(j, force[j])));
     }
   }
   const DampedRow row = dampedRow(C, alpha_tilde, alpha_tilde * h * path.damping, length - path.start_length);
@@ -91,11 +96,12 @@ void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double a
   path.lambda += dl;
   for (size_t i = 0; i < n; ++i) {
     BodyState& b = bodies(path.points[i].body);
-    const Vec3 turn = dl * b.applyInvInertia(arm[i].cross(force[i]));
+    const Vec3 torque = moment(i, force[i]);
+    const Vec3 turn = dl * b.applyInvInertia(torque);
     b.x += dl * b.inv_mass * force[i];
     rotateBy(b.q, turn);
     b.impulse += dl * force[i];
-    b.angular_impulse += dl * arm[i].cross(force[i]);
+    b.angular_impulse += dl * torque;
     b.solve_turn += turn;
   }
 }

@@ -150,6 +150,11 @@ void DirectSolver::solveActiveSet(double tolerance) {
         continue;
       }
     }
+    // A row this pass let go or capped along a dependency: the motion of a
+    // solve that could not meet the dependent row says nothing about the
+    // others (judged by it, the spans of a chain between a motor and a
+    // brake that disagreed were all let go as pushing: hilbert2 at 1 x 1).
+    if (released) continue;
     // A row held at its cap by warmStartCaps is freed again (once) if the
     // solve asks for less: the residual C + J dx + alpha lambda grows with
     // lambda, so at the upper cap a positive one asks for less. The motion
@@ -263,30 +268,35 @@ bool DirectSolver::releaseAlongDependency(int r, double residual) {
   // (A z = 0, z_r = 1) the lambdas shift with no motion at all; pulling
   // row r its way, t z with t = -sign(residual), brings some one-sided
   // rows to their bound 0 (a stop that would have to pull, a cable that
-  // would have to push). The first to get there is not needed: it lets go
-  // and the next pass solves without it (the ratio test of a pivoting
-  // method). Without this a stack on its stop, a cable tight over it and a
-  // drive pulling that cable made a dependent set that kept the stop and
-  // dropped the cable, for ever (the gym's press at one substep).
+  // would have to push), or a capped row to its cap (a brake that must
+  // slip). The first to get there is not needed as it was: it is fixed at
+  // that bound and the next pass solves without it (the ratio test of a
+  // pivoting method). Without this a stack on its stop, a cable tight over
+  // it and a drive pulling that cable made a dependent set that kept the
+  // stop and dropped the cable, for ever (the gym's press at one substep);
+  // and a motor winding a rigid chain onto a braked drum, both drives'
+  // rows free, held the drum still while the motor wound on, wherever
+  // rounding hid the dependency (hilbert3 braked with 10 g wheels).
   std::fill(x_.begin(), x_.end(), 0.0);
   x_[rows_[r].position] = 1.0;
   ldlt_.solveTransposed(x_.data());
   const double t = residual > 0.0 ? -1.0 : 1.0;
   int best = -1;
-  double best_ratio = kInf;
+  double best_ratio = kInf, best_bound = 0.0;
   for (int j = 0; j < static_cast<int>(rows_.size()); ++j) {
-    if (j == r || state_[j] != State::Free) continue;
+    if (state_[j] != State::Free) continue;
     const double total = lambda_[j] + dlambda_[j], shift = t * x_[rows_[j].position];
-    double ratio;
-    if (lo_[j] == 0.0 && shift < 0.0 && total > 0.0) ratio = total / -shift;
-    else if (hi_[j] == 0.0 && shift > 0.0 && total < 0.0) ratio = -total / shift;
+    double ratio, bound;
+    if (shift < 0.0 && std::isfinite(lo_[j]) && total > lo_[j]) ratio = (total - lo_[j]) / -shift, bound = lo_[j];
+    else if (shift > 0.0 && std::isfinite(hi_[j]) && total < hi_[j]) ratio = (hi_[j] - total) / shift, bound = hi_[j];
     else continue;
-    if (ratio < best_ratio) best_ratio = ratio, best = j;
+    if (j == r && bound == 0.0) continue;  // the unmet row itself may reach its cap, not let go
+    if (ratio < best_ratio) best_ratio = ratio, best = j, best_bound = bound;
   }
   if (best < 0) return false;
   state_[best] = State::Fixed;
-  dlambda_[best] = -lambda_[best];
-  released_ = best;
+  dlambda_[best] = best_bound - lambda_[best];
+  released_ = best_bound == 0.0 ? best : -1;  // a cap is kept: only a row let go is checked again
   return true;
 }
 

@@ -14,6 +14,10 @@ namespace {
 
 bool listed(const World& world, BodyId id) { return direct::listed(world.body(id)); }
 
+// A cable this much of its length short of its rest length is taut by
+// rounding (evaluatePath).
+constexpr double kTautRounding = 1e-12;
+
 using joint_rows::JointRowSet;
 using joint_rows::kInf;
 using joint_rows::Vec6;
@@ -40,8 +44,11 @@ SolvePoint DirectSolver::endPoint(const World& world, const PathPoint& point, in
   // turned back with its wheel: the tangent point is geometry, not
   // material (the wheel may have turned a radian under it).
   if (at_start_ && !point.roll_axis.isZero()) {
+    const Quat& q = world.body(point.body).q_pred;
     SolvePoint p;
-    p.arm = world.body(point.body).q_pred * point.local;
+    p.arm = q * point.local;
+    p.axis = q * point.roll_axis;
+    p.lever = q * (point.local - point.roll_centre);
     return p;
   }
   if (point.roll_axis.isZero()) {
@@ -67,16 +74,16 @@ void DirectSolver::evaluateSpan(const World& world, int r, const PathPoint& p0, 
   int e = row.first_entry;
   if (s0 >= 0) {
     entries_[e].lin = -u;
-    entries_[e].ang = u.cross(a0);
+    entries_[e].ang = e0.moment(-u);
     ++e;
   }
   if (s1 >= 0) {
     if (s1 == s0) {  // both ends on one body
       entries_[e - 1].lin.setZero();
-      entries_[e - 1].ang += a1.cross(u);
+      entries_[e - 1].ang += e1.moment(u);
     } else {
       entries_[e].lin = u;
-      entries_[e].ang = a1.cross(u);
+      entries_[e].ang = e1.moment(u);
     }
   }
   for (e = row.first_entry; e < row.first_entry + row.entry_count; ++e) weigh(entries_[e]);
@@ -102,10 +109,17 @@ void DirectSolver::evaluatePath(const World& world, int r, double h) {
     C_[r] -= c.rest_length;
     compliance = c.compliance, damping = c.damping, start_length = c.start_length - c.rest_length;
   }
-  // Taut (C >= 0: a cable exactly at its rest length touches too), or
-  // already pulling: in the active set.
+  // Taut (C >= 0: a cable exactly at its rest length touches too, and so
+  // does one short of it by rounding, 1e-12 of its length), or already
+  // pulling: in the active set. A scene that starts a cable taut sets its
+  // rest lengths from the geometry, leaving C at rounding either side;
+  // spans counted slack by it joined one per pass, as the pass before
+  // pulled their far ends, and a motor starting a taut 512-wheel chain ran
+  // out of passes (hilbert3 braked at 10 x 2: spans slack, the wheels
+  // thrown about for 10 frames).
   const bool unilateral = hi_[r] == 0.0;
-  state_[r] = !unilateral || C_[r] >= 0.0 || lambda_[r] < 0.0 || pulled_[r] ? State::Free : State::Off;
+  const bool taut = C_[r] >= -kTautRounding * length_[r];
+  state_[r] = !unilateral || taut || lambda_[r] < 0.0 || pulled_[r] ? State::Free : State::Off;
   // Damping (correction.h: dampedRow) on a row in the set, as Gauss-Seidel
   // damps a row taut or pulling; its gradient is C's, so the system keeps
   // its matrix J W J^T and only C and alpha~ change. start_length is the
@@ -160,7 +174,7 @@ void DirectSolver::evaluateRun(const World& world, int r, const PathPoint* point
     if (entry[i] >= 0) {
       const Vec3 grad = prev_u - u;
       entries_[entry[i]].lin += grad;
-      entries_[entry[i]].ang += arm[i].cross(grad);
+      entries_[entry[i]].ang += i == 0 ? ends[0].moment(grad) : i + 1 == count ? ends[1].moment(grad) : arm[i].cross(grad);
     }
     prev_u = u;
   }

@@ -40,9 +40,31 @@ struct SolvePoint {
   Vec3 lever = Vec3::Zero();  ///< a rolling end's, from the circle's centre, world (m)
   Vec3 axis = Vec3::Zero();   ///< a rolling end's world unit axle; zero for a fixed point
   double turn = 0.0;          ///< the solve's turn about `axis` (rad)
-  /// The path's length (m) that the turn wound off, for the length's
-  /// gradient `grad` at this point (dC/dp, unit-free).
-  double payOut(const Vec3& grad) const { return turn == 0.0 ? 0.0 : turn * axis.dot(lever.cross(grad)); }
+  /// The cable a rolling end pays out per radian turned about its axle
+  /// (m), for the length's gradient `grad` at this point (dC/dp): the
+  /// lever's moment axis . (lever x grad) over grad's share in the cable
+  /// plane, r for a span leaving the rim tangentially at any angle out of
+  /// the plane. The moment alone (r cos phi for a span phi out of the
+  /// plane) is what the body-fixed point's gradient gave; the cable update
+  /// winds r per radian, so the two disagreed and a free wheel passed on
+  /// T cos phi of an out-of-plane span's T: hoisting a load that swung
+  /// out of its sheave's plane made energy (issue 29). With r, tension is
+  /// the same on both sides of a free frictionless wheel, as a rope riding
+  /// its groove's flank out to r / cos phi has it (Clairaut's relation for
+  /// a geodesic on a surface of revolution: rho cos(psi) stays r).
+  double perRadian(const Vec3& grad) const {
+    const double moment = axis.dot(lever.cross(grad));
+    const double in_plane = (grad - axis.dot(grad) * axis).norm();
+    return in_plane > 1e-9 * grad.norm() ? moment * grad.norm() / in_plane : moment;
+  }
+  /// The path's length (m) that the turn wound off, for `grad`.
+  double payOut(const Vec3& grad) const { return turn == 0.0 ? 0.0 : turn * perRadian(grad); }
+  /// dC/d(rotation) of the body (m) for `grad` at this point: arm x grad,
+  /// at a rolling end with its part along the axle perRadian(grad).
+  Vec3 moment(const Vec3& grad) const {
+    const Vec3 m = arm.cross(grad);
+    return axis.isZero() ? m : Vec3(m + axis * (perRadian(grad) - axis.dot(lever.cross(grad))));
+  }
 };
 /// `point` on `body`. `in_solve`: the body's solve_turn is this solve's
 /// (from the start of a position solve until the next substep's

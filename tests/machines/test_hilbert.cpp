@@ -160,9 +160,10 @@ TEST(Hilbert, Level3BrakedAsInThePaperTurnsEveryWheelAtTheMotorsSpeed) {
   // non-finite (still, until a cap the last solve ended at became where
   // the next starts: DirectSolver::warmStartCaps; without it, 190 rad/s
   // and 4 kN here). At the paper's 1 x 10, with 1 kg and 10 g wheels,
-  // over 10 s, and at 10 x 2 with 1 kg wheels over 2 s (which failed
-  // until a dependent row left unmet could bring a capped row to its cap:
-  // DirectSolver::releaseAlongDependency): every wheel at the motor's rate
+  // over 10 s, and at 10 x 2 over 2 s (which failed until a cable short of
+  // its rest length by rounding counted as taut: DirectSolver::
+  // evaluatePath; started from rest, its spans joined the active set one
+  // per pass and the passes ran out): every wheel at the motor's rate
   // to 1e-9 after the first 0.1 s, the motor giving the brake's 10 N m to
   // 1e-6, every span pulling the brake's 40 N to 1e-6, out of its wheels'
   // planes or not (a span's end pays out r a radian: SolvePoint::
@@ -171,7 +172,7 @@ TEST(Hilbert, Level3BrakedAsInThePaperTurnsEveryWheelAtTheMotorsSpeed) {
     double wheel_kg;
     int substeps, iterations, frames;
   };
-  for (const Case c : {Case{1.0, 1, 10, 600}, Case{0.01, 1, 10, 600}, Case{1.0, 10, 2, 120}}) {
+  for (const Case c : {Case{1.0, 1, 10, 600}, Case{0.01, 1, 10, 600}, Case{1.0, 10, 2, 120}, Case{0.01, 10, 2, 120}}) {
     SCOPED_TRACE(std::to_string(c.wheel_kg) + " kg wheels, " + std::to_string(c.substeps) + " x " +
                  std::to_string(c.iterations));
     machines::HilbertSpec spec = machines::hilbertSceneSpec(3, 0.0);

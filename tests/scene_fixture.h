@@ -7,6 +7,7 @@
 
 #include "reeve/cable/cable.h"
 #include "reeve/scene/scene.h"
+#include "solver_budgets.h"
 
 namespace reeve::test {
 
@@ -32,6 +33,13 @@ inline int cable(const Scene& s, const std::string& name) {
     if (all[c].name == name) return c;
   ADD_FAILURE() << "no cable " << name;
   return 0;
+}
+
+/// A scene's "solver" member at budget `b` (60 frames a second), for
+/// scenes written as JSON in a test.
+inline std::string solverJson(const Budget& b) {
+  return R"("solver": {"frame_rate_hz": 60, "substeps": )" + std::to_string(b.substeps) + R"(, "iterations": )" +
+         std::to_string(b.iterations) + R"(, "method": ")" + solverMethodName(b.solver) + R"("})";
 }
 
 /// One frame of the scene.

@@ -25,9 +25,7 @@ constexpr double kSpan = 1.0;     // m, from the idler's rim down to the tie poi
 Scene haulIntoIdler(const test::Budget& b, double idler, double load, double torque) {
   const std::string json = R"({
   "name": "jam", "duration_s": 8,
-  "solver": {"frame_rate_hz": 60, "substeps": )" + std::to_string(b.substeps) +
-                           R"(, "iterations": )" + std::to_string(b.iterations) + R"(, "method": ")" +
-                           solverMethodName(b.solver) + R"("},
+  )" + test::solverJson(b) + R"(,
   "bodies": [
     {"name": "drum", "shape": {"type": "cylinder", "radius_m": 0.1, "half_length_m": 0.02}, "mass_kg": 1,
      "position_m": [0, 0, 0]},

@@ -28,9 +28,7 @@ constexpr double kG = 9.81;
 Scene hoist(const test::Budget& b, const Vec3& swing) {
   const std::string json = R"({
   "name": "hoist", "duration_s": 4,
-  "solver": {"frame_rate_hz": 60, "substeps": )" + std::to_string(b.substeps) +
-                           R"(, "iterations": )" + std::to_string(b.iterations) + R"(, "method": ")" +
-                           solverMethodName(b.solver) + R"("},
+  )" + test::solverJson(b) + R"(,
   "bodies": [
     {"name": "ceiling", "shape": {"type": "box", "half_extents_m": [0.1, 0.1, 0.1]}, "static": true,
      "position_m": [-1, 3.5, 0]},

@@ -1,6 +1,7 @@
 // What a capped angle or position drive must stop: the bodies its joint
 // turns or slides, joined to either side by other joints, as one rigid
-// body (prepareCoordinate brakes in time for max_effort over it).
+// body, and the loads hung from them by pulling cables (prepareCoordinate
+// brakes in time for max_effort over it).
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -26,49 +27,49 @@ void World::buildJointGraph() {
   for (const FixedJoint& j : fixeds_) join(j.a, j.b);
 }
 
-std::optional<std::vector<BodyId>> World::driveAssembly(BodyId start, BodyId other, int skip_edge) const {
+bool World::driveAssembly(BodyId start, BodyId other, int skip_edge) const {
   // Static and kinematic bodies are ground: the assembly stops at them.
+  // Scratch kept between calls: no allocation per substep once warm.
   const auto grounded = [&](BodyId id) { return id == kWorldBody || mass_[id] == 0.0; };
-  std::vector<BodyId> found;
-  if (grounded(start)) return found;
-  std::vector<char> seen(bodies_.size(), 0);
-  seen[start] = 1;
-  found.push_back(start);
-  for (std::size_t i = 0; i < found.size(); ++i) {
-    for (const auto& [next, edge] : joint_graph_[found[i]]) {
-      if (edge == skip_edge || seen[next] || grounded(next)) continue;
-      if (next == other) return std::nullopt;  // a closed loop: the two sides do not turn apart
-      seen[next] = 1;
-      found.push_back(next);
+  assembly_.clear();
+  assembly_member_.assign(bodies_.size(), 0);
+  if (grounded(start)) return true;
+  assembly_member_[start] = 1;
+  assembly_.push_back(start);
+  for (std::size_t i = 0; i < assembly_.size(); ++i) {
+    for (const auto& [next, edge] : joint_graph_[assembly_[i]]) {
+      if (edge == skip_edge || assembly_member_[next] || grounded(next)) continue;
+      if (next == other) return false;  // a closed loop: the two sides do not turn apart
+      assembly_member_[next] = 1;
+      assembly_.push_back(next);
     }
   }
-  return found;
+  return true;
 }
 
 double World::assemblyInverseInertia(BodyId start, BodyId other, int skip_edge, const Vec3& anchor,
                                      const Vec3& u) const {
-  const auto bodies = driveAssembly(start, other, skip_edge);
-  if (!bodies) return -1.0;
+  if (!driveAssembly(start, other, skip_edge)) return -1.0;
   const auto lever2 = [&](const Vec3& p) {  // squared distance of p from the axis
     const Vec3 r = p - anchor;
     return r.squaredNorm() - r.dot(u) * r.dot(u);
   };
-  std::vector<char> carried(bodies_.size(), 0);
   double inertia = 0.0;
-  for (const BodyId id : *bodies) {
+  for (const BodyId id : assembly_) {
     const BodyState& b = body(id);
     const Vec3 u_local = b.q.conjugate() * u;
     inertia += u_local.dot(b.inertia * u_local) + mass_[id] * lever2(b.x);
-    carried[id] = 1;
   }
   // A body hung from the assembly by a pulling cable (the last substep's
   // lambda) swings behind it, but over a slew it follows: its mass counts
   // at the lever of the point it hangs from (a crane's load at its boom
   // tip, a winch's load at its drum's radius), the largest if several.
-  std::vector<double> hung(bodies_.size(), 0.0);
+  hung_lever2_.assign(bodies_.size(), 0.0);
   const auto hang = [&](const BodyId from, const Vec3& at, const BodyId load) {
-    if (from == kWorldBody || load == kWorldBody || !carried[from] || carried[load] || mass_[load] == 0.0) return;
-    hung[load] = std::max(hung[load], lever2(at));
+    if (from == kWorldBody || load == kWorldBody || !assembly_member_[from] || assembly_member_[load] ||
+        mass_[load] == 0.0)
+      return;
+    hung_lever2_[load] = std::max(hung_lever2_[load], lever2(at));
   };
   for (const DistanceConstraint& c : distances_) {
     if (!c.enabled || !(c.lambda < 0.0)) continue;
@@ -83,15 +84,14 @@ double World::assemblyInverseInertia(BodyId start, BodyId other, int skip_edge, 
       hang(e.body, body(e.body).toWorld(e.local), s.body);
     }
   }
-  for (BodyId id = 0; id < bodyCount(); ++id) inertia += mass_[id] * hung[id];
+  for (BodyId id = 0; id < bodyCount(); ++id) inertia += mass_[id] * hung_lever2_[id];
   return inertia > 0.0 ? 1.0 / inertia : 0.0;
 }
 
 double World::assemblyInverseMass(BodyId start, BodyId other, int skip_edge) const {
-  const auto bodies = driveAssembly(start, other, skip_edge);
-  if (!bodies) return -1.0;
+  if (!driveAssembly(start, other, skip_edge)) return -1.0;
   double mass = 0.0;
-  for (const BodyId id : *bodies) mass += mass_[id];
+  for (const BodyId id : assembly_) mass += mass_[id];
   return mass > 0.0 ? 1.0 / mass : 0.0;
 }
 
@@ -106,8 +106,10 @@ double World::brakingInverseInertia(int hinge) const {
     const double w_b = assemblyInverseInertia(j.b, j.a, hinge, b.toWorld(j.frame.anchor_b), u);
     if (w_a >= 0.0 && w_b >= 0.0) return w_a + w_b;
   }
-  // Unused, or a closed loop: the two bodies alone (exact for one body on a world hinge).
-  return joint_rows::inverseInertiaAbout(a, j.frame.anchor_a, u) + joint_rows::inverseInertiaAbout(b, j.frame.anchor_b, u);
+  // Unused, or a closed loop: the two bodies alone (exact for one body on
+  // a world hinge).
+  return joint_rows::inverseInertiaAbout(a, j.frame.anchor_a, u) +
+         joint_rows::inverseInertiaAbout(b, j.frame.anchor_b, u);
 }
 
 double World::brakingInverseMass(int prismatic) const {

@@ -54,7 +54,8 @@ double hingeAngle(const HingeJoint& j, const Quat& q_a, const Quat& q_b) {
   return joint_rows::signedAngle(q_b * j.frame.ref_b, q_a * j.frame.ref_a, q_a * j.frame.axis_a);
 }
 
-void prepareHingeJoint(HingeJoint& j, const BodyState& a, const BodyState& b, double h, double braking_inverse_inertia) {
+void prepareHingeJoint(HingeJoint& j, const BodyState& a, const BodyState& b, double h,
+                       double braking_inverse_inertia) {
   j.impulse_point.setZero();
   j.impulse_axis.setZero();
   joint_rows::DriveSpec drive{kindOf(j.drive.mode), j.drive.target, j.drive.max_torque, j.drive.stiffness,

@@ -174,7 +174,8 @@ void DirectSolver::evaluateRun(const World& world, int r, const PathPoint* point
     if (entry[i] >= 0) {
       const Vec3 grad = prev_u - u;
       entries_[entry[i]].lin += grad;
-      entries_[entry[i]].ang += i == 0 ? ends[0].moment(grad) : i + 1 == count ? ends[1].moment(grad) : arm[i].cross(grad);
+      const bool end = i == 0 || i + 1 == count;  // a rolling end pays out per radian (SolvePoint::moment)
+      entries_[entry[i]].ang += end ? ends[i == 0 ? 0 : 1].moment(grad) : Vec3(arm[i].cross(grad));
     }
     prev_u = u;
   }

@@ -306,11 +306,11 @@ class World {
   void refreshRotors();
   /// Rebuilds joint_graph_ from the joints (refreshRotors).
   void buildJointGraph();
-  /// The moving bodies joined to `start` by joints other than edge
-  /// `skip_edge` of joint_graph_, stopping at static and kinematic ones
-  /// (ground); nullopt if they reach `other` (a closed loop). Empty when
-  /// start is ground.
-  std::optional<std::vector<BodyId>> driveAssembly(BodyId start, BodyId other, int skip_edge) const;
+  /// Sets assembly_ (and assembly_member_) to the moving bodies joined to
+  /// `start` by joints other than edge `skip_edge` of joint_graph_,
+  /// stopping at static and kinematic ones (ground); false if they reach
+  /// `other` (a closed loop). Empty when start is ground.
+  bool driveAssembly(BodyId start, BodyId other, int skip_edge) const;
   /// 1 / (kg m^2): driveAssembly(start, ...) as one rigid body, about the
   /// world axis `u` through `anchor`; 0 for none, -1 for a closed loop.
   double assemblyInverseInertia(BodyId start, BodyId other, int skip_edge, const Vec3& anchor, const Vec3& u) const;
@@ -411,6 +411,10 @@ class World {
   // Per body, its joints' other bodies and edge numbers (hinges, then
   // prismatics, sphericals, fixed joints, each in order); world excluded.
   std::vector<std::vector<std::pair<BodyId, int>>> joint_graph_;
+  // driveAssembly's and assemblyInverseInertia's scratch, kept between calls.
+  mutable std::vector<BodyId> assembly_;
+  mutable std::vector<char> assembly_member_;  // per body: in assembly_
+  mutable std::vector<double> hung_lever2_;    // per body: m^2, hung from assembly_ at that lever squared
   SolverKind rotors_for_ = SolverKind::GaussSeidel;
 };
 

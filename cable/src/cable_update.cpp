@@ -284,11 +284,21 @@ void CableSystem::splitAtCrossedLinks(Cable& cable, int c, double time_s) {
         continue;
       Link& from = cable.links[j];
       Link& to = cable.links[in.to];
+      // The cable wraps the section on the side the span met it from, not
+      // the side the link was given: a span met with the centre on its left
+      // (side < 0) goes round it counter-clockwise. The given side would
+      // take it round the far side, stretched, or (longer than the cable)
+      // let the wheel through it (DESIGN "A span wraps a wheel on the side
+      // it meets it from").
+      const double met = !std::isnan(before) && before != 0.0 ? before : side;
+      const int given = mid.orientation;
+      if (met != 0.0) mid.orientation = met < 0.0 ? 1 : -1;
       mid.active = true;  // so that the tangents below see it rolling
       const auto first = spanAnchors(from, world_.body(from.body), mid, world_.body(mid.body), Vec3::Zero());
       const auto second = spanAnchors(mid, world_.body(mid.body), to, world_.body(to.body), in.local_b);
       if (!first || !second) {
         mid.active = false;
+        mid.orientation = given;
         continue;
       }
       // Moving the span's ends to the new tangent points pays cable in or
@@ -303,6 +313,7 @@ void CableSystem::splitAtCrossedLinks(Cable& cable, int c, double time_s) {
       const double rest = in.rest_length - rest_from - rest_to - rest_wrap;
       if (rest < 0.0) {  // a slack span swept deep into the section: not enough cable to wrap it
         mid.active = false;
+        mid.orientation = given;
         continue;
       }
       if (from.rolls()) windLink(cable, j, j, onto_from);

@@ -35,7 +35,10 @@ enum class LinkType {
 ///   default: the wrapped arc for interior links, 0 for cable ends. A spool
 ///   is a rolling or hybrid end link with stored cable.
 /// - `active` false: an interior rolling link the cable does not touch yet;
-///   it is split in when a span crosses its section (paper sec. 4.2).
+///   it is split in when a span crosses its section (paper sec. 4.2),
+///   wrapped on the side the span met it from: `orientation` is then
+///   taken from the geometry (a span met with the centre on its left goes
+///   round counter-clockwise), whatever was given.
 /// - `mu`: friction coefficient between cable and body, on interior rolling
 ///   links and pinholes (beyond the paper). Unset: a rolling link never
 ///   slips (the paper's rolling), a pinhole is frictionless. While the
@@ -165,10 +168,12 @@ struct Link {
   /// sticks.
   double slip_speed = 0.0;
   double slip_speed_before = 0.0;  ///< in the substep before (m/s)
-  /// While inactive: the signed distance (m, + to the left in the cable
-  /// plane) of the section's centre from the span passing over it, at the
-  /// last update; NaN before there is one. A span that jumps past the
-  /// whole section in one substep changes its sign (the swept split).
+  /// While inactive: the signed distance (m, + where the centre lies to
+  /// the right of the span in the cable plane) of the section's centre
+  /// from the span passing over it, at the last update; NaN before there
+  /// is one. A span that jumps past the whole section in one substep
+  /// changes its sign (the swept split); its sign before the split is the
+  /// side the span met the section from, which sets `orientation` there.
   double side = std::numeric_limits<double>::quiet_NaN();
 
   /// True when the cable wraps the body's section here (rolling, or a

@@ -29,8 +29,9 @@ std::optional<std::pair<Vec3, Vec3>> spanAnchors(const Link& from, const BodySta
 
 /// Where the straight span from world point `p` to `q` passes the link's
 /// section centre, seen in the link's plane: {signed distance of the
-/// centre from the span's line (m, + where the centre lies to the right of p -> q), parameter in
-/// [0, 1] of the span's point nearest it (unclamped)}.
+/// centre from the span's line (m, + where the centre lies to the right
+/// of p -> q), parameter in [0, 1] of the span's point nearest it
+/// (unclamped)}.
 std::pair<double, double> spanSide(const BodyState& body, const Vec3& p, const Vec3& q);
 
 /// Arc (m) paid out into a span when its anchor on a rolling link moves

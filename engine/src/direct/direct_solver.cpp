@@ -3,9 +3,11 @@
 // (active_set.cpp, hubs.cpp), move the bodies.
 #include "direct_solver.h"
 
+
 #include <algorithm>
 #include <cassert>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseCore>
 
@@ -14,6 +16,10 @@
 
 namespace reeve {
 namespace {
+
+// A body turned further than this (rad) within one solve takes XPBD's
+// steps (newtonShift).
+constexpr double kNewtonTurn = 0.2;
 
 using joint_rows::kInf;
 using joint_rows::Vec6;
@@ -284,6 +290,8 @@ void DirectSolver::build(World& world) {
   frames_.assign(m, BodyFrame{});
   dx_.assign(m, Vec3::Zero());
   dphi_.assign(m, Vec3::Zero());
+  for (auto* v : {&moved_x_, &moved_phi_, &shift_x_, &shift_phi_}) v->assign(m, Vec3::Zero());
+  stiffness_.assign(m, Mat3::Zero());
 }
 
 void DirectSolver::prepare(World& world, double h, bool again) {
@@ -328,7 +336,10 @@ void DirectSolver::prepare(World& world, double h, bool again) {
   // A solve done again starts from the caps the first one started from.
   if (again) at_cap_ = at_cap_start_;
   else at_cap_start_ = at_cap_;
+  if (!again) last_lambda_ = lambda_;
   std::fill(lambda_.begin(), lambda_.end(), 0.0);
+  std::fill(moved_x_.begin(), moved_x_.end(), Vec3::Zero());
+  std::fill(moved_phi_.begin(), moved_phi_.end(), Vec3::Zero());
   first_iteration_ = true;
   if (world.settings().projection == Projection::Start) linearizeAtStart(world, h);
   else start_.clear();
@@ -388,9 +399,92 @@ bool DirectSolver::converged(double tolerance) const {
     const double residual = C_[r] + alpha_[r] * lambda_[r];
     // A row held at a bound is met when it asks to go further.
     if ((lambda_[r] >= hi_[r] && residual <= 0.0) || (lambda_[r] <= lo_[r] && residual >= 0.0)) continue;
-    if (std::abs(residual) > tolerance) return false;
+    if (!(std::abs(residual) <= tolerance)) return false;  // NaN is not met
   }
   return true;
+}
+
+void DirectSolver::newtonShift() {
+  // Newton's step on M (x - x~) = J(x)^T lambda, C(x) + alpha~ lambda = 0
+  // (XPBD eq. 8-9) from the iterate x, lambda:
+  //   [M - K  -J^T] [dx     ]     [g           ]   g = M (x - x~) - J^T lambda,
+  //   [J   alpha~ ] [dlambda] = - [C + alpha~ l],  K = sum lambda d2C/dx2.
+  // XPBD drops g (and K): it moves along each iterate's gradient, and
+  // converges to a projection along gradients near x~, not the implicit
+  // one (DESIGN "Newton's residual and geometric stiffness"). Eliminating
+  // dx = W~ (J^T dlambda - g), W~ = (M + |K|)^-1, leaves the usual system
+  // with C shifted by J dx0, dx0 = -W~ g, and dx0 added to the motion.
+  // |K| (K's eigenvalues made positive, rotation only: Andrews et al.
+  // 2017) changes how fast it converges, not where: a body whose rows'
+  // lambda turns with it (a light block under a heavy hook) then stops
+  // flipping from frame to frame. The first iteration has lambda = 0, so
+  // its K is the last substep's, where K exceeds the inertia alone: below
+  // that the plain step contracts and is more accurate. A body this solve
+  // turned by more than kNewtonTurn takes XPBD's steps: its rows' gradients
+  // at the end say little of the impulses that turned it (a tie point on a
+  // 1 cm spool going round ten radians a substep; Newton's residual there
+  // made energy).
+  const std::size_t m = frames_.size();
+  for (std::size_t i = 0; i < m; ++i) {
+    shift_x_[i].setZero();
+    shift_phi_[i].setZero();
+    stiffness_[i].setZero();
+  }
+  const bool warm = first_solve_ && last_lambda_.size() == lambda_.size();
+  const std::vector<double>& stiff = warm ? last_lambda_ : lambda_;
+  for (const Entry& e : entries_) {  // -J^T lambda and K, per body
+    const double l = lambda_[e.row];
+    if (l != 0.0) {
+      shift_x_[e.body] -= l * e.lin;
+      shift_phi_[e.body] -= l * e.ang;
+    }
+    if (stiff[e.row] != 0.0) stiffness_[e.body] += stiff[e.row] * e.curvature;
+  }
+  shift_size_ = 0.0;
+  for (std::size_t i = 0; i < m; ++i) {
+    BodyFrame& f = frames_[i];
+    const BodyState& b = *f.state;
+    if (moved_phi_[i].norm() > kNewtonTurn) {  // XPBD's steps, W and no residual
+      if (f.inv_axial > 0.0) f.inv_axial = b.rotor_axis.dot(b.inv_inertia * b.rotor_axis);
+      shift_x_[i].setZero();
+      shift_phi_[i].setZero();
+      continue;
+    }
+    Vec3 g_x = shift_x_[i], g_phi = shift_phi_[i];
+    if (f.inv_mass > 0.0) g_x += moved_x_[i] / f.inv_mass;
+    if (f.inv_axial > 0.0) {  // a rotor: its turn about its axle alone
+      const double inertia = 1.0 / b.rotor_axis.dot(b.inv_inertia * b.rotor_axis);
+      const double g_u = f.axle.dot(moved_phi_[i]) * inertia + f.axle.dot(g_phi);
+      // A tie point on it (a spool run out) turns with it; a rolling end's
+      // tangent point does not, and adds nothing.
+      double k = std::abs(f.axle.dot(stiffness_[i] * f.axle));
+      if (warm && k <= inertia) k = 0.0;
+      f.inv_axial = 1.0 / (inertia + k);
+      shift_x_[i].setZero();
+      shift_phi_[i] = -f.axle * (f.inv_axial * g_u);
+    } else {
+      const Mat3 inertia = f.R * b.inertia * f.R.transpose();
+      g_phi += inertia * moved_phi_[i];
+      if (hub_of_[i] < 0 && f.inv_mass > 0.0 && !stiffness_[i].isZero()) {
+        Eigen::SelfAdjointEigenSolver<Mat3> eig;
+        eig.computeDirect(stiffness_[i]);
+        Vec3 k = eig.eigenvalues().cwiseAbs();
+        for (int a = 0; a < 3 && warm; ++a) {
+          const Vec3 v = eig.eigenvectors().col(a);
+          if (k[a] <= v.dot(inertia * v)) k[a] = 0.0;
+        }
+        f.inv_inertia = (inertia + eig.eigenvectors() * k.asDiagonal() * eig.eigenvectors().transpose()).inverse();
+      }
+      shift_x_[i] = -f.inv_mass * g_x;
+      shift_phi_[i] = -(f.inv_inertia * g_phi);
+    }
+    shift_size_ = std::max({shift_size_, shift_x_[i].norm(), shift_phi_[i].norm()});
+  }
+  for (Entry& e : entries_) {
+    weigh(e);
+    if (!shift_x_[e.body].isZero() || !shift_phi_[e.body].isZero())  // none at the first iteration
+      C_[e.row] += e.lin.dot(shift_x_[e.body]) + e.ang.dot(shift_phi_[e.body]);
+  }
 }
 
 bool DirectSolver::iterate(World& world, double h) {
@@ -405,7 +499,9 @@ bool DirectSolver::iterate(World& world, double h) {
                 entries_.begin() + row.first_entry);
     }
   }
+  first_solve_ = first_iteration_;
   first_iteration_ = false;
+  newtonShift();
   // A residual C left in a substep h is a force error of about C m / h^2:
   // the tolerance, met at h = 1/600 s (4e-5 N per kg), shrinks with h^2
   // below that, or at 10,000 substeps of a 60 Hz frame a 1:100 Atwood
@@ -414,10 +510,14 @@ bool DirectSolver::iterate(World& world, double h) {
   constexpr double kToleranceStep = 1.0 / 600.0;  // s
   const double scale = std::min(1.0, (h / kToleranceStep) * (h / kToleranceStep));
   const double tolerance = world.settings().tolerance * scale;
-  if (converged(tolerance)) return false;
+  if (converged(tolerance) && shift_size_ <= tolerance) return false;
   warmStartCaps();
   solveActiveSet(tolerance > 0.0 ? tolerance : 1e-10 * scale);
   for (std::size_t i = 0; i < frames_.size(); ++i) {
+    dx_[i] += shift_x_[i];
+    dphi_[i] += shift_phi_[i];
+    moved_x_[i] += dx_[i];
+    moved_phi_[i] += dphi_[i];
     BodyState& b = *frames_[i].state;
     // The exact rotation: a light wheel may turn radians in one solve, and
     // the first-order rotateBy() would turn it less than the solve asked.

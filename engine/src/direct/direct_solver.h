@@ -8,7 +8,10 @@
 //   (J W J^T + alpha~) dlambda = -C - alpha~ lambda,   dx = W J^T dlambda,
 // J the rows' gradients (one 6-vector [linear; angular] per row and moving
 // body), W each body's inverse mass and world inverse inertia, alpha~ =
-// compliance / h^2 (SCA 2020 eq. 4 for all rows at once). Gauss-Seidel
+// compliance / h^2 (SCA 2020 eq. 4 for all rows at once), W with the
+// rows' geometric stiffness and C and dx with Newton's residual (the
+// motion the bodies made against the impulses they took: newtonShift), so
+// that the iterations converge to the implicit step. Gauss-Seidel
 // passes a correction one row further per sweep and stalls where light
 // bodies sit between heavy ones (a light wheel between a heavy load and its
 // axle, a long cable over many wheels); the joint solve does not care about
@@ -90,6 +93,9 @@ class DirectSolver {
     int row = 0;
     Vec3 lin = Vec3::Zero(), ang = Vec3::Zero();    // dC / d(position, rotation)
     Vec3 wlin = Vec3::Zero(), wang = Vec3::Zero();  // W times those
+    // d2C / d(rotation)^2 (m): sum over the row's points on the body of
+    // sym(g r^T) - (g . r) I, g the point's dC/dp and r its arm.
+    Mat3 curvature = Mat3::Zero();
   };
   struct Row {
     Source source;
@@ -260,6 +266,18 @@ class DirectSolver {
   };
   std::vector<BodyFrame> frames_;
   std::vector<Vec3> dx_, dphi_;
+  // Per body: what this solve moved it in the substep so far, and the
+  // motion dx0 = -W~ g of Newton's residual (newtonShift).
+  std::vector<Vec3> moved_x_, moved_phi_, shift_x_, shift_phi_;
+  std::vector<double> last_lambda_;  // per row: lambda as the last substep ended
+  bool first_solve_ = false;          // this iteration is the substep's first
+  std::vector<Mat3> stiffness_;  // per body: sum of lambda d2C/dtheta^2 this iteration
+  double shift_size_ = 0.0;      // the largest |dx0|, |dphi0| (m, rad) of newtonShift
+  /// Newton's residual g = M (x - x~) - J^T lambda and the rows' geometric
+  /// stiffness K (DESIGN "Newton's residual and geometric stiffness"): sets
+  /// each body's W~ = (M + |K|)^-1 in frames_ and the entries, its motion
+  /// dx0 = -W~ g, and shifts C_ by J dx0.
+  void newtonShift();
 };
 
 }  // namespace reeve

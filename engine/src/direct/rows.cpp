@@ -12,6 +12,13 @@
 namespace reeve {
 namespace {
 
+// d2C / d(rotation)^2 of a point at arm r whose dC/dp is g: the second
+// order of C along g as the body turns by theta, g . (theta x (theta x r)) / 2.
+Mat3 curvatureAt(const Vec3& g, const Vec3& r) {
+  const Mat3 gr = g * r.transpose();
+  return 0.5 * (gr + gr.transpose()) - g.dot(r) * Mat3::Identity();
+}
+
 bool listed(const World& world, BodyId id) { return direct::listed(world.body(id)); }
 
 // A cable this much of its length short of its rest length is taut by
@@ -75,15 +82,18 @@ void DirectSolver::evaluateSpan(const World& world, int r, const PathPoint& p0, 
   if (s0 >= 0) {
     entries_[e].lin = -u;
     entries_[e].ang = e0.moment(-u);
+    entries_[e].curvature = curvatureAt(-u, a0);
     ++e;
   }
   if (s1 >= 0) {
     if (s1 == s0) {  // both ends on one body
       entries_[e - 1].lin.setZero();
       entries_[e - 1].ang += e1.moment(u);
+      entries_[e - 1].curvature += curvatureAt(u, a1);
     } else {
       entries_[e].lin = u;
       entries_[e].ang = e1.moment(u);
+      entries_[e].curvature = curvatureAt(u, a1);
     }
   }
   for (e = row.first_entry; e < row.first_entry + row.entry_count; ++e) weigh(entries_[e]);
@@ -160,6 +170,7 @@ void DirectSolver::evaluateRun(const World& world, int r, const PathPoint* point
   for (int e = row.first_entry; e < row.first_entry + row.entry_count; ++e) {
     entries_[e].lin.setZero();
     entries_[e].ang.setZero();
+    entries_[e].curvature.setZero();
   }
   double length = 0.0;
   Vec3 prev_u = Vec3::Zero();
@@ -176,6 +187,7 @@ void DirectSolver::evaluateRun(const World& world, int r, const PathPoint* point
       entries_[entry[i]].lin += grad;
       const bool end = i == 0 || i + 1 == count;  // a rolling end pays out per radian (SolvePoint::moment)
       entries_[entry[i]].ang += end ? ends[i == 0 ? 0 : 1].moment(grad) : Vec3(arm[i].cross(grad));
+      entries_[entry[i]].curvature += curvatureAt(grad, arm[i]);
     }
     prev_u = u;
   }
@@ -235,11 +247,13 @@ int DirectSolver::evaluateJoint(World& world, int r, double h) {
     if (a_moves) {
       entries_[e].lin = -sp;
       entries_[e].ang = sw - set.r_a.cross(sp);
+      entries_[e].curvature = curvatureAt(-sp, set.r_a);
       ++e;
     }
     if (b_moves) {
       entries_[e].lin = sp;
       entries_[e].ang = set.r_b.cross(sp) - sw;
+      entries_[e].curvature = curvatureAt(sp, set.r_b);
     }
     for (e = rows_[r].first_entry; e < rows_[r].first_entry + rows_[r].entry_count; ++e) weigh(entries_[e]);
     dir_[r] = s;

@@ -278,6 +278,8 @@ class DirectSolver {
   /// each body's W~ = (M + |K|)^-1 in frames_ and the entries, its motion
   /// dx0 = -W~ g, and shifts C_ by J dx0.
   void newtonShift();
+  /// C_ += J dx0: the rows as the residual's motion leaves them.
+  void shiftValues();
 };
 
 }  // namespace reeve

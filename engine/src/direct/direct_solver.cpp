@@ -3,7 +3,6 @@
 // (active_set.cpp, hubs.cpp), move the bodies.
 #include "direct_solver.h"
 
-
 #include <algorithm>
 #include <cassert>
 

@@ -296,6 +296,7 @@ void DirectSolver::build(World& world) {
   dphi_.assign(m, Vec3::Zero());
   for (auto* v : {&moved_x_, &moved_phi_, &shift_x_, &shift_phi_}) v->assign(m, Vec3::Zero());
   stiffness_.assign(m, Mat3::Zero());
+  reweigh_.assign(m, 0);
 }
 
 void DirectSolver::prepare(World& world, double h, bool again) {
@@ -433,6 +434,7 @@ void DirectSolver::newtonShift() {
     shift_x_[i].setZero();
     shift_phi_[i].setZero();
     stiffness_[i].setZero();
+    reweigh_[i] = 0;
   }
   const bool warm = first_solve_ && last_lambda_.size() == lambda_.size();
   const std::vector<double>& stiff = warm ? last_lambda_ : lambda_;
@@ -444,12 +446,16 @@ void DirectSolver::newtonShift() {
     }
     if (stiff[e.row] != 0.0) stiffness_[e.body] += stiff[e.row] * e.curvature;
   }
-  shift_size_ = 0.0;
+  shift_size_ = moved_size_ = 0.0;
   for (std::size_t i = 0; i < m; ++i) {
     BodyFrame& f = frames_[i];
     const BodyState& b = *f.state;
+    moved_size_ = std::max({moved_size_, moved_x_[i].norm(), moved_phi_[i].norm()});
     if (moved_phi_[i].norm() > kNewtonTurn) {  // XPBD's steps, W and no residual
-      if (f.inv_axial > 0.0) f.inv_axial = b.rotor_axis.dot(b.inv_inertia * b.rotor_axis);
+      if (f.inv_axial > 0.0) {
+        f.inv_axial = b.rotor_axis.dot(b.inv_inertia * b.rotor_axis);
+        reweigh_[i] = 1;
+      }
       shift_x_[i].setZero();
       shift_phi_[i].setZero();
       continue;
@@ -464,6 +470,7 @@ void DirectSolver::newtonShift() {
       double k = std::abs(f.axle.dot(stiffness_[i] * f.axle));
       if (warm && k <= inertia) k = 0.0;
       f.inv_axial = 1.0 / (inertia + k);
+      reweigh_[i] = 1;  // evaluate() weighed it with the last iteration's
       shift_x_[i].setZero();
       shift_phi_[i] = -f.axle * (f.inv_axial * g_u);
     } else {
@@ -478,13 +485,15 @@ void DirectSolver::newtonShift() {
           if (k[a] <= v.dot(inertia * v)) k[a] = 0.0;
         }
         f.inv_inertia = (inertia + eig.eigenvectors() * k.asDiagonal() * eig.eigenvectors().transpose()).inverse();
+        reweigh_[i] = 1;
       }
       shift_x_[i] = -f.inv_mass * g_x;
       shift_phi_[i] = -(f.inv_inertia * g_phi);
     }
     shift_size_ = std::max({shift_size_, shift_x_[i].norm(), shift_phi_[i].norm()});
   }
-  for (Entry& e : entries_) weigh(e);
+  for (Entry& e : entries_)
+    if (reweigh_[e.body]) weigh(e);
 }
 
 void DirectSolver::shiftValues() {
@@ -520,10 +529,7 @@ bool DirectSolver::iterate(World& world, double h) {
   // solve moved the bodies this substep (to the tolerance, the hand's 4 g
   // knuckles under their tendons took all 20 iterations at rest: with |K|
   // 30 times their inertia the residual halves an iteration).
-  double moved = 0.0;
-  for (std::size_t i = 0; i < frames_.size(); ++i)
-    moved = std::max({moved, moved_x_[i].norm(), moved_phi_[i].norm()});
-  if (converged(tolerance) && shift_size_ <= std::max(tolerance, kNewtonRelative * moved)) return false;
+  if (converged(tolerance) && shift_size_ <= std::max(tolerance, kNewtonRelative * moved_size_)) return false;
   shiftValues();
   warmStartCaps();
   solveActiveSet(tolerance > 0.0 ? tolerance : 1e-10 * scale);

@@ -273,6 +273,8 @@ class DirectSolver {
   bool first_solve_ = false;          // this iteration is the substep's first
   std::vector<Mat3> stiffness_;  // per body: sum of lambda d2C/dtheta^2 this iteration
   double shift_size_ = 0.0;      // the largest |dx0|, |dphi0| (m, rad) of newtonShift
+  double moved_size_ = 0.0;      // the largest |moved_x_|, |moved_phi_| (m, rad) then
+  std::vector<char> reweigh_;    // per body: its W changed in newtonShift
   /// Newton's residual g = M (x - x~) - J^T lambda and the rows' geometric
   /// stiffness K (DESIGN "Newton's residual and geometric stiffness"): sets
   /// each body's W~ = (M + |K|)^-1 in frames_ and the entries, its motion

@@ -58,12 +58,6 @@ const std::set<std::string>& knownCreating() {
       "gym gauss-seidel 1x10", "gym gauss-seidel 10x2", "hand gauss-seidel 1x1", "hand gauss-seidel 1x10",
       "hand gauss-seidel 10x2", "hilbert2 gauss-seidel 10x2", "pulley gauss-seidel 1x1",
       "servin gauss-seidel 1x1",
-      // One sweep a frame along 512 wheels, far from converged: since a
-      // span's end pays out r a radian out of its wheel's plane too
-      // (SolvePoint::perRadian, issue 29), it gains 3.9 kJ over 10 s (0.05
-      // of its scale; before, none). Not traced further; 1 x 10 and up and
-      // the direct solver at every budget but 1 x 1 create none.
-      "hilbert3 gauss-seidel 1x1",
       // One solve that must turn wheels by radians: the bow's release.
       // (Span ends are held on the wheels within a solve since issue 29,
       // item 3, which took hilbert2_loose's snap at 10 x 2 off this list;

@@ -12,7 +12,7 @@ struct GenerateHilbertOptions {
   double slack_m = 0.0;
   /// "brake": the last wheel is a drum braked with 10 N m (the paper's);
   /// "load": a 10 kg load hangs 3 m below it; empty: the level's default
-  /// (braked up to level 2, a load from level 3).
+  /// (braked, as in the paper).
   std::string end;
   double wheel_kg = 0.0;  ///< > 0: every wheel's mass (kg); 0: the default 1 kg
   std::filesystem::path output;  ///< empty: hilbert<level>[_loose].json in the current folder

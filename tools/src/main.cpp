@@ -89,8 +89,7 @@ int main(int argc, char** argv) {
   hilbert_cmd->add_option("--slack", hilbert.slack_m, "Slack of every span, m (default 0: taut)")
       ->check(CLI::NonNegativeNumber);
   hilbert_cmd->add_option("--end", hilbert.end,
-                          "brake (a drum braked with 10 N m, the paper's) or load (10 kg, 3 m down); "
-                          "default: brake up to level 2, load from level 3")
+                          "brake (a drum braked with 10 N m, the paper's; the default) or load (10 kg, 3 m down)")
       ->check(CLI::IsMember({"brake", "load"}));
   hilbert_cmd->add_option("--wheel-kg", hilbert.wheel_kg, "Mass of every wheel, kg (default 1)")
       ->check(CLI::PositiveNumber);

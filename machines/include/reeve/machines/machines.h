@@ -149,11 +149,11 @@ struct Hilbert {
   int cable = 0;
 };
 /// What `reeve generate hilbert --level L --slack S` writes
-/// (scenes/hilbert2.json, hilbert2_loose.json, hilbert3.json): level 2
-/// ends at a drum braked with 10 N m, its motor at 8 rad/s (2 m/s of
-/// cable); level 3 at a 10 kg load 3 m down, its motor at 1 rad/s; motors
-/// of at most 1000 N m, g = 9.81, 1 substep x 10 iterations (the paper's
-/// Table 1), 5 s taut, 10 s loose or level 3.
+/// (scenes/hilbert2.json, hilbert2_loose.json, hilbert3.json): every
+/// level ends at a drum braked with 10 N m, as in the paper (brake 0: a
+/// 10 kg load 3 m down instead); motors at 8 rad/s (2 m/s of cable), level
+/// 3's at 1 rad/s, of at most 1000 N m; g = 9.81, 1 substep x 10
+/// iterations (the paper's Table 1), 5 s taut, 10 s loose or level 3.
 HilbertSpec hilbertSceneSpec(int level, double slack_m);
 /// The machine loaded from hilbertSceneJson(spec) (scene_json.h).
 Hilbert hilbert(const HilbertSpec& spec);

@@ -48,10 +48,16 @@ double World::kineticEnergy(BodyId id) const {
 WorldEnergy World::energy() const {
   WorldEnergy e = flows_;
   const double h = last_h_;
+  // Under the start projection the step is symplectic (position Verlet with
+  // SHAKE), and its velocity v = (x - x_prev) / h is the half step's: it
+  // pairs with the potential half a step back, at x - v h / 2 (for a free
+  // fall the pair is then exact; at the end it ripples by h omega / 2 of a
+  // swing). The end projection keeps the end pairing its closed forms use.
+  const double back = settings_.solver == SolverKind::Direct && settings_.projection == Projection::Start ? 0.5 * h : 0.0;
   for (BodyId id = 0; id < bodyCount(); ++id) {
     if (mass_[id] == 0.0) continue;
     e.kinetic += kineticEnergy(id);
-    e.gravity -= mass_[id] * settings_.gravity.dot(bodies_[id].x);
+    e.gravity -= mass_[id] * settings_.gravity.dot(bodies_[id].x - back * bodies_[id].v);
   }
   for (const DistanceConstraint& c : distances_)
     if (c.enabled)

@@ -18,7 +18,10 @@ struct WorldEnergy {
   /// sum m |v|^2 / 2 + w . I w / 2 over dynamic bodies (a rotor: its spin
   /// about its axle; its centre does not move).
   double kinetic = 0.0;
-  /// -sum m g . x: gravitational potential, 0 at the world origin.
+  /// -sum m g . x: gravitational potential, 0 at the world origin. Under
+  /// the direct solver's start projection at x - v h / 2 (h the last
+  /// substep), the height that pairs with the half step's velocity v in
+  /// its symplectic step (a free fall's energy is then exact).
   double gravity = 0.0;
   /// Energy held by compliant rows: C^2 / (2 alpha) of every distance
   /// constraint and path of compliance alpha (m/N) stretched by C (m) past

@@ -46,9 +46,10 @@ enum class SolverKind { GaussSeidel, Direct };
 ///   with C still at the poses solved: symplectic, the same pendulum keeps
 ///   its swing energy to 1e-6. A row whose gradient turned by more than
 ///   0.2 (relative, in the W norm) over the substep keeps the End one: a
-///   spool spinning a radian a substep, a snap. Not yet the default: the
-///   energy ledger pairs the stored half-step velocity with end-of-substep
-///   potentials, whose O(h omega) ripple it then reads as energy created.
+///   spool spinning a radian a substep, a snap. The energy ledger then
+///   reads gravity half a substep back (energy.h). Not yet the default:
+///   the ledger's closed-form tests, events and the stiff machines' few
+///   iterations were built on the end (DESIGN.md).
 enum class Projection { End, Start };
 
 /// Solver knobs. A frame of length dt is split into `substeps` substeps of

@@ -431,12 +431,41 @@ TEST(Bow, TheScenesOwnDriveDrawsToTheStopAndLetsGo) {
   EXPECT_FALSE(w.firstNonFiniteBody());
 }
 
+TEST(Bow, TheUndampedShotsLossIsFirstOrderInTheSubstep) {
+  // Issue 29, item 4 (open: DESIGN.md, "The bow's shot at 10 x 10..."):
+  // the cams, at 300 rad/s, stop within 1.3 ms as the string straightens,
+  // and a step that spans that stop loses energy in proportion to its
+  // length. At 10 iterations (converged) the loss before the arrow leaves
+  // was measured 13.1, 12.9, 4.7, 2.8 and 1.2 % at 10, 20, 40, 80 and 160
+  // substeps a frame: never more with more substeps, about halved by each
+  // doubling once the stop spans a few substeps (ratios 0.59 and 0.43),
+  // and never a gain.
+  double previous = 1.0;
+  for (const int n : {10, 40, 80, 160}) {
+    Bow bow(Budget{n, 10});
+    const Shot shot = shoot(bow, 0.0, false);
+    ASSERT_TRUE(shot.finite) << n;
+    ASSERT_GT(shot.exit_time, 0.0) << n;
+    const double lost = -shot.error_at_exit;
+    std::printf("[ measured ] %3d x 10: the undamped shot loses %.4f before the arrow leaves\n", n, lost);
+    EXPECT_GT(lost, 0.0) << n;  // never energy made
+    EXPECT_LE(lost, previous) << n;
+    if (n > 40) {
+      EXPECT_GT(lost / previous, 0.3) << n;
+      EXPECT_LT(lost / previous, 0.7) << n;
+    }
+    previous = lost;
+  }
+  EXPECT_LT(previous, 0.02);  // 160 substeps: within the issue's 2 %
+}
+
 TEST(Bow, AtThePapersTenSubstepsOfTenIterationsTheShotStaysFinite) {
   // The paper's budget: the draw is right (the tests above), but 10
-  // substeps of 1/600 s follow the 13 ms shot, and the string's slap at
-  // brace, with only 8: the undamped bow loses a large part of its energy
-  // before the arrow leaves (reported, not asserted). Then, damped as the
-  // scene is, it rings down and stays finite.
+  // substeps of 1/600 s follow the 13 ms shot, and the cams' stop at
+  // brace takes 1.3 ms, less than one: the undamped bow loses 13 % of its
+  // energy before the arrow leaves (reported here; the test above has its
+  // order in h). Then, damped as the scene is, it rings down and stays
+  // finite.
   Bow bow(kPaper);
   const Shot shot = shoot(bow, 0.5, true);
   std::printf("[ measured ] %d x %d: energy until the arrow leaves (%.2f ms) within %.2e, %+.2e as it leaves, "

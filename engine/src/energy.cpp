@@ -51,8 +51,9 @@ WorldEnergy World::energy() const {
   // Under the start projection the step is symplectic (position Verlet with
   // SHAKE), and its velocity v = (x - x_prev) / h is the half step's: it
   // pairs with the potential half a step back, at x - v h / 2 (for a free
-  // fall the pair is then exact; at the end it ripples by h omega / 2 of a
-  // swing). The end projection keeps the end pairing its closed forms use.
+  // fall the pair is then exact; with the end's height a swing's energy
+  // ripples by h omega / 2). The end projection keeps the end pairing, for
+  // which its closed forms are derived.
   const double back = settings_.solver == SolverKind::Direct && settings_.projection == Projection::Start ? 0.5 * h : 0.0;
   for (BodyId id = 0; id < bodyCount(); ++id) {
     if (mass_[id] == 0.0) continue;

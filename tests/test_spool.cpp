@@ -201,11 +201,14 @@ TEST(Spool, ALoadHauledUpIntoItsDrumIsReportedWhenItsTiePointIsDrawnInside) {
       world.step(1.0 / 60.0);
       for (const CableEvent& e : cables.takeEvents())
         if (e.kind == CableEvent::Kind::SpanRunsOut) ran_out.push_back(e);
-      if (world.time() < 1.99) ASSERT_TRUE(ran_out.empty()) << "t = " << world.time();
+      if (world.time() < 1.99) {
+        ASSERT_TRUE(ran_out.empty()) << "t = " << world.time();
+      }
       // Spun up (in 19 ms), it hauls at r w (Gauss-Seidel's sweeps let the
       // load drag the motor back: 1.3-2.8 % slow, README).
-      if (b.solver == SolverKind::Direct && world.time() > 0.1 && world.time() < 1.99)
+      if (b.solver == SolverKind::Direct && world.time() > 0.1 && world.time() < 1.99) {
         EXPECT_NEAR(world.body(load).v.y(), 0.5, 1e-6) << "t = " << world.time();
+      }
     }
     ASSERT_EQ(ran_out.size(), 1u);
     EXPECT_GE(ran_out[0].time_s, 2.0);

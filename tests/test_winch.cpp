@@ -322,7 +322,9 @@ TEST(Winch, AnOverloadedWinchPaysOutWhatItHoldsAndAnEmptyDrumHolds) {
       EXPECT_LE(pull, 60.0 * (1.0 + 1e-9)) << "t = " << elastic.world.time();
       // Once the load, rising at 0.1 m/s when capped, has turned (the rope
       // just under 60 N meanwhile), it sinks with the drum stalled at 60 N.
-      if (f >= 5) EXPECT_NEAR(pull, 60.0, 1e-6 * 60.0) << "t = " << elastic.world.time();
+      if (f >= 5) {
+        EXPECT_NEAR(pull, 60.0, 1e-6 * 60.0) << "t = " << elastic.world.time();
+      }
     }
   }
 }
@@ -353,8 +355,12 @@ TEST(Winch, AnOverloadedWinchHoldsOrStopsItsLoadDeadAtEveryMass) {
       for (int f = 0; f < 90; ++f) {  // 1.5 s
         c.world.step(1.0 / 60.0);
         fastest_up = std::max(fastest_up, c.world.body(c.load).v.y());
-        if (f == 29) EXPECT_NEAR(y0 - c.world.body(c.load).x.y(), 0.5 * a * 0.25, a * 0.5 * h + 1e-9);  // 0.5 s
-        if (c.stored() > 0.0) EXPECT_LE(c.cables.winchPull(c.cable), 0.6 * m * kG * (1.0 + 1e-9));  // then the catch
+        if (f == 29) {
+          EXPECT_NEAR(y0 - c.world.body(c.load).x.y(), 0.5 * a * 0.25, a * 0.5 * h + 1e-9);  // 0.5 s
+        }
+        if (c.stored() > 0.0) {
+          EXPECT_LE(c.cables.winchPull(c.cable), 0.6 * m * kG * (1.0 + 1e-9));  // then the catch
+        }
       }
       EXPECT_EQ(c.stored(), 0.0);
       EXPECT_LT(fastest_up, 1e-9);  // stopped, never launched
@@ -398,7 +404,9 @@ TEST(Winch, AnOutpulledWinchOnADampedElasticCableHangsItsLoadSteady) {
         for (int f = 0; f < 60; ++f) {
           c.world.step(1.0 / 60.0);
           EXPECT_LE(held() - start, rise * scale) << "t = " << c.world.time();
-          if (f >= 30) EXPECT_NEAR(c.cables.tension(c.cable, 0), m * kG, 1e-6 * m * kG) << "t = " << c.world.time();
+          if (f >= 30) {
+            EXPECT_NEAR(c.cables.tension(c.cable, 0), m * kG, 1e-6 * m * kG) << "t = " << c.world.time();
+          }
         }
         const double settled = -3.0 - compliance * m * kG;
         EXPECT_EQ(c.stored(), 0.0);

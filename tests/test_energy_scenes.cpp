@@ -86,12 +86,17 @@ const std::set<std::string>& knownCreating() {
       "rope_segments gauss-seidel 32x32",
       // The direct solver's start projection (issue 29, "Numerical
       // damping"; its ledger pairs the half-step velocity with the height
-      // half a substep back): the end's six cells above, and three more:
-      // hybrid at 1 x 10, whose balance ripples by up to 1 J a frame after
+      // half a substep back): the end's six cells above, and three more,
+      // none a drift of the step: hybrid at 1 x 10, whose balance ripples by up to 1 J a frame after
       // the spools' catches (1.1 and 1.28 s) and rises 2.97 J from a low
-      // (the tolerance 2.8 J; the end's ripple rises 2.4 J), and, not
-      // traced, the bow at 10 x 2 (0.1 % of its scale during the draw, at
-      // 0.22 s) and spool at 32 x 32 (0.24 % in one frame, at 1.28 s). The
+      // (the tolerance 2.8 J; the end's ripple rises 2.4 J); the bow at 10
+      // x 2, whose rail drive's work is booked with the force of the
+      // substep's start poses while the draw force rises (a left sum: +1.8
+      // mJ a frame, 0.1 % of its scale by 0.22 s; the end's right sum falls
+      // 1.3 mJ a frame); and spool at 32 x 32, +0.16 J in the frame the
+      // yo-yo turns round and -0.16 J the next (a one-frame blip of the
+      // pairing: that catch keeps its energy under start, where the end
+      // loses 10.2 J of 38.6 in it). The
       // segment rope at 10 x 2 makes 7.6 % in its first frame (0.1 % under
       // the end), its joints projected along their start gradients, its
       // contacts at the end.

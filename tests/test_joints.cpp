@@ -748,7 +748,7 @@ TEST(HingeDrive, ACappedMotorOnAWheelMovesItsRopeAtTheClosedFormBothWays) {
   // showed 31 J made in 1 s. Gauss-Seidel does not converge on a wheel 1e-6
   // of its loads (README) and is not asked to here.
   constexpr double r = 0.1, g = 9.81;
-  for (const test::Budget& b : test::kFourBudgets)
+  for (const test::Budget& b : test::fourBudgetsBothProjections())
     for (const double disc : {1e-6, 1.0, 1e6})
       for (const double tau : {0.5, 0.1}) {
         if (b.solver == SolverKind::GaussSeidel && disc < 1e-3) continue;

@@ -41,7 +41,12 @@ double CableSystem::frictionLoss() const {
     Cable copy = cable;
     pending += settleRuns(copy, h, true);
   }
-  return friction_loss_ + pending;
+  // Under the start projection a force's work is read with the velocity at
+  // the substep's start (World::addWork): a slip's, with (s_n-1 + s_n) / 2
+  // of the last two substeps' slides. At a slipping wrap the tension gained
+  // across the link is T_slip's throughout, so that is the last substep's
+  // loss halved (exactly, from rest).
+  return friction_loss_ + (world_.ledgerLag() > 0.0 ? 0.5 : 1.0) * pending;
 }
 
 double CableSystem::storedElasticEnergy() const {

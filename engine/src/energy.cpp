@@ -45,16 +45,23 @@ double World::kineticEnergy(BodyId id) const {
   return 0.5 * mass_[id] * b.v.squaredNorm() + 0.5 * w.dot(b.inertia * w);
 }
 
+bool World::pairsAtStart() const {
+  return settings_.solver == SolverKind::Direct && settings_.projection == Projection::Start;
+}
+
+double World::ledgerLag() const { return pairsAtStart() ? 0.5 * last_h_ : 0.0; }
+
 WorldEnergy World::energy() const {
-  WorldEnergy e = flows_;
-  const double h = last_h_;
   // Under the start projection the step is symplectic (position Verlet with
   // SHAKE), and its velocity v = (x - x_prev) / h is the half step's: it
   // pairs with the potential half a step back, at x - v h / 2 (for a free
   // fall the pair is then exact; with the end's height a swing's energy
-  // ripples by h omega / 2). The end projection keeps the end pairing, for
-  // which its closed forms are derived.
-  const double back = settings_.solver == SolverKind::Direct && settings_.projection == Projection::Start ? 0.5 * h : 0.0;
+  // ripples by h omega / 2), and the flows are booked to match (addWork).
+  // The end projection keeps the end pairing, for which its closed forms
+  // are derived.
+  const double back = ledgerLag();
+  WorldEnergy e = flows_;
+  const double h = last_h_;
   for (BodyId id = 0; id < bodyCount(); ++id) {
     if (mass_[id] == 0.0) continue;
     e.kinetic += kineticEnergy(id);
@@ -104,23 +111,52 @@ double World::kinematicWork(BodyId id, double h) const {
 
 void World::addWork(double h) {
   const double inv_h2 = 1.0 / (h * h);
+  // Under the start projection a force acts at the substep's start (SHAKE's
+  // kick at x_n), where the velocity is (v_n-1/2 + v_n+1/2) / 2: its work
+  // over the substep is F . that h, the pairing the potential read at
+  // x - v h / 2 gives gravity (a constant load then balances exactly). The
+  // end projection books F over the substep's motion, v_n+1/2 h.
+  const bool start = pairsAtStart();
+  const auto omega = [&](BodyId id) -> Vec3 {
+    if (id == kWorldBody) return Vec3::Zero();
+    return start ? 0.5 * (bodies_[id].omega + pre_omega_[id]) : bodies_[id].omega;
+  };
   // A motor drive's torque (lambda_drive / h^2, on a about the axis) times
   // the turn of a relative to b over the substep, (w_a - w_b) . u h: the
   // velocities are those the positions gave, whole turns and all.
   for (const HingeJoint& j : hinges_) {
     if (j.drive.mode == HingeDrive::Mode::None || j.drive.stiffness > 0.0 || j.angle.lambda_drive == 0.0) continue;
     const Vec3 u = (body(j.a).q * j.frame.axis_a).normalized();
-    flows_.drive_work += j.angle.lambda_drive * inv_h2 * (body(j.a).omega - body(j.b).omega).dot(u) * h;
+    flows_.drive_work += j.angle.lambda_drive * inv_h2 * (omega(j.a) - omega(j.b)).dot(u) * h;
   }
   for (PrismaticId id = 0; id < static_cast<PrismaticId>(prismatics_.size()); ++id) {
     const PrismaticJoint& j = prismatics_[id];
     if (j.drive.mode == PrismaticDrive::Mode::None || j.drive.stiffness > 0.0 || j.slide.lambda_drive == 0.0) continue;
-    flows_.drive_work += j.slide.lambda_drive * inv_h2 * (prismaticSlide(id) - j.slide.start);
+    double slid = prismaticSlide(id) - j.slide.start;
+    if (start) {  // and the slide over the substep before, from the poses one substep back at v_n-1/2
+      const auto back = [&](BodyId b, Vec3& x, Quat& q) {
+        const BodyState& s = body(b);
+        if (b == kWorldBody || !(s.moves() || s.kinematic)) {  // static: x_prev is not kept
+          x = s.x, q = s.q;
+          return;
+        }
+        x = s.x_prev - h * pre_v_[b], q = s.q_prev;
+        rotateExactly(q, -h * pre_omega_[b]);
+      };
+      Vec3 x_a, x_b;
+      Quat q_a, q_b;
+      back(j.a, x_a, q_a);
+      back(j.b, x_b, q_b);
+      slid = 0.5 * (slid + j.slide.start - reeve::prismaticSlide(j, x_a, q_a, x_b, q_b));
+    }
+    flows_.drive_work += j.slide.lambda_drive * inv_h2 * slid;
   }
-  for (const BodyState& b : bodies_) {
+  for (BodyId id = 0; id < bodyCount(); ++id) {
+    const BodyState& b = bodies_[id];
     if (!b.moves()) continue;
-    if (b.applied_force.squaredNorm() > 0.0) flows_.load_work += b.applied_force.dot(b.x - b.x_prev);
-    if (b.applied_torque.squaredNorm() > 0.0) flows_.load_work += b.applied_torque.dot(b.omega) * h;
+    const Vec3 moved = start ? 0.5 * h * (b.v + pre_v_[id]) : Vec3(b.x - b.x_prev);
+    if (b.applied_force.squaredNorm() > 0.0) flows_.load_work += b.applied_force.dot(moved);
+    if (b.applied_torque.squaredNorm() > 0.0) flows_.load_work += b.applied_torque.dot(omega(id)) * h;
   }
 }
 

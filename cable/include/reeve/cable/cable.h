@@ -417,7 +417,9 @@ class CableSystem {
   /// that slid over it times the tension it gained across it, as the last
   /// solve left them, where that is a loss (friction that pushed the slip
   /// along is not credited: the ledger shows its energy as created). The
-  /// last solve's is counted too, which the next update will book.
+  /// last solve's is counted too, which the next update will book. Under
+  /// the start projection (World::ledgerLag) it holds half of the last
+  /// substep's share: its slip read at the substep's start.
   double frictionLoss() const;
   /// Elastic energy (J) of the stretched cable wound on the links (the
   /// energy ledger): stored_stretch^2 / (2 compliance_per_m x stored) per

@@ -290,6 +290,12 @@ class World {
   /// The World's side of the energy ledger (energy.h): the state's
   /// energies now and the work and losses summed over every substep so far.
   WorldEnergy energy() const;
+  /// How far back (s) the ledger reads the potential: h / 2 of the last
+  /// substep under the direct solver's start projection, where the stored
+  /// velocity is the half step's (energy.h), else 0. The flows are then
+  /// booked with the velocity at each substep's start (addWork; the cable
+  /// system's friction likewise).
+  double ledgerLag() const;
 
   double time() const { return time_; }        // s simulated so far
   double lastSubstep() const { return last_h_; }  // s
@@ -407,6 +413,13 @@ class World {
   std::function<void(int, int)> progress_;
   std::vector<double> mass_;  // kg per body, 0 when static
   WorldEnergy flows_;         // the summed work and losses (energy.h); its state fields unused
+  // The ledger's start pairing (ledgerLag): the direct solver projecting at
+  // the start.
+  bool pairsAtStart() const;
+  // Each body's velocities as the last substep began (v_n-1/2, before its
+  // integration): under the start projection a flow's power is read at the
+  // substep's start, with (v_n-1/2 + v_n+1/2) / 2 (addWork).
+  std::vector<Vec3> pre_v_, pre_omega_;
   std::unique_ptr<DirectSolver> direct_;
   bool rotors_dirty_ = true;  // bodies or joints added since refreshRotors()
   // Per body, its joints' other bodies and edge numbers (hinges, then

@@ -449,8 +449,8 @@ void World::step(double dt) {
         continue;
       }
       // Under the start projection with its motion's velocity at the
-      // substep's start, as addWork books a force (a slider swept to and
-      // fro made 0.1 % of its scene's energy at the middle's).
+      // substep's start, where addWork books a force (the middle's, which
+      // integrate() moves it by, differs on a ramp or a swing).
       const MotionKeyframe m = motionAt(defs_[id].motion, time_);
       const BodyState& b = bodies_[id];
       flows_.kinematic_work -= (b.impulse.dot(m.velocity) + b.angular_impulse.dot(m.angular_velocity)) / h;

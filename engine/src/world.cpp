@@ -404,8 +404,9 @@ void World::step(double dt) {
   last_iterations_ = 0;
   interrupted_ = false;
   const double h = dt / settings_.substeps;
+  const bool start_pairing = pairsAtStart();  // the ledger's (energy.cpp)
   for (int s = 0; s < settings_.substeps && !interrupted_; ++s) {
-    if (pairsAtStart()) {
+    if (start_pairing) {
       pre_v_.resize(bodies_.size());
       pre_omega_.resize(bodies_.size());
       for (std::size_t i = 0; i < bodies_.size(); ++i) pre_v_[i] = bodies_[i].v, pre_omega_[i] = bodies_[i].omega;
@@ -444,7 +445,7 @@ void World::step(double dt) {
       }
     }
     for (BodyId id = 0; id < bodyCount(); ++id) {
-      if (!pairsAtStart() || !bodies_[id].kinematic) {
+      if (!start_pairing || !bodies_[id].kinematic) {
         flows_.kinematic_work += kinematicWork(id, h);
         continue;
       }

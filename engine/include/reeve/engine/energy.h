@@ -32,6 +32,9 @@ struct WorldEnergy {
   /// Work of the motor drives (velocity drives, rigid angle and position
   /// drives): per substep, their torque (force) times the turn (slide) of
   /// body a relative to b over it. Spring drives count as elastic instead.
+  /// Under the direct solver's start projection every work below is booked
+  /// with the velocity at the substep's start, the mean of the one before
+  /// and after it (World::ledgerLag).
   double drive_work = 0.0;
   /// Work of the applied forces and torques (BodyState::applied_force,
   /// applied_torque): per substep F . dx + tau . w h.

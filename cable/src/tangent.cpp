@@ -7,8 +7,6 @@ namespace {
 
 Vec2 perp(const Vec2& v) { return Vec2(-v.y(), v.x()); }
 
-double angleOf(const Vec2& v) { return std::atan2(v.y(), v.x()); }
-
 }  // namespace
 
 std::optional<TangentPoints> commonTangent(const CableCircle& from, const CableCircle& to) {
@@ -23,8 +21,11 @@ std::optional<TangentPoints> commonTangent(const CableCircle& from, const CableC
   const double s_to = -to.orientation * to.radius;
   const double sine = (s_from - s_to) / dist;
   if (!(std::abs(sine) < 1.0)) return std::nullopt;
-  const double beta = angleOf(d) - std::asin(sine);
-  const Vec2 n = perp(Vec2(std::cos(beta), std::sin(beta)));
+  // t is d's direction e turned by -asin(sine): t = cosine e - sine perp(e),
+  // so n = perp(t) = cosine perp(e) + sine e, with no angle formed.
+  const Vec2 e = d / dist;
+  const double cosine = std::sqrt((1.0 - sine) * (1.0 + sine));
+  const Vec2 n = cosine * perp(e) + sine * e;
   return TangentPoints{from.center + s_from * n, to.center + s_to * n};
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cmath>
 #include <vector>
 
 #include "reeve/engine/correction.h"
@@ -31,7 +32,15 @@ SolvePoint solvePoint(const BodyState& body, const PathPoint& point, bool in_sol
   }
   p.axis = body.q * point.roll_axis;
   p.turn = p.axis.dot(body.solve_turn);
-  p.lever = Eigen::AngleAxisd(-p.turn, p.axis) * (body.q * (point.local - point.roll_centre));
+  // The lever turned back by the solve's turn about the axle (Rodrigues).
+  const Vec3 lever = body.q * (point.local - point.roll_centre);
+  if (p.turn == 0.0) {
+    p.lever = lever;
+  } else {
+    const double c = std::cos(p.turn), s = std::sin(p.turn);
+    const double along = p.axis.dot(lever);
+    p.lever = c * lever - s * p.axis.cross(lever) + (1.0 - c) * along * p.axis;
+  }
   p.arm = body.q * point.roll_centre + p.lever;
   return p;
 }

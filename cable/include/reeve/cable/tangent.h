@@ -28,7 +28,9 @@ struct TangentPoints {
 /// orientations and order (paper Fig. 3; Alg. 3 for point-circle, Alg. 4
 /// for circle-circle, all four choices). With signed radii s = -o r and span
 /// direction t = (cos b, sin b), the points are c + s perp(t) and
-/// b = atan2(d) - asin((s_from - s_to) / |d|), d = to.center - from.center.
+/// b = atan2(d) - asin((s_from - s_to) / |d|), d = to.center - from.center,
+/// evaluated without angles: perp(t) = cos(a) perp(e) + sin(a) e, e = d / |d|,
+/// sin(a) = (s_from - s_to) / |d|.
 /// Returns nullopt when no such tangent exists (|s_from - s_to| >= |d|: the
 /// shapes overlap in the sense the span needs).
 std::optional<TangentPoints> commonTangent(const CableCircle& from, const CableCircle& to);

@@ -170,9 +170,10 @@ double CableSystem::solvedTension(const Cable& cable, int j, double h) const {
   // flung up at up to 10 m/s).
   const PathId id = cable.joints[cable.joints[j].run].path;
   const PathConstraint& path = world_.path(id);
-  if (path.compliance == 0.0 && world_.pathLength(id) > path.rest_length &&
+  if (path.compliance == 0.0 &&
       std::none_of(path.points.begin(), path.points.end(),
-                   [&](const PathPoint& q) { return world_.body(q.body).moves(); }))
+                   [&](const PathPoint& q) { return world_.body(q.body).moves(); }) &&
+      world_.pathLength(id) > path.rest_length)
     return std::numeric_limits<double>::infinity();
   return -path.lambda / (h * h) * cable.joints[j].weight;
 }

@@ -120,7 +120,10 @@ double sectionSurfaceDistance(const Section& section, const Vec2& old_point, con
   const double perimeter = section.perimeter();
   // Counter-clockwise length from new to old, up to whole perimeters: the
   // one nearest what the turn predicts.
-  const double ccw = boundaryPosition(section, old_point) - boundaryPosition(section, new_point);
+  const double ccw = section.kind == Section::Kind::Circle  // one angle: new to old
+                         ? section.radius * std::atan2(new_point.x() * old_point.y() - new_point.y() * old_point.x(),
+                                                       new_point.dot(old_point))
+                         : boundaryPosition(section, old_point) - boundaryPosition(section, new_point);
   double predicted = section.radius * turn_rad;
   if (section.kind == Section::Kind::Polygon) {
     double shorter = wrapPositive(ccw, perimeter);

@@ -25,6 +25,7 @@ from . import _runtime
 _runtime.check()  # before the compiled module: a wrong interpreter is told which python3 to use
 
 from ._reeve import (  # noqa: F401  (the public names)
+    Batch,
     Bodies,
     Cable,
     Cables,
@@ -42,7 +43,7 @@ from ._reeve import _SOURCE_SCENES_DIR, _load_file, _load_text
 from .sweep import sweep  # noqa: F401
 
 __all__ = [
-    "Bodies", "Cable", "Cables", "Hinges", "Joints", "Scene", "SceneError", "Settings", "SimulationError",
+    "Batch", "Bodies", "Cable", "Cables", "Hinges", "Joints", "Scene", "SceneError", "Settings", "SimulationError",
     "default_scene_json", "load", "run", "scene_schema_json", "scenes_dir", "sweep", "__version__",
 ]
 

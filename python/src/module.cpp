@@ -12,4 +12,5 @@ PYBIND11_MODULE(_reeve, m) {
   reeve::python::bindBodies(m);
   reeve::python::bindCables(m);
   reeve::python::bindJoints(m);
+  reeve::python::bindBatch(m);
 }

@@ -50,6 +50,7 @@ void bindScene(pybind11::module_& m);
 void bindBodies(pybind11::module_& m);
 void bindCables(pybind11::module_& m);
 void bindJoints(pybind11::module_& m);
+void bindBatch(pybind11::module_& m);
 
 /// Raises reeve.SimulationError (a RuntimeError) with `message`.
 [[noreturn]] void throwSimulationError(const std::string& message);

@@ -81,3 +81,8 @@ all=$(ctest --test-dir build-sanitize -N | grep -o 'Total Tests: [0-9]*')
 kept=$(ctest --test-dir build-sanitize -N -E "$long" | grep -o 'Total Tests: [0-9]*')
 [ "$kept" != "$all" ] || { echo "tools/sanitize.sh: the release-only list excludes no test ($all)" >&2; exit 1; }
 ctest --test-dir build-sanitize --output-on-failure -j2 -E "$long"
+# The thread pool (reeve.Batch) under ThreadSanitizer, which cannot share a
+# build with AddressSanitizer: a standalone stress program, seconds to build.
+clang++ -std=c++20 -O1 -g -fsanitize=thread -Iengine/include tests/tsan/thread_pool_stress.cpp \
+  engine/src/thread_pool.cpp -o build-sanitize/thread_pool_stress -pthread
+TSAN_OPTIONS="halt_on_error=1" build-sanitize/thread_pool_stress

@@ -14,10 +14,12 @@ namespace {
 // sliding wraps has two points each) and then kept: no allocation per
 // visit once warm.
 struct Scratch {
-  std::vector<Vec3> arm, grad, force, pos;
+  std::vector<Vec3> arm, grad, force, pos, torque, turn;
+  std::vector<size_t> by_body;
   void fit(size_t n) {
-    if (arm.size() >= n) return;
-    for (std::vector<Vec3>* v : {&arm, &grad, &force, &pos}) v->resize(n);
+    if (arm.size() < n)
+      for (std::vector<Vec3>* v : {&arm, &grad, &force, &pos, &torque, &turn}) v->resize(n);
+    by_body.resize(n);
   }
 };
 thread_local Scratch scratch;
@@ -87,16 +89,35 @@ void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double a
   const auto moment = [&](size_t i, const Vec3& v) {
     return i == 0 ? first.moment(v) : i + 1 == n ? last.moment(v) : Vec3(arm[i].cross(v));
   };
-  // w = J_c M^-1 J_f^T: the length's rate of change per unit of lambda,
-  // summed over bodies, pairs of points on one body interacting.
-  double w = 0.0;
+  // w = J_c M^-1 J_f^T: the length's rate of change per unit of lambda.
+  // Pairs of points on one body interact, so per body B it is
+  // inv_mass (sum_i g_i) . (sum_j f_j) + (sum_i t(g_i)) . I^-1 (sum_j t(f_j)),
+  // i, j over B's points: the points sorted by body, each body's sums once
+  // (linear in the points, not quadratic).
+  std::vector<Vec3>&torque = scratch.torque, &turn = scratch.turn;
+  std::vector<size_t>& by_body = scratch.by_body;
   for (size_t i = 0; i < n; ++i) {
-    const BodyState& bi = bodies(path.points[i].body);
-    const Vec3 ti = moment(i, grad[i]);
-    for (size_t j = 0; j < n; ++j) {
-      if (path.points[j].body != path.points[i].body) continue;
-      w += bi.inv_mass * grad[i].dot(force[j]) + ti.dot(bi.applyInvInertia(moment(j, force[j])));
+    torque[i] = moment(i, force[i]);
+    by_body[i] = i;
+  }
+  if (n > 2)  // a span's two points are on two bodies, or one: in order already
+    std::stable_sort(by_body.begin(), by_body.begin() + n,
+                     [&](size_t x, size_t y) { return path.points[x].body < path.points[y].body; });
+  double w = 0.0;
+  for (size_t k = 0; k < n;) {
+    const BodyId id = path.points[by_body[k]].body;
+    Vec3 g = Vec3::Zero(), t = Vec3::Zero(), f = Vec3::Zero();
+    size_t end = k;
+    for (; end < n && path.points[by_body[end]].body == id; ++end) {
+      const size_t i = by_body[end];
+      g += grad[i];
+      t += moment(i, grad[i]);
+      f += force[i];
     }
+    const BodyState& b = bodies(id);
+    Vec3 body_turn = Vec3::Zero();  // I^-1 (sum_j t(f_j)), per unit of lambda
+    for (; k < end; ++k) body_turn += turn[by_body[k]] = b.applyInvInertia(torque[by_body[k]]);
+    w += b.inv_mass * g.dot(f) + t.dot(body_turn);
   }
   const DampedRow row = dampedRow(C, alpha_tilde, alpha_tilde * h * path.damping, length - path.start_length);
   if (!(w + row.alpha_tilde > 0.0)) return;
@@ -105,13 +126,12 @@ void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double a
   path.lambda += dl;
   for (size_t i = 0; i < n; ++i) {
     BodyState& b = bodies(path.points[i].body);
-    const Vec3 torque = moment(i, force[i]);
-    const Vec3 turn = dl * b.applyInvInertia(torque);
+    const Vec3 dphi = dl * turn[i];
     b.x += dl * b.inv_mass * force[i];
-    rotateBy(b.q, turn);
+    rotateBy(b.q, dphi);
     b.impulse += dl * force[i];
-    b.angular_impulse += dl * torque;
-    b.solve_turn += turn;
+    b.angular_impulse += dl * torque[i];
+    b.solve_turn += dphi;
   }
 }
 

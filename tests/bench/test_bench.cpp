@@ -348,6 +348,22 @@ TEST(BenchScaling, RunsTheChainAndPrintsItsTable) {
   EXPECT_EQ(reeve(dir, "bench scaling --budget 10").code, 64);
 }
 
+TEST(BenchBatch, StepsCopiesOnOneAndMoreThreadsAndPrintsTheSpeedUp) {
+  test::TempDir dir;
+  const fs::path csv = dir.path() / "batch.csv";
+  const Result r =
+      reeve(dir, "bench batch --only atwood --copies 3 --threads 2 --frames 2 --repeats 1 --csv " + csv.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("# threads: 2 used"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("ms_per_scene_frame  speedup"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("1.00"), std::string::npos) << r.out;  // 1 thread, the baseline, always run
+  const std::string table = slurp(csv);
+  EXPECT_NE(table.find("atwood,3,1,2,"), std::string::npos) << table;
+  EXPECT_NE(table.find("atwood,3,2,2,"), std::string::npos) << table;
+  EXPECT_EQ(reeve(dir, "bench batch --only nope").code, 64);
+  EXPECT_EQ(reeve(dir, "bench batch --copies 0").code, 64);
+}
+
 TEST(BenchOutputs, RefusesToOverwriteAndRejectsUnknownNames) {
   test::TempDir dir;
   const fs::path csv = dir.path() / "kept.csv";

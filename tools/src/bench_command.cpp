@@ -6,6 +6,7 @@
 #include <system_error>
 #include <stdexcept>
 
+#include "bench_batch.h"
 #include "commands.h"
 #include "reeve/bench/bench.h"
 #include "reeve/scene/scene.h"
@@ -60,7 +61,8 @@ int guarded(const std::function<int()>& run) {
 
 std::function<int()> addBenchCommand(CLI::App& app, CLI::App*& bench_cmd) {
   bench_cmd = app.add_subcommand(
-      "bench", "Measure speed and accuracy: Table 1, the speed/accuracy trade, stability at the extremes, scaling.");
+      "bench",
+      "Measure speed and accuracy: Table 1, the speed/accuracy trade, stability at the extremes, scaling, batches.");
   bench_cmd->require_subcommand(1);
   bench_cmd->footer(
       "Prints the CPU, compiler, build type, date and threads with every result; never passes or fails on a "
@@ -153,6 +155,22 @@ std::function<int()> addBenchCommand(CLI::App& app, CLI::App*& bench_cmd) {
   addOutput(pe, peers->output, false);
   pe->add_option("--repeats", peers->repeats, "Timed runs per row (default 5)")->check(CLI::PositiveNumber);
 
+  auto batch = std::make_shared<BatchBenchOptions>();
+  batch->scenes_dir = scenes;
+  CLI::App* ba = bench_cmd->add_subcommand(
+      "batch", "Copies of a machine stepped side by side (reeve.Batch) on 1 to N threads: ms per scene-frame, speed-up.");
+  addOutput(ba, batch->output, false);
+  ba->add_option("--scenes", batch->scenes_dir, "Folder of the scene files")->capture_default_str();
+  ba->add_option("--only", batch->scenes, "Scene files to run, without .json (default atwood,hand,hilbert2,hilbert3)")
+      ->delimiter(',');
+  ba->add_option("--copies", batch->copies, "Copies of each scene (default 64)")->check(CLI::PositiveNumber);
+  ba->add_option("--threads", batch->threads, "Thread counts (default 1, 2 and the cores)")
+      ->delimiter(',')
+      ->check(CLI::PositiveNumber);
+  ba->add_option("--frames", batch->frames, "Timed frames per run (default 30)")->check(CLI::PositiveNumber);
+  ba->add_option("--repeats", batch->repeats, "Timed runs per row; the median is reported (default 3)")
+      ->check(CLI::PositiveNumber);
+
   return [=]() {
     // Zero rope segments means none.
     std::erase(trade->rope_segments, 0);
@@ -160,6 +178,7 @@ std::function<int()> addBenchCommand(CLI::App& app, CLI::App*& bench_cmd) {
     if (*tr) return guarded([&] { return bench::trade(*trade); });
     if (*exc) return guarded([&] { return bench::extremes(*ex); });
     if (*scc) return guarded([&] { return bench::scaling(*sc); });
+    if (*ba) return guarded([&] { return benchBatch(*batch); });
     return guarded([&] { return bench::peers(*peers); });
   };
 }

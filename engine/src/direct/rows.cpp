@@ -63,6 +63,14 @@ SolvePoint DirectSolver::endPoint(const World& world, const PathPoint& point, in
     p.arm = slot >= 0 ? Vec3(frames_[slot].R * point.local) : Vec3(world.body(point.body).q * point.local);
     return p;
   }
+  if (slot >= 0 && world.body(point.body).solve_turn.isZero()) {  // not turned yet: solvePoint's, by R
+    const Mat3& R = frames_[slot].R;
+    SolvePoint p;
+    p.arm = R * point.local;
+    p.axis = R * point.roll_axis;
+    p.lever = R * (point.local - point.roll_centre);
+    return p;
+  }
   return solvePoint(world.body(point.body), point, true);
 }
 

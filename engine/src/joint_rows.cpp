@@ -81,7 +81,15 @@ void solveRows(BodyState& a, BodyState& b, const Vec3& r_a, const Vec3& r_b,
   }
   if (clamped) A(m, m) += clamped->alpha;
   for (int i = n; i < 7; ++i) A(i, i) = 1.0;
-  Vec7 x = A.ldlt().solve(rhs);
+  // A is symmetric positive definite wherever a body moves along every row
+  // (independent directions, W > 0 on them): Cholesky without pivoting is
+  // backward stable there and a third of the pivoted LDL^T's cost. A row
+  // no moving body can follow makes A singular; LDL^T takes that case.
+  const auto solve = [](const Matrix7& M, const Vec7& b) {
+    const Eigen::LLT<Matrix7> llt(M);
+    return llt.info() == Eigen::Success ? Vec7(llt.solve(b)) : Vec7(M.ldlt().solve(b));
+  };
+  Vec7 x = solve(A, rhs);
   if (clamped) {
     const double y = std::clamp(*clamped->lambda + x[m], clamped->lo, clamped->hi) -
                      *clamped->lambda;
@@ -91,7 +99,7 @@ void solveRows(BodyState& a, BodyState& b, const Vec3& r_a, const Vec3& r_b,
       A.col(m).setZero();
       A(m, m) = 1.0;
       rhs[m] = y;
-      x = A.ldlt().solve(rhs);
+      x = solve(A, rhs);
       x[m] = y;
     }
     *clamped->lambda += x[m];

@@ -25,9 +25,13 @@ using Vec7 = Eigen::Matrix<double, 7, 1>;
 Matrix6 jointInverseMass(const BodyState& a, const BodyState& b, const Vec3& r_a,
                          const Vec3& r_b) {
   const Eigen::Matrix3d inv_a = inverseInertiaWorld(a), inv_b = inverseInertiaWorld(b);
-  const Eigen::Matrix3d coupling = crossMatrix(r_a) * inv_a + crossMatrix(r_b) * inv_b;
+  const Eigen::Matrix3d ra = crossMatrix(r_a), rb = crossMatrix(r_b);
+  const Eigen::Matrix3d ra_inv = ra * inv_a, rb_inv = rb * inv_b;
+  const Eigen::Matrix3d coupling = ra_inv + rb_inv;
   Matrix6 M;
-  M.topLeftCorner<3, 3>() = pointInverseMass(a, b, r_a, r_b);
+  // pointInverseMass, from the products at hand: (m_a^-1 + m_b^-1) 1 -
+  // [r_a] I_a^-1 [r_a] - [r_b] I_b^-1 [r_b].
+  M.topLeftCorner<3, 3>() = (a.inv_mass + b.inv_mass) * Eigen::Matrix3d::Identity() - ra_inv * ra - rb_inv * rb;
   M.topRightCorner<3, 3>() = coupling;
   M.bottomLeftCorner<3, 3>() = coupling.transpose();
   M.bottomRightCorner<3, 3>() = inv_a + inv_b;

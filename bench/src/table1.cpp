@@ -41,11 +41,20 @@ const std::vector<Machine>& machines() {
   return list;
 }
 
+// A substep's cost split into what its iterations cost and what they do
+// not (issue 30): the machine at `substeps` a frame, of 1 and of 10
+// iterations, every one run (tolerance 0). A frame costs substeps x
+// (fixed + n x per_iteration).
+struct SplitCost {
+  double fixed_us_per_substep = 0.0, ns_per_joint_iteration = 0.0;
+};
+
 struct Measured {
   std::string machine, solver;
   bool paper;
   int substeps, iterations;
   double median_ms, speedup, ns_per_joint_iteration;
+  SplitCost split;  // the first paper row's; zero on the others
 };
 
 // The issue's yardsticks: the smallest speed-up over the paper per
@@ -72,7 +81,32 @@ void printSummary(const std::vector<Measured>& rows, const std::vector<std::stri
       std::printf("%s: ns per joint-iteration at 1 x 10: Hilbert2 %s, Hilbert3 %s (ratio %s)\n", solver.c_str(),
                   number(h2->ns_per_joint_iteration, 3).c_str(), number(h3->ns_per_joint_iteration, 3).c_str(),
                   number(h3->ns_per_joint_iteration / h2->ns_per_joint_iteration, 3).c_str());
+    if (h3)
+      std::printf("%s: Hilbert3, every iteration run: %s us a substep besides its iterations, %s ns per joint and "
+                  "iteration\n",
+                  solver.c_str(), number(h3->split.fixed_us_per_substep, 3).c_str(),
+                  number(h3->split.ns_per_joint_iteration, 3).c_str());
   }
+}
+
+// Measures SplitCost for `solver` on the scene in `file`.
+SplitCost splitCost(const std::filesystem::path& file, const std::string& solver, int substeps, int joints,
+                    int frames, const TimingOptions& timing) {
+  double ms[2];
+  const int iterations[2] = {1, 10};
+  for (int k = 0; k < 2; ++k) {
+    SceneRun run([&] {
+      Scene s = loadScene(file);
+      s.world->settings().substeps = substeps;
+      s.world->settings().iterations = iterations[k];
+      s.world->settings().tolerance = 0.0;
+      s.world->settings().solver = solverKind(solver);
+      return s;
+    });
+    ms[k] = timeFrames(run, frames, timing).median_ms / substeps;
+  }
+  const double per_iteration_ms = (ms[1] - ms[0]) / (iterations[1] - iterations[0]);
+  return {1e3 * (ms[0] - per_iteration_ms), 1e6 * per_iteration_ms / joints};
 }
 
 int cableJoints(const Scene& s) {
@@ -97,7 +131,8 @@ int table1(const Table1Options& options) {
       "# on a 3.5 GHz Core i7. ms/frame of physics: min / median / max over %d runs, each after a warm-up.\n",
       options.repeats);
   Table table({"machine", "setting", "solver", "substeps", "iterations", "frames", "joints", "paper_joints",
-               "min_ms", "median_ms", "max_ms", "paper_ms", "speedup", "iterations_run", "ns_per_joint_iteration"});
+               "min_ms", "median_ms", "max_ms", "paper_ms", "speedup", "iterations_run", "ns_per_joint_iteration",
+               "fixed_us_per_substep", "marginal_ns_per_joint_iteration"});
   std::vector<Measured> measured;
   TimingOptions timing;
   timing.repeats = options.repeats;
@@ -110,8 +145,12 @@ int table1(const Table1Options& options) {
     const int frames = options.frames ? std::min(*options.frames, probe.frameCount()) : probe.frameCount();
     std::vector<PaperSetting> settings = m.paper;
     settings.push_back({probe.world->settings().substeps, probe.world->settings().iterations, 0.0});
+    std::vector<SplitCost> split;  // per solver, at the paper's first setting's substeps
+    for (const std::string& solver : options.solvers)
+      split.push_back(splitCost(file, solver, m.paper.front().substeps, joints, frames, timing));
     for (std::size_t k = 0; k < settings.size(); ++k)
-      for (const std::string& solver : options.solvers) {
+      for (std::size_t v = 0; v < options.solvers.size(); ++v) {
+        const std::string& solver = options.solvers[v];
         const PaperSetting& at = settings[k];
         SceneRun run([&] {
           Scene s = loadScene(file);
@@ -127,9 +166,11 @@ int table1(const Table1Options& options) {
                    std::to_string(at.iterations), std::to_string(frames), std::to_string(joints),
                    m.paper_joints ? std::to_string(m.paper_joints) : "", number(t.min_ms, 3), number(t.median_ms, 3),
                    number(t.max_ms, 3), paper ? number(at.ms, 3) : "", paper ? number(at.ms / t.median_ms, 3) : "",
-                   number(t.iterations_per_frame, 3), number(ns, 3)});
+                   number(t.iterations_per_frame, 3), number(ns, 3),
+                   k == 0 ? number(split[v].fixed_us_per_substep, 3) : "",
+                   k == 0 ? number(split[v].ns_per_joint_iteration, 3) : ""});
         measured.push_back({m.name, solver, paper, at.substeps, at.iterations, t.median_ms,
-                            paper ? at.ms / t.median_ms : 0.0, ns});
+                            paper ? at.ms / t.median_ms : 0.0, ns, k == 0 ? split[v] : SplitCost{}});
       }
     std::fprintf(stderr, "table1: %s done\n", m.name);
   }

@@ -252,6 +252,11 @@ TEST(BenchTable1, ReportsTheSceneTheEnvironmentAndTheSpeedUpItMeasured) {
   for (const char* key : {"# cpu: ", "# compiler: ", "# build type: ", "# date: ", "# threads: "})
     EXPECT_NE(out.find(key), std::string::npos) << key;
   ASSERT_EQ(rows.size(), 3u);  // paper 1 x 1, paper 1 x 10, scene default 10 x 2
+  // The split of a substep's cost, once per machine and solver (its first
+  // row): a time per joint-iteration that is one.
+  EXPECT_GT(std::stod(rows[0].at("marginal_ns_per_joint_iteration")), 0.0);
+  EXPECT_NE(rows[0].at("fixed_us_per_substep"), "");
+  EXPECT_EQ(rows[1].at("fixed_us_per_substep"), "");
   for (const auto& row : rows) {
     EXPECT_EQ(row.at("joints"), "4");
     EXPECT_EQ(row.at("frames"), "10");

@@ -12,6 +12,10 @@ their state as numpy arrays (SI units, named in each attribute)::
     scene.cables["rope"].tensions_N                # array([11.7..., 14.7...])
     scene.bodies.positions_m[scene.bodies.index("heavy")]
 
+Many copies of a machine (a controller search, a learning loop) step side
+by side on threads with reeve.Batch, their state as arrays with a leading
+batch axis; reeve.sweep spreads whole runs over Dask workers.
+
 Errors: reeve.SceneError (a ValueError) for a scene that cannot be loaded,
 reeve.SimulationError (a RuntimeError) for a run that had to stop.
 """

@@ -42,12 +42,19 @@ std::optional<std::pair<Vec3, Vec3>> coplanarCircles(const Link& from, const Bod
 std::optional<std::pair<Vec3, Vec3>> alternate(const Link& from, const BodyState& fb, const Link& to,
                                                const BodyState& tb, Vec3 on_to) {
   const double tolerance = 1e-13 * std::max(from.section.perimeter(), to.section.perimeter());
+  // `to`'s body frame in `from`'s, once: each round maps a point between
+  // the two with one matrix product (it took two quaternion products).
+  const Mat3 world_a = fb.q.toRotationMatrix().transpose();
+  const Mat3 b_to_a = world_a * tb.q.toRotationMatrix();
+  const Vec3 b_in_a = world_a * (tb.x - fb.x);
+  const auto inA = [&](const Vec3& p) { return Vec2((b_to_a * p + b_in_a).head<2>()); };
+  const auto inB = [&](const Vec3& p) { return Vec2((b_to_a.transpose() * (p - b_in_a)).head<2>()); };
   Vec3 on_from = Vec3::Constant(std::numeric_limits<double>::infinity());
   for (int round = 0; round < 100; ++round) {
-    const auto a = tangentFromPoint(from.section, toPlane(fb, tb.toWorld(on_to)), from.orientation, true);
+    const auto a = tangentFromPoint(from.section, inA(on_to), from.orientation, true);
     if (!a) return std::nullopt;
     const Vec3 new_from = fromPlane(from, *a);
-    const auto b = tangentFromPoint(to.section, toPlane(tb, fb.toWorld(new_from)), to.orientation, false);
+    const auto b = tangentFromPoint(to.section, inB(new_from), to.orientation, false);
     if (!b) return std::nullopt;
     on_to = fromPlane(to, *b);
     const bool settled = (new_from - on_from).norm() <= tolerance;

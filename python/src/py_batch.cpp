@@ -231,7 +231,9 @@ void bindBatch(py::module_& m) {
            "Advances every scene `frames` frames (of its own 1 / frame_rate_hz s). A scene that stops (non-finite "
            "state, broken cable bookkeeping) is left where it stopped while the others run their frames; then "
            "reeve.SimulationError names it. A frame that created energy warns (RuntimeWarning) naming its scene. "
-           "Ctrl-C and SIGTERM as Scene.step.")
+           "Ctrl-C and SIGTERM as Scene.step: each scene ends the substep it is in, so after step(n) with a large n "
+           "the scenes may stand at different times (each thread steps one scene's frames, then the next's; see "
+           "time_s).")
       .def_property_readonly(
           "time_s",
           [](const PyBatch& b) {

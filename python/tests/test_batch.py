@@ -1,7 +1,11 @@
 """reeve.Batch: scenes stepped side by side equal the same scenes stepped alone, bit for bit, on any number of
 threads; their arrays carry a leading batch axis; bad input is refused whole."""
+import os
 import pathlib
 import runpy
+import signal
+import threading
+import time
 
 import numpy as np
 import pytest
@@ -90,6 +94,32 @@ def test_hinge_drive_targets_are_set_per_copy_and_nan_leaves_one(scenes):
         with pytest.raises(ValueError, match="has no drive"):
             batch.set_hinge_drive_targets(targets)
         assert batch.scenes[0].hinges.drive_targets[k] == 0.1  # nothing set
+
+
+def test_ctrl_c_ends_every_scenes_substep_and_leaves_the_batch_usable(scenes):
+    batch = reeve.Batch(scenes / "atwood.json", copies=4, threads=2)
+    for scene in batch.scenes:
+        scene.settings.substeps = 100000
+        scene.settings.iterations = 100000
+        scene.settings.method = "gauss-seidel"  # every iteration runs: a frame takes hours
+    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+    start = time.monotonic()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        batch.step(1)
+    latency = time.monotonic() - start - 0.5
+    timer.join()
+    assert latency < 0.2, latency
+    stopped = batch.time_s
+    assert np.all(stopped < 1.0 / 60.0)  # each inside its first frame, at a substep's end (0 if not begun)
+    assert np.allclose(stopped * 6e6, np.round(stopped * 6e6), atol=1e-6)
+    for scene in batch.scenes:
+        scene.settings.substeps = 10
+        scene.settings.iterations = 2
+    batch.step(6)
+    assert np.allclose(batch.time_s, stopped + 0.1)
+    assert np.all(np.isfinite(batch.positions_m))
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
 
 
 def test_bad_input_is_refused_before_anything_changes(scenes):

@@ -526,10 +526,18 @@ void World::integrate(double h) {
 }
 
 void World::solvePositions(double h, bool again) {
-  for (int i = 0; i < static_cast<int>(hinges_.size()); ++i)
-    prepareHingeJoint(hinges_[i], body(hinges_[i].a), body(hinges_[i].b), h, brakingInverseInertia(i));
-  for (int i = 0; i < static_cast<int>(prismatics_.size()); ++i)
-    preparePrismaticJoint(prismatics_[i], body(prismatics_[i].a), body(prismatics_[i].b), h, brakingInverseMass(i));
+  // The braking inverse inertia (mass) is a drive's: a joint without one
+  // does not read it.
+  for (int i = 0; i < static_cast<int>(hinges_.size()); ++i) {
+    HingeJoint& j = hinges_[i];
+    const bool driven = j.drive.mode != HingeDrive::Mode::None;
+    prepareHingeJoint(j, body(j.a), body(j.b), h, driven ? brakingInverseInertia(i) : 0.0);
+  }
+  for (int i = 0; i < static_cast<int>(prismatics_.size()); ++i) {
+    PrismaticJoint& j = prismatics_[i];
+    const bool driven = j.drive.mode != PrismaticDrive::Mode::None;
+    preparePrismaticJoint(j, body(j.a), body(j.b), h, driven ? brakingInverseMass(i) : 0.0);
+  }
   for (SphericalJoint& j : sphericals_) prepareSphericalJoint(j);
   for (FixedJoint& j : fixeds_) prepareFixedJoint(j);
   for (DistanceConstraint& c : distances_) c.lambda = 0.0;

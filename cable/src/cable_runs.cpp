@@ -101,11 +101,12 @@ double CableSystem::settleRuns(Cable& cable, double h, bool now) const {
     int spans = 0;
     walkRun(cable, j, loop, [&](int k) {
       rest += cable.joints[k].rest_length;
-      length += spanLengthSolved(k);
       weighted |= cable.joints[k].weight != 1.0;
       ++spans;
     });
-    if (spans == 1 || !(length > 0.0)) return;
+    if (spans == 1) return;  // a span alone keeps its rest length: no length to measure
+    walkRun(cable, j, loop, [&](int k) { length += spanLengthSolved(k); });
+    if (!(length > 0.0)) return;
     weighted &= cable.compliance_per_m > 0.0;
     const double tension = h > 0.0 ? -world_.path(cable.joints[j].path).lambda / (h * h) : 0.0;
     const auto share = [&](int k) {

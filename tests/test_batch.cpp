@@ -133,9 +133,14 @@ TEST(Batch, AStoppedSceneIsReportedAndTheOthersRunTheirFrames) {
   scenes[1].world->body(test::body(scenes[1], "heavy")).v.y() = std::numeric_limits<double>::quiet_NaN();
   std::vector<BatchItem> items;
   for (Scene& s : scenes) items.push_back({&s, nullptr});
-  ThreadPool pool(2);
-  const int traps = fedisableexcept(FE_ALL_EXCEPT);  // the NaN is on purpose (fp_main.cpp traps it)
-  const std::vector<BatchOutcome> out = stepBatch(items, 5, pool);
+  // The NaN is on purpose (fp_main.cpp traps it): traps off before the
+  // pool starts, as its threads inherit the floating-point environment.
+  const int traps = fedisableexcept(FE_ALL_EXCEPT);
+  std::vector<BatchOutcome> out;
+  {
+    ThreadPool pool(2);
+    out = stepBatch(items, 5, pool);
+  }
   feenableexcept(traps);
   EXPECT_EQ(out[0].frames_done, 5);
   EXPECT_EQ(out[2].frames_done, 5);

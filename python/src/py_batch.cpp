@@ -4,7 +4,6 @@
 #include <pybind11/stl.h>
 
 #include <cmath>
-#include <csignal>
 #include <memory>
 #include <optional>
 #include <string>
@@ -66,11 +65,6 @@ std::unique_ptr<PyBatch> makeBatch(const py::object& source, std::optional<int> 
   return batch;
 }
 
-bool onMainThread() {
-  const py::module_ threading = py::module_::import("threading");
-  return threading.attr("current_thread")().is(threading.attr("main_thread")());
-}
-
 void stepAll(PyBatch& b, int frames) {
   if (frames < 0) throw py::value_error("frames: expected a count >= 0, got " + std::to_string(frames));
   std::vector<BatchItem> items;
@@ -107,11 +101,7 @@ void stepAll(PyBatch& b, int frames) {
   if (count > 0)
     throwSimulationError("reeve: " + stopped +
                          (count > 1 ? " (and " + std::to_string(count - 1) + " more scenes stopped)" : std::string()));
-  if (signal == SIGINT) {
-    PyErr_SetNone(PyExc_KeyboardInterrupt);
-    throw py::error_already_set();
-  }
-  if (signal == SIGTERM) std::raise(SIGTERM);
+  raiseReceivedSignal(signal);
   if (PyErr_CheckSignals() != 0) throw py::error_already_set();
 }
 

@@ -37,11 +37,6 @@ void checkRange(const char* name, double value, double lo, double hi, bool lo_op
                           py::str(py::float_(value)).cast<std::string>());
 }
 
-bool onMainThread() {
-  const py::module_ threading = py::module_::import("threading");
-  return threading.attr("current_thread")().is(threading.attr("main_thread")());
-}
-
 void step(PyScene& s, int frames) {
   if (frames < 0) throw py::value_error("frames: expected a count >= 0, got " + std::to_string(frames));
   const double dt = 1.0 / s.scene.frame_rate_hz;
@@ -71,11 +66,7 @@ void step(PyScene& s, int frames) {
   s.scene.cables->takeEvents();  // not kept: nothing in Python reads them yet
   const int signal = interrupt ? interrupt->received() : 0;
   interrupt.reset();  // Python's handlers back
-  if (signal == SIGINT) {
-    PyErr_SetNone(PyExc_KeyboardInterrupt);
-    throw py::error_already_set();
-  }
-  if (signal == SIGTERM) std::raise(SIGTERM);
+  raiseReceivedSignal(signal);
   if (PyErr_CheckSignals() != 0) throw py::error_already_set();  // off the main thread: between calls
 }
 
@@ -129,11 +120,7 @@ py::dict run(PyScene& s, std::optional<int> frames, std::optional<std::filesyste
   // Stopped after a whole frame, the outputs holding the frames done, as
   // `reeve run` leaves them; then as Python would have: KeyboardInterrupt,
   // or SIGTERM again, now to the interpreter's own handler.
-  if (r.signal == SIGINT) {
-    PyErr_SetNone(PyExc_KeyboardInterrupt);
-    throw py::error_already_set();
-  }
-  if (r.signal == SIGTERM) std::raise(SIGTERM);
+  raiseReceivedSignal(r.signal);
   s.energy = EnergyWatch(s.scene);
   for (const EnergyCreated& created : r.energy_created)
     if (PyErr_WarnEx(PyExc_RuntimeWarning, ("reeve: " + energyCreatedMessage(created)).c_str(), 1) != 0)
@@ -171,6 +158,19 @@ py::dict energy(const PyScene& s) {
 }
 
 }  // namespace
+
+bool onMainThread() {
+  const py::module_ threading = py::module_::import("threading");
+  return threading.attr("current_thread")().is(threading.attr("main_thread")());
+}
+
+void raiseReceivedSignal(int signal) {
+  if (signal == SIGINT) {
+    PyErr_SetNone(PyExc_KeyboardInterrupt);
+    throw py::error_already_set();
+  }
+  if (signal == SIGTERM) std::raise(SIGTERM);
+}
 
 void bindScene(py::module_& m) {
   m.def("_load_file", &fromFile, py::arg("path"));

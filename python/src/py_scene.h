@@ -55,4 +55,12 @@ void bindBatch(pybind11::module_& m);
 /// Raises reeve.SimulationError (a RuntimeError) with `message`.
 [[noreturn]] void throwSimulationError(const std::string& message);
 
+/// Whether this is Python's main thread, where it handles signals.
+bool onMainThread();
+
+/// After a call that `signal` ended (InterruptGuard): SIGINT as Python
+/// would have, KeyboardInterrupt; SIGTERM raised again, now to the
+/// interpreter's own handler. Nothing for 0.
+void raiseReceivedSignal(int signal);
+
 }  // namespace reeve::python

@@ -1,5 +1,9 @@
 import json
+import os
 import pathlib
+import signal
+import threading
+import time
 
 import pytest
 
@@ -24,3 +28,23 @@ G = 9.81
 def atwood_acceleration(m1=1.0, m2=2.0, wheel=2.0, push=0.0):
     """Acceleration of the heavy box (m/s^2, down) with `push` N down on the light one."""
     return ((m2 - m1) * G - push) / (m1 + m2 + wheel / 2)
+
+
+def endless(scene):
+    """Sets `scene` to frames that take hours: 100000 substeps of 100000 Gauss-Seidel iterations, every one run."""
+    scene.settings.substeps = 100000
+    scene.settings.iterations = 100000
+    scene.settings.method = "gauss-seidel"
+
+
+def interrupt_latency(call, after_s=0.5):
+    """Sends this process SIGINT after `after_s` and runs `call`, which must raise KeyboardInterrupt; returns
+    how long after the signal it did (s)."""
+    timer = threading.Timer(after_s, lambda: os.kill(os.getpid(), signal.SIGINT))
+    start = time.monotonic()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        call()
+    latency = time.monotonic() - start - after_s
+    timer.join()
+    return latency

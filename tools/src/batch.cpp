@@ -25,10 +25,7 @@ std::vector<BatchOutcome> stepBatch(const std::vector<BatchItem>& items, int fra
     for (int f = 0; f < frames; ++f) {
       scene.world->step(dt);
       if ((out.stopped = stopReason(scene))) return;
-      if (scene.world->stepInterrupted()) {
-        out.interrupted = true;
-        return;
-      }
+      if (scene.world->stepInterrupted()) return;
       ++out.frames_done;
       if (items[i].energy)
         if (auto created = items[i].energy->check(scene)) out.energy_created.push_back(*created);

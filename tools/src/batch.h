@@ -26,11 +26,10 @@ struct BatchItem {
 struct BatchOutcome {
   int frames_done = 0;
   /// Why it stopped early (stopReason: a non-finite state, a broken cable
-  /// bookkeeping); it is not stepped on after that frame.
+  /// bookkeeping); it is not stepped on after that frame. Fewer frames
+  /// done without a reason: a signal ended a substep
+  /// (World::setInterruptFlag), after the whole frames counted.
   std::optional<std::string> stopped;
-  /// A signal ended a substep (World::setInterruptFlag); frames_done
-  /// counts the whole frames before it.
-  bool interrupted = false;
   /// The frames whose energy ledger showed energy created (EnergyWatch).
   std::vector<EnergyCreated> energy_created;
 };

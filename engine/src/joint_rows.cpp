@@ -64,6 +64,18 @@ void solveRows(BodyState& a, BodyState& b, const Vec3& r_a, const Vec3& r_b,
   if (!clamped && (m == 0 || (alpha_tilde == 0.0 &&
                               !(rows.values.head(m).cwiseAbs().maxCoeff() > 1e-15))))
     return;  // nothing to do, or already met
+  if (m == 0 && clamped->dir.head<3>().isZero()) {
+    // A clamped angular row alone (a rotor's drive or limit, whose axle
+    // holds by construction): the scalar XPBD row (SCA 2020 eq. 11-12),
+    // no block to factor.
+    const Vec3 n = clamped->dir.tail<3>();
+    const double x = angularDeltaLambda(a, b, n, clamped->C, clamped->alpha, *clamped->lambda);
+    const double y = std::clamp(*clamped->lambda + x, clamped->lo, clamped->hi) - *clamped->lambda;
+    *clamped->lambda += y;
+    angular_a += y * n;
+    applyAngularImpulse(a, b, -y * n);
+    return;
+  }
   // Directions D (6 x 7): the bilateral rows, then the clamped one at m.
   Eigen::Matrix<double, 6, 7> D = Eigen::Matrix<double, 6, 7>::Zero();
   D.leftCols<6>() = rows.dirs;

@@ -206,16 +206,17 @@ void World::setMass(BodyId id, double mass) {
   rotors_dirty_ = true;  // a rotor is made again at the next step
 }
 
-bool World::rotorHingeChanged() const {
-  for (const HingeJoint& j : hinges_)
-    if (j.compliance != 0.0 && (body(j.a).isRotor() || body(j.b).isRotor())) return true;
+bool World::hingeRigidityChanged() const {
+  for (std::size_t i = 0; i < hinges_.size(); ++i)
+    if ((hinges_[i].compliance == 0.0) != static_cast<bool>(hinge_rigid_[i])) return true;
   return false;
 }
 
 void World::refreshRotors() {
   rotors_dirty_ = false;
   buildJointGraph();
-  rotors_for_ = settings_.solver;
+  hinge_rigid_.resize(hinges_.size());
+  for (std::size_t i = 0; i < hinges_.size(); ++i) hinge_rigid_[i] = hinges_[i].compliance == 0.0;
   for (BodyId id = 0; id < bodyCount(); ++id) {
     BodyState& b = bodies_[id];
     if (mass_[id] == 0.0) continue;
@@ -223,7 +224,6 @@ void World::refreshRotors() {
     b.inv_inertia = b.inertia.inverse();
     b.rotor_axis.setZero();
   }
-  if (settings_.solver != SolverKind::Direct) return;
   // A rotor's only joint is a rigid hinge to a static body (or the world)
   // whose axle passes through its centre of mass.
   std::vector<int> joints(bodies_.size(), 0);
@@ -249,8 +249,8 @@ void World::refreshRotors() {
     b.rotor_axis = axis;
     b.inv_mass = 0.0;
     b.inv_inertia = axis * axis.transpose() / axis.dot(b.inertia * axis);
-    // Onto its axle, in case another solver let it sag off (a rotor stays
-    // where it is made).
+    // Onto its axle, in case it sagged off while its hinge was compliant
+    // (a rotor stays where it is made).
     const BodyState& other = body(a_moves ? j.b : j.a);
     const Vec3 other_axis = other.q * (a_moves ? j.frame.axis_b : j.frame.axis_a).normalized();
     b.q = (rotationBetween(b.q * axis, other_axis) * b.q).normalized();
@@ -400,7 +400,7 @@ double World::tension(DistanceId id) const {
 
 void World::step(double dt) {
   assert(settings_.substeps > 0 && settings_.iterations > 0);
-  if (rotors_dirty_ || rotors_for_ != settings_.solver || rotorHingeChanged()) refreshRotors();
+  if (rotors_dirty_ || hingeRigidityChanged()) refreshRotors();
   last_iterations_ = 0;
   interrupted_ = false;
   const double h = dt / settings_.substeps;
@@ -456,7 +456,7 @@ void World::step(double dt) {
       const BodyState& b = bodies_[id];
       flows_.kinematic_work -= (b.impulse.dot(m.velocity) + b.angular_impulse.dot(m.angular_velocity)) / h;
     }
-    if (settings_.solver == SolverKind::Direct) rotorWrenches(h);
+    rotorWrenches(h);
     limitSpeeds();  // last, so no later pass can push past the guard
     if (!non_finite_) checkFinite(time_ + h, true, h);
     time_ += h;
@@ -594,7 +594,7 @@ void World::rotorWrenches(double h) {
   // the impulse F = -(impulse + m g h^2) at the anchor (arm rho from the
   // centre) and the angular impulse off the axle -(angular_impulse +
   // rho x F); along the axle the hinge's drive and limit rows act, whose
-  // part the direct solver has added already.
+  // part the solve has added already.
   for (HingeJoint& j : hinges_) {
     const bool on_a = body(j.a).isRotor();
     if (!on_a && !body(j.b).isRotor()) continue;

@@ -60,8 +60,8 @@ struct BodyDef {
 
 /// Solver state of one body (Müller et al. 2020, Alg. 2). Static bodies
 /// have zero inverse mass and inertia, so corrections leave them in place
-/// without a branch in the kernels. A rotor (the direct solver's model of
-/// a wheel on a fixed axle, World::step) has zero inverse mass and the
+/// without a branch in the kernels. A rotor (the model of a wheel on a
+/// fixed axle, SolverKind) has zero inverse mass and the
 /// inverse inertia u u^T / I_u of its axle u alone: every kernel then turns
 /// it about the axle and never moves its centre, again without a branch.
 struct BodyState {

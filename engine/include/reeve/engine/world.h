@@ -26,15 +26,17 @@ namespace reeve {
 
 /// How each iteration solves the joints and cables (contacts are always
 /// Gauss-Seidel).
+/// Under both, every wheel whose only joint is a rigid hinge to a static
+/// body (or the world) through its centre of mass is a rotor: it turns
+/// about its axle and nothing moves its centre (body.h), so its hinge has
+/// no point or axis rows to solve.
 /// - GaussSeidel: one row (a joint's block, a cable span) after another,
 ///   as the paper does (SCA 2018 sec. 3, SCA 2020). Converges only while
 ///   every wheel is about as heavy as the loads it carries, and needs about
 ///   one sweep per wheel for a load to travel along a cable.
 /// - Direct: every joint row and cable span together, in one sparse linear
-///   solve per iteration (direct_solver.h), and every wheel whose only
-///   joint is a hinge to a static body (or the world) through its centre
-///   of mass a rotor: it turns about its axle and nothing moves its centre
-///   (body.h). Right at any mass ratio, tension and cable length.
+///   solve per iteration (direct_solver.h). Right at any mass ratio,
+///   tension and cable length.
 enum class SolverKind { GaussSeidel, Direct };
 
 /// Where the direct solver takes each row's gradient, the direction it
@@ -307,9 +309,9 @@ class World {
   /// Throws std::invalid_argument unless a and b are two different
   /// existing bodies (kWorldBody allowed).
   void checkJointBodies(const char* kind, BodyId a, BodyId b) const;
-  /// Makes rotors of the wheels on fixed axles for the direct solver, or
-  /// turns them back into free bodies for Gauss-Seidel (SolverKind), when
-  /// the solver or the bodies and joints changed since the last step.
+  /// Makes rotors of the wheels on fixed axles (SolverKind), and free
+  /// bodies again of those that no longer are, when the bodies or joints
+  /// changed since the last step.
   void refreshRotors();
   /// Rebuilds joint_graph_ from the joints (refreshRotors).
   void buildJointGraph();
@@ -333,9 +335,11 @@ class World {
   /// The same for a capped position drive on prismatic joint
   /// `prismatic`: 1 / kg, the two sides' total masses.
   double brakingInverseMass(int prismatic) const;
-  /// A rotor's hinge made compliant since refreshRotors(): no rotor then.
-  bool rotorHingeChanged() const;
-  /// The hinge wrenches of rotors, which have no hinge rows (direct solver).
+  /// A hinge made compliant or rigid since refreshRotors(): a rotor's
+  /// hinge made compliant frees the wheel, a wheel's made rigid may make
+  /// it a rotor.
+  bool hingeRigidityChanged() const;
+  /// The hinge wrenches of rotors, which have no point or axis rows.
   void rotorWrenches(double h);
   /// At the start of a substep of h s: removes the drives whose `until`
   /// has come (HingeDrive::until) and sets scheduled drives' targets.
@@ -422,6 +426,7 @@ class World {
   std::vector<Vec3> pre_v_, pre_omega_;
   std::unique_ptr<DirectSolver> direct_;
   bool rotors_dirty_ = true;  // bodies or joints added since refreshRotors()
+  std::vector<char> hinge_rigid_;  // per hinge: its compliance was 0 at refreshRotors()
   // Per body, its joints' other bodies and edge numbers (hinges, then
   // prismatics, sphericals, fixed joints, each in order); world excluded.
   std::vector<std::vector<std::pair<BodyId, int>>> joint_graph_;
@@ -429,7 +434,6 @@ class World {
   mutable std::vector<BodyId> assembly_;
   mutable std::vector<char> assembly_member_;  // per body: in assembly_
   mutable std::vector<double> hung_lever2_;    // per body: m^2, hung from assembly_ at that lever squared
-  SolverKind rotors_for_ = SolverKind::GaussSeidel;
 };
 
 }  // namespace reeve

@@ -38,8 +38,7 @@ double CableSystem::frictionLoss() const {
   for (const Cable& cable : cables_) {
     if (h == 0.0 || std::none_of(cable.links.begin(), cable.links.end(), [](const Link& l) { return l.mu > 0.0; }))
       continue;
-    Cable copy = cable;
-    pending += settleRuns(copy, h, true);
+    pending += settleRuns(cable, h, true, nullptr);
   }
   // Under the start projection a force's work is read with the velocity at
   // the substep's start (World::addWork): a slip's, with (s_n-1 + s_n) / 2

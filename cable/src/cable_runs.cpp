@@ -73,11 +73,11 @@ Vec3 pointAt(const BodyState& body, const Vec3& local, bool now) {
 }  // namespace
 
 void CableSystem::syncRuns(Cable& cable) {
-  settleRuns(cable, 0.0, true);
+  settleRuns(cable, 0.0, true, &cable);
   buildRuns(cable);
 }
 
-double CableSystem::settleRuns(Cable& cable, double h, bool now) const {
+double CableSystem::settleRuns(const Cable& cable, double h, bool now, Cable* settle) const {
   // A run's rest length is shared out in proportion to its spans' lengths:
   // equal strain, as Alg. 1 l. 8-16 intends, where the tension is the same
   // throughout; with friction, where span k pulls with T_k, in proportion
@@ -114,18 +114,20 @@ double CableSystem::settleRuns(Cable& cable, double h, bool now) const {
     };
     if (weighted) walkRun(cable, j, loop, [&](int k) { weighed += share(k); });
     double before = 0.0, after = 0.0;  // rest lengths up to here, before and after sharing
+    // Each span's rest length is read before it is written, and nothing
+    // read later depends on it: `settle` may be `cable` itself.
     walkRun(cable, j, loop, [&](int k) {
-      CableJoint& span = cable.joints[k];
+      const CableJoint& span = cable.joints[k];
       before += span.rest_length;
-      span.rest_length = weighted ? rest * share(k) / weighed : rest * spanLengthSolved(k) / length;
-      after += span.rest_length;
+      const double settled = weighted ? rest * share(k) / weighed : rest * spanLengthSolved(k) / length;
+      after += settled;
+      if (settle) settle->joints[k].rest_length = settled;
       if (h == 0.0 || endsRun(cable, j, loop, k)) return;
-      Link& link = cable.links[span.to];
-      link.slip_speed = (before - after) / h;
+      if (settle) settle->links[span.to].slip_speed = (before - after) / h;
       // The work friction took out over the last substep: the slip times
       // the tension it gained across the link (the energy ledger; never a
       // credit where friction pushed the slip along).
-      if (hasFriction(link))
+      if (hasFriction(cable.links[span.to]))
         friction += std::max(0.0, (cable.joints[span.to].weight - span.weight) * tension * (before - after));
     });
   });
@@ -213,7 +215,7 @@ bool CableSystem::recheckSlips(double h) {
       if (world_.path(cable.joints[cable.joints[k].run].path).lambda == 0.0) continue;  // slack: slides on
       if (!settled) {
         settled_ = cable;
-        settleRuns(settled_, h, true);
+        settleRuns(settled_, h, true, &settled_);
         settled = true;
       }
       if (link.slip_sense * settled_.links[k].slip_speed >= 0.0) continue;

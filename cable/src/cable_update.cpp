@@ -56,7 +56,7 @@ void CableSystem::update(double time_s, double h) {
     if (cable.winch && h > 0.0) reel(cable, time_s - h, h);
     // Runs' rest lengths as the last solve left them, before this
     // substep's turns pay cable in and out.
-    friction_loss_ += settleRuns(cable, h, h == 0.0);
+    friction_loss_ += settleRuns(cable, h, h == 0.0, &cable);
     for (int j = 0; j < static_cast<int>(cable.joints.size()); ++j) updateJoint(cable, c, j, time_s);
     if (cable.broken) releaseFreeEnds(cable, c, time_s);
     switchHybrids(cable, c, time_s);

@@ -28,7 +28,6 @@ namespace {
 // hair. (At 64 the merged depths were unwound again as a finger settled
 // back, 1.9 % off its closed form.)
 constexpr double kLayerStrain = 1e-3;
-constexpr std::size_t kMostLayers = 1024;
 }  // namespace
 
 void Link::windOn(double rest, double stretch) {

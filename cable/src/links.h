@@ -18,6 +18,11 @@ inline bool isEnd(const Cable& cable, int k) {
   return !cable.closed && (k == 0 || k + 1 == static_cast<int>(cable.links.size()));
 }
 
+/// The most wound layers a link keeps (Link::layers): past this many the
+/// two deepest are one. An elastic cable's rolling links reserve them all
+/// when built (16 KiB each), so winding never allocates in a step.
+constexpr std::size_t kMostLayers = 1024;
+
 /// Length (m) of `path` as the last solve left it: its points at the poses
 /// before this substep's integration (x_prev, q_prev).
 double solvedLength(const World& world, const PathConstraint& path);

@@ -22,9 +22,15 @@ double turn(const Vec2& o, const Vec2& p, const Vec2& q) {
   return (p - o).x() * (q - o).y() - (p - o).y() * (q - o).x();
 }
 
+/// Room for a patch's points in a thread's scratch: at least 32, so that
+/// it is grown once, not at each larger patch (a step allocates nothing
+/// once the first frame ran).
+std::size_t scratchPoints(int count) { return std::max<std::size_t>(32, static_cast<std::size_t>(count)); }
+
 /// The convex hull of `points` (which it sorts), counter-clockwise
 /// (Andrew's monotone chain); one point when all coincide.
 void convexHull(std::vector<Vec2>& points, std::vector<Vec2>& hull) {
+  hull.reserve(2 * points.capacity());
   std::sort(points.begin(), points.end(),
             [](const Vec2& p, const Vec2& q) { return p.x() < q.x() || (p.x() == q.x() && p.y() < q.y()); });
   hull.clear();
@@ -169,6 +175,7 @@ void anchorFriction(ContactManifold& m, const Contact* contacts, const ContactMa
     const auto inPlane = [&](const Vec3& p) { return Vec2(u.dot(p), v.dot(p)); };
     thread_local std::vector<Vec2> points, hull;
     points.clear();
+    points.reserve(scratchPoints(m.count));
     for (int i = m.first; i < m.first + m.count; ++i) points.push_back(inPlane(b.toWorld(contacts[i].local_b)));
     convexHull(points, hull);
     const Vec3 slip = b.toWorld(on_b) - a.toWorld(on_a);
@@ -192,6 +199,7 @@ void describePatch(ContactManifold& m, const Contact* contacts, const BodyState&
   const Vec3 u = n.unitOrthogonal(), v = n.cross(u);
   thread_local std::vector<Vec2> points;
   points.clear();
+  points.reserve(scratchPoints(m.count));
   double h = 0.0;
   for (int pass = 0; pass < 2 && points.empty(); ++pass) {
     for (int i = m.first; i < m.first + m.count; ++i) {

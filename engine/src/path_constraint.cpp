@@ -100,9 +100,13 @@ void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double a
     torque[i] = moment(i, force[i]);
     by_body[i] = i;
   }
+  // By body, then by index: stable, without stable_sort's buffer (a heap
+  // allocation per call).
   if (n > 2)  // a span's two points are on two bodies, or one: in order already
-    std::stable_sort(by_body.begin(), by_body.begin() + n,
-                     [&](size_t x, size_t y) { return path.points[x].body < path.points[y].body; });
+    std::sort(by_body.begin(), by_body.begin() + n, [&](size_t x, size_t y) {
+      const BodyId bx = path.points[x].body, by = path.points[y].body;
+      return bx < by || (bx == by && x < y);
+    });
   double w = 0.0;
   for (size_t k = 0; k < n;) {
     const BodyId id = path.points[by_body[k]].body;

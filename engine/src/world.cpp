@@ -128,6 +128,13 @@ void World::setGround(const GroundPlane& ground) {
 }
 
 void World::findContacts() {
+  // Room up front for a crowded substep (8 contacts and 2 touching pairs
+  // a body), so that a step allocates nothing once the first frame ran:
+  // beyond that the arrays grow, which is only a new high-water mark.
+  const std::size_t touching = colliders_.size() + (ground_ ? bodies_.size() : 0);
+  if (contacts_.capacity() < 8 * touching) contacts_.reserve(8 * touching);
+  for (std::vector<ContactManifold>* m : {&manifolds_, &previous_manifolds_})
+    if (m->capacity() < 2 * touching) m->reserve(2 * touching);
   contacts_.clear();
   // The last substep's manifolds, by pair (either way round), whose
   // friction anchors a pair that still sticks keeps (anchorFriction).

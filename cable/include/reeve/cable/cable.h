@@ -468,9 +468,10 @@ class CableSystem {
   /// (buildRuns). syncRuns: the first and last, between steps. settleRuns
   /// takes the spans' lengths at the poses `now` or as the last solve left
   /// them (before this substep's integration), and returns the work
-  /// friction took out (J).
+  /// friction took out (J); it writes the rest lengths and slips into
+  /// `settle` (`cable` itself, a copy, or nullptr to measure only).
   void syncRuns(Cable& cable);
-  double settleRuns(Cable& cable, double h, bool now) const;
+  double settleRuns(const Cable& cable, double h, bool now, Cable* settle) const;
   void switchSlips(Cable& cable, double h);
   /// Tension (N) of span j in the last solve of a substep of h s: its
   /// run's lambda over h^2 times its weight.

@@ -112,14 +112,15 @@ void solveHingeJoint(HingeJoint& j, BodyState& a, BodyState& b, double h) {
   // about their centres; with no angle row active, the block alone.
   // A rotor (body.h) turns about its axle alone: its point and axis rows
   // hold by construction, and only an angle row is solved.
-  const double alpha_tilde = j.compliance / (h * h);
   const bool rotor = a.isRotor() || b.isRotor();
+  const bool driven = j.drive.mode != HingeDrive::Mode::None;
+  if (rotor && !driven && !j.limit.enabled) return;  // nothing to solve
+  const double alpha_tilde = j.compliance / (h * h);
   const auto block = [&](const joint_rows::ClampedRow* clamped) {
     const Vec3 r_a = a.q * j.frame.anchor_a, r_b = b.q * j.frame.anchor_b;
     joint_rows::solveRows(a, b, r_a, r_b, rotor ? joint_rows::BilateralRows{} : bilateralRows(j, a, b, r_a, r_b),
                           alpha_tilde, clamped, j.impulse_point, j.impulse_axis);
   };
-  const bool driven = j.drive.mode != HingeDrive::Mode::None;
   bool solved = false;
   if (driven || j.limit.enabled) {
     const auto value = [&] { return hingeAngle(j, a.q, b.q); };

@@ -47,11 +47,63 @@ SolvePoint solvePoint(const BodyState& body, const PathPoint& point, bool in_sol
   return p;
 }
 
+namespace {
+
+// The kernel below for a span between two bodies, the common case (every
+// span of a cable over wheels): the same maths without its per-point
+// arrays and per-body sums, each rolling end's pay-out per radian taken
+// once. With u the unit span, g_0 = -u, g_1 = u, f_i = weight g_i:
+//   C = |p_1 - p_0| + pay-outs - L,
+//   w = sum_i m_i^-1 g_i . f_i + t(g_i) . I_i^-1 t(f_i),
+// t the moment (SolvePoint::moment, linear in its argument).
+void solveSpan(PathConstraint& path, BodyState& b0, BodyState& b1, double alpha_tilde, double h) {
+  const PathPoint &p0 = path.points[0], &p1 = path.points[1];
+  const SolvePoint first = solvePoint(b0, p0, true), last = solvePoint(b1, p1, true);
+  const Vec3 d = (b1.x + last.arm) - (b0.x + first.arm);
+  const double l = d.norm();
+  const Vec3 u = l < 1e-12 ? Vec3::Zero() : Vec3(d / l);
+  // A rolling end's moment about its axle is the cable it pays out per
+  // radian (SolvePoint::perRadian); a fixed point's, arm x g.
+  const auto end = [](const SolvePoint& p, const Vec3& g, double& length) {
+    const Vec3 m = p.arm.cross(g);
+    if (p.axis.isZero()) return m;
+    const double per_radian = p.perRadian(g);
+    length += p.turn * per_radian;
+    return Vec3(m + p.axis * (per_radian - p.axis.dot(p.lever.cross(g))));
+  };
+  double length = l;
+  const Vec3 t0 = end(first, -u, length), t1 = end(last, u, length);
+  const double C = length - path.rest_length;
+  if (C <= 0.0 && path.lambda == 0.0) return;  // slack and never pulled
+  const double weight = path.weights.empty() ? 1.0 : path.weights[0];
+  const Vec3 turn0 = b0.applyInvInertia(weight * t0), turn1 = b1.applyInvInertia(weight * t1);
+  const double w = weight * u.squaredNorm() * (b0.inv_mass + b1.inv_mass) + t0.dot(turn0) + t1.dot(turn1);
+  const DampedRow row = dampedRow(C, alpha_tilde, alpha_tilde * h * path.damping, length - path.start_length);
+  if (!(w + row.alpha_tilde > 0.0)) return;
+  double dl = (-row.C - row.alpha_tilde * path.lambda) / (w + row.alpha_tilde);
+  dl = std::clamp(path.lambda + dl, -path.max_tension * h * h, 0.0) - path.lambda;
+  path.lambda += dl;
+  const auto move = [&](BodyState& b, const Vec3& g, const Vec3& t, const Vec3& turn) {
+    const Vec3 f = weight * g, dphi = dl * turn;
+    b.x += dl * b.inv_mass * f;
+    rotateBy(b.q, dphi);
+    b.impulse += dl * f;
+    b.angular_impulse += dl * weight * t;
+    b.solve_turn += dphi;
+  };
+  move(b0, -u, t0, turn0);
+  move(b1, u, t1, turn1);
+}
+
+}  // namespace
+
 void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double alpha_tilde, double h) {
   if (!path.enabled) return;
   const size_t n = path.points.size();
   assert(n >= 2);
   assert(path.weights.empty() || path.weights.size() == n - 1);
+  if (n == 2 && path.points[0].body != path.points[1].body)
+    return solveSpan(path, bodies(path.points[0].body), bodies(path.points[1].body), alpha_tilde, h);
   // World arm r_i, gradient of the length g_i = dC/dp_i and force direction
   // f_i (the weighted gradient; f = g without weights).
   scratch.fit(n);

@@ -110,7 +110,7 @@ int CableSystem::addCable(const CableDef& def) {
       }
       if (ld.orientation != 1 && ld.orientation != -1) fail(at + "orientation must be +1 or -1");
     }
-    if (def.compliance > 0.0 && link.rolls()) link.layers.reserve(kMostLayers + 1);
+    if (def.compliance > 0.0 && link.rolls()) link.layers.reserve(kReservedLayers);
     active += link.active;
     cable.links.push_back(std::move(link));
   }

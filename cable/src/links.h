@@ -19,9 +19,16 @@ inline bool isEnd(const Cable& cable, int k) {
 }
 
 /// The most wound layers a link keeps (Link::layers): past this many the
-/// two deepest are one. An elastic cable's rolling links reserve them all
-/// when built (16 KiB each), so winding never allocates in a step.
+/// two deepest are one.
 constexpr std::size_t kMostLayers = 1024;
+/// Wound layers an elastic cable's rolling link has room for when built,
+/// so that winding allocates only when its layers pass their most so far
+/// beyond this (the hand's knuckles pass 64 after about a second).
+/// Reserving all kMostLayers (16 KiB a link) slowed the hand's direct
+/// step by 25 % and Servin's, which has none, by 30 % in the same
+/// `reeve bench table1` process, the same instructions: the heap's
+/// layout, not measured further.
+constexpr std::size_t kReservedLayers = 64;
 
 /// Length (m) of `path` as the last solve left it: its points at the poses
 /// before this substep's integration (x_prev, q_prev).

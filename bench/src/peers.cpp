@@ -71,7 +71,15 @@ struct Observed {
 // their rest lengths.
 class ReeveRope : public SceneRun {
  public:
-  explicit ReeveRope(const Case& c) : SceneRun(c.make), heavy_(c.heavy), cable_(c.cable) {}
+  explicit ReeveRope(const Case& c, machines::Budget budget = {})
+      : SceneRun([c, budget] {
+          Scene s = c.make();
+          s.world->settings().substeps = budget.substeps;
+          s.world->settings().iterations = budget.iterations;
+          return s;
+        }),
+        heavy_(c.heavy),
+        cable_(c.cable) {}
   void observe(int frame) override {
     const CableSystem& cables = *scene().cables;
     double stretch = 0.0;
@@ -164,13 +172,13 @@ ModelPtr load(const std::string& xml) {
   return model;
 }
 
-// A case as MuJoCo's model (mjcf()), each frame kStepsPerFrame mj_steps.
+// A case as MuJoCo's model (mjcf()), each frame `steps` mj_steps.
 class MujocoRope : public FrameRun {
  public:
   // The rope's length is what MuJoCo measures on the model without the
   // limit, so it starts taut; it must be Reeve's cable's, or a wrap went
   // round the wrong side.
-  explicit MujocoRope(const Case& c) {
+  explicit MujocoRope(const Case& c, int steps = kStepsPerFrame) : steps_(steps) {
     const Scene scene = c.make();
     {
       const ModelPtr free = load(mjcf(scene, c.cable, 0.0));
@@ -183,13 +191,14 @@ class MujocoRope : public FrameRun {
       throw std::runtime_error("peers: MuJoCo's tendon is " + std::to_string(length_) + " m, Reeve's cable " +
                                std::to_string(reeve_length) + " m: a wrap is on the wrong side");
     model_ = load(mjcf(scene, c.cable, length_));
+    model_->opt.timestep = 1.0 / (kFrameHz * steps);
     data_.reset(mj_makeData(model_.get()));
     const int heavy = mj_name2id(model_.get(), mjOBJ_BODY, scene.world->bodyDef(c.heavy).name.c_str());
     heavy_y_ = model_->jnt_qposadr[model_->body_jntadr[heavy]] + 1;
   }
   void reset() override { mj_resetData(model_.get(), data_.get()); }
   void step() override {
-    for (int i = 0; i < kStepsPerFrame; ++i) mj_step(model_.get(), data_.get());
+    for (int i = 0; i < steps_; ++i) mj_step(model_.get(), data_.get());
   }
   // ten_length and efc_force are those of the last mj_step's start, 1/600 s
   // before qpos: read as they are, so observing changes nothing.
@@ -215,6 +224,7 @@ class MujocoRope : public FrameRun {
   Observed observed;
 
  private:
+  int steps_;
   ModelPtr model_{nullptr, mj_deleteModel};
   DataPtr data_{nullptr, mj_deleteData};
   double length_ = 0.0;
@@ -223,6 +233,51 @@ class MujocoRope : public FrameRun {
 
 // (x - expected) / expected.
 double relative(double x, double expected) { return (x - expected) / expected; }
+
+// Within 1 % of the closed form of the engine's own model, in the heavy
+// box's acceleration over the second (from its fall) and the light side's
+// tension at its end: `run` stepped once, untimed, and observed.
+template <class Run>
+bool withinOnePercent(Run& run, double y0, double a_own, double tension_own) {
+  run.reset();
+  for (int f = 0; f < kFrames; ++f) {
+    run.step();
+    run.observe(f);
+  }
+  const double T = kFrames / kFrameHz;
+  const double a = 2.0 * (y0 - run.observed.heavy_y) / (T * T);
+  return std::abs(relative(a, a_own)) <= 0.01 && std::abs(relative(run.observed.tension, tension_own)) <= 0.01;
+}
+
+// Steps a frame tried for the cheapest setting within 1 %, cheapest first:
+// Reeve's substeps x iterations (the direct solver), MuJoCo's mj_steps. A
+// frame of h = 1 / 60 s is 1.7 % off by itself (the 1 + h / (1 s) of
+// semi-implicit Euler), so neither passes at one step.
+const machines::Budget kReeveBudgets[] = {{1, 1}, {2, 1}, {2, 2}, {3, 1}, {5, 1}, {5, 2}, {10, 2}, {20, 2}};
+const int kMujocoSteps[] = {1, 2, 3, 5, 10, 20, 50};
+
+// The cheapest setting within 1 % of each engine on `c`, timed: a row of
+// the equal-accuracy table, and the cost ratio Reeve / MuJoCo.
+void equalAccuracy(const Case& c, double y0, const TimingOptions& timing, Table& table) {
+  std::string reeve_setting = "none", mujoco_setting = "none";
+  double reeve_ms = kNaN, mujoco_ms = kNaN;
+  for (const machines::Budget& b : kReeveBudgets) {
+    ReeveRope run(c, b);
+    if (!withinOnePercent(run, y0, c.a_turning, c.tension_turning)) continue;
+    reeve_setting = std::to_string(b.substeps) + " x " + std::to_string(b.iterations);
+    reeve_ms = timeFrames(run, kFrames, timing).median_ms;
+    break;
+  }
+  for (const int steps : kMujocoSteps) {
+    MujocoRope run(c, steps);
+    if (!withinOnePercent(run, y0, c.a_fixed, c.tension_fixed)) continue;
+    mujoco_setting = std::to_string(steps) + " steps";
+    mujoco_ms = timeFrames(run, kFrames, timing).median_ms;
+    break;
+  }
+  table.add({c.name, std::to_string(c.K), reeve_setting, number(reeve_ms, 3), mujoco_setting, number(mujoco_ms, 3),
+             number(reeve_ms / mujoco_ms, 3)});
+}
 
 }  // namespace
 
@@ -248,6 +303,7 @@ int peers(const PeersOptions& options) {
       kFrameHz * kStepsPerFrame, kStepsPerFrame, options.repeats);
   Table table({"engine", "case", "K", "joints", "min_ms", "median_ms", "max_ms", "accel_error",
                "accel_error_vs_turning_wheels", "tension_error", "max_stretch_mm"});
+  Table equal({"case", "K", "reeve_setting", "reeve_ms", "mujoco_setting", "mujoco_ms", "cost_ratio"});
   TimingOptions timing;
   timing.repeats = options.repeats;
   const double T = kFrames / kFrameHz;
@@ -268,10 +324,17 @@ int peers(const PeersOptions& options) {
     MujocoRope mujoco(c);
     const FrameTiming mujoco_timing = timeFrames(mujoco, kFrames, timing);
     add("mujoco", mujoco.wraps(), mujoco_timing, mujoco.observed, c.a_fixed, c.tension_fixed);
+    equalAccuracy(c, y0, timing, equal);
   }
   std::printf(
       "MuJoCo's tendon wraps are frictionless and its pulleys never turn; Reeve's wheels turn with the cable.\n");
   table.print(stdout);
+  std::printf(
+      "\n# Equal accuracy: each engine at its cheapest setting within 1 %% of its own model's closed form\n"
+      "# (acceleration and tension; Reeve's with turning wheels, MuJoCo's massless), ms/frame median of %d;\n"
+      "# cost_ratio: Reeve's time over MuJoCo's (below 1: Reeve is cheaper).\n",
+      options.repeats);
+  equal.print(stdout);
   writeOutputs(options.output, table, env, "peers");
   return 0;
 }

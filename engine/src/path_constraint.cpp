@@ -24,10 +24,6 @@ struct Scratch {
 };
 thread_local Scratch scratch;
 
-}  // namespace
-
-namespace {
-
 // sin and cos of a; below |a| = 0.1 their Taylor series to the a^8 term,
 // exact in double precision (the next terms are under 3e-17 relative) and
 // several times cheaper: a solve turns a wheel by small angles, and every

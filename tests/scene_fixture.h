@@ -1,7 +1,10 @@
 // Loading and stepping the shipped scenes in tests.
 #pragma once
 
+#include <algorithm>
+#include <filesystem>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -10,6 +13,16 @@
 #include "solver_budgets.h"
 
 namespace reeve::test {
+
+/// The shipped scene files (scenes/*.json but the schema), sorted by name.
+inline std::vector<std::filesystem::path> shippedSceneFiles() {
+  std::vector<std::filesystem::path> files;
+  for (const auto& entry : std::filesystem::directory_iterator(REEVE_SCENES_DIR))
+    if (entry.path().extension() == ".json" && entry.path().filename() != "scene.schema.json")
+      files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  return files;
+}
 
 /// Loads scenes/NAME.json from the source tree.
 inline Scene scene(const std::string& name) { return loadScene(std::string(REEVE_SCENES_DIR) + "/" + name + ".json"); }

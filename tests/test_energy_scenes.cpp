@@ -24,6 +24,7 @@
 #include "reeve/scene/scene.h"
 #include "reeve/scene/warnings.h"
 #include "ledger_ratchet.h"
+#include "scene_fixture.h"
 #include "solver_budgets.h"
 
 namespace reeve {
@@ -111,13 +112,8 @@ const std::set<std::string>& knownCreating() {
 }
 
 std::vector<Cell> cells() {
-  std::vector<std::filesystem::path> files;
-  for (const auto& entry : std::filesystem::directory_iterator(REEVE_SCENES_DIR))
-    if (entry.path().extension() == ".json" && entry.path().filename() != "scene.schema.json")
-      files.push_back(entry.path());
-  std::sort(files.begin(), files.end());
   std::vector<Cell> all;
-  for (const auto& file : files)
+  for (const auto& file : test::shippedSceneFiles())
     for (const test::Budget& b : test::kFourBudgets) {
       all.push_back({file, b});
       if (b.solver == SolverKind::Direct) all.push_back({file, b, Projection::Start});

@@ -5,7 +5,6 @@
 // the sanitizers).
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <ostream>
@@ -13,18 +12,10 @@
 #include <vector>
 
 #include "reeve/scene/scene.h"
+#include "scene_fixture.h"
 
 namespace reeve {
 namespace {
-
-std::vector<std::filesystem::path> shippedScenes() {
-  std::vector<std::filesystem::path> files;
-  for (const auto& entry : std::filesystem::directory_iterator(REEVE_SCENES_DIR))
-    if (entry.path().extension() == ".json" && entry.path().filename() != "scene.schema.json")
-      files.push_back(entry.path());
-  std::sort(files.begin(), files.end());
-  return files;
-}
 
 // One test per scene and solver, so that ctest runs them in parallel.
 struct Case {
@@ -39,13 +30,13 @@ void PrintTo(const Case& c, std::ostream* os) {
 std::vector<Case> cases() {
   std::vector<Case> all;
   for (const SolverKind method : {SolverKind::Direct, SolverKind::GaussSeidel})
-    for (const auto& file : shippedScenes()) all.push_back({file, method});
+    for (const auto& file : test::shippedSceneFiles()) all.push_back({file, method});
   return all;
 }
 
 class EveryShippedScene : public testing::TestWithParam<Case> {};
 
-TEST(Invariants, EveryShippedSceneIsCovered) { EXPECT_GE(shippedScenes().size(), 17u); }
+TEST(Invariants, EveryShippedSceneIsCovered) { EXPECT_GE(test::shippedSceneFiles().size(), 17u); }
 
 TEST_P(EveryShippedScene, InvariantsHoldAfterEverySubstep) {
   const auto& [file, method] = GetParam();

@@ -8,13 +8,11 @@
 // which replace it themselves.
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <atomic>
 #include <cstdio>
 #include <cstddef>
 #include <filesystem>
 #include <functional>
-#include <set>
 #include <string>
 #include <vector>
 
@@ -23,6 +21,7 @@
 #include "batch.h"
 #include "reeve/engine/thread_pool.h"
 #include "reeve/scene/scene.h"
+#include "scene_fixture.h"
 
 extern "C" {
 void* __libc_malloc(std::size_t);
@@ -70,15 +69,6 @@ namespace {
 
 constexpr int kFrames = 60;
 
-std::vector<std::filesystem::path> sceneFiles() {
-  std::vector<std::filesystem::path> files;
-  for (const auto& entry : std::filesystem::directory_iterator(REEVE_SCENES_DIR))
-    if (entry.path().extension() == ".json" && entry.path().filename() != "scene.schema.json")
-      files.push_back(entry.path());
-  std::sort(files.begin(), files.end());
-  return files;
-}
-
 // Room (layers) the cables' links hold for wound layers: it grows past
 // 64 only as a link's wound layers do (kMostLayers bounds them).
 std::size_t layerRoom(const Scene& scene) {
@@ -121,7 +111,7 @@ TEST(NoAllocation, TheCountingAllocatorSeesVectorsAndEigen) {
 
 TEST(NoAllocation, EveryShippedSceneStepsWithoutTheHeapUnderBothSolvers) {
   int frames = 0, exempt_all = 0;
-  for (const std::filesystem::path& file : sceneFiles())
+  for (const std::filesystem::path& file : test::shippedSceneFiles())
     for (const SolverKind solver : {SolverKind::Direct, SolverKind::GaussSeidel}) {
       Scene scene = loadScene(file);
       scene.world->settings().solver = solver;

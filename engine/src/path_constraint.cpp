@@ -27,16 +27,20 @@ thread_local Scratch scratch;
 // sin and cos of a; below |a| = 0.1 their Taylor series to the a^8 term,
 // exact in double precision (the next terms are under 3e-17 relative) and
 // several times cheaper: a solve turns a wheel by small angles, and every
-// visit of its spans turns their ends back by them.
+// visit of its spans turns their ends back by them. In Horner form with
+// the coefficients 1 / k! as constants: multiplications, where dividing
+// by 6, 20, 42, ... put eight divisions in a row on the visit's path.
 void sinCos(double a, double& s, double& c) {
   if (std::abs(a) >= 0.1) {
     s = std::sin(a);
     c = std::cos(a);
     return;
   }
+  constexpr double s3 = -1.0 / 6.0, s5 = 1.0 / 120.0, s7 = -1.0 / 5040.0, s9 = 1.0 / 362880.0;
+  constexpr double c2 = -1.0 / 2.0, c4 = 1.0 / 24.0, c6 = -1.0 / 720.0, c8 = 1.0 / 40320.0;
   const double a2 = a * a;
-  s = a * (1.0 - a2 / 6.0 * (1.0 - a2 / 20.0 * (1.0 - a2 / 42.0 * (1.0 - a2 / 72.0))));
-  c = 1.0 - a2 / 2.0 * (1.0 - a2 / 12.0 * (1.0 - a2 / 30.0 * (1.0 - a2 / 56.0)));
+  s = a + a * a2 * (s3 + a2 * (s5 + a2 * (s7 + a2 * s9)));
+  c = 1.0 + a2 * (c2 + a2 * (c4 + a2 * (c6 + a2 * c8)));
 }
 
 // solvePoint in the solve, with R the body's rotation matrix (three
@@ -50,7 +54,9 @@ SolvePoint solvePointRotated(const BodyState& body, const Mat3& R, const PathPoi
   p.axis = R * point.roll_axis;
   p.turn = p.axis.dot(body.solve_turn);
   // The lever turned back by the solve's turn about the axle (Rodrigues).
-  const Vec3 lever = R * (point.local - point.roll_centre);
+  // A wheel's circle is most often centred on its centre of mass.
+  const bool centred = point.roll_centre.isZero();
+  const Vec3 lever = R * (centred ? point.local : Vec3(point.local - point.roll_centre));
   if (p.turn == 0.0) {
     p.lever = lever;
   } else {
@@ -59,7 +65,7 @@ SolvePoint solvePointRotated(const BodyState& body, const Mat3& R, const PathPoi
     const double along = p.axis.dot(lever);
     p.lever = c * lever - s * p.axis.cross(lever) + (1.0 - c) * along * p.axis;
   }
-  p.arm = R * point.roll_centre + p.lever;
+  p.arm = centred ? p.lever : Vec3(R * point.roll_centre + p.lever);
   return p;
 }
 
@@ -91,22 +97,34 @@ void solveSpan(PathConstraint& path, BodyState& b0, BodyState& b1, double alpha_
   const double l = d.norm();
   const Vec3 u = l < 1e-12 ? Vec3::Zero() : Vec3(d / l);
   // A rolling end's moment about its axle is the cable it pays out per
-  // radian (SolvePoint::perRadian); a fixed point's, arm x g.
+  // radian (SolvePoint::perRadian, here with |g| = 1, or g = 0 where the
+  // span has no length and every moment is 0); a fixed point's, arm x g.
   const auto end = [](const SolvePoint& p, const Vec3& g, double& length) {
     const Vec3 m = p.arm.cross(g);
     if (p.axis.isZero()) return m;
-    const double per_radian = p.perRadian(g);
+    const double moment = p.axis.dot(p.lever.cross(g));
+    const double in_plane = (g - p.axis.dot(g) * p.axis).norm();
+    const double per_radian = in_plane > 1e-9 ? moment / in_plane : moment;
     length += p.turn * per_radian;
-    return Vec3(m + p.axis * (per_radian - p.axis.dot(p.lever.cross(g))));
+    return Vec3(m + p.axis * (per_radian - moment));
   };
   double length = l;
   const Vec3 t0 = end(first, -u, length), t1 = end(last, u, length);
   const double C = length - path.rest_length;
   if (C <= 0.0 && path.lambda == 0.0) return;  // slack and never pulled
   const double weight = path.weights.empty() ? 1.0 : path.weights[0];
-  // I^-1 v = R I_body^-1 R^T v (BodyState::applyInvInertia, with R).
-  const Vec3 turn0 = R0 * (b0.inv_inertia * (R0.transpose() * (weight * t0)));
-  const Vec3 turn1 = R1 * (b1.inv_inertia * (R1.transpose() * (weight * t1)));
+  // I^-1 v = R I_body^-1 R^T v (BodyState::applyInvInertia, with R); a
+  // rotor's I_body^-1 is a a^T / I_a (body.h), so in the world a_w (a_w .
+  // v) / I_a with a_w = R a and 1 / I_a its trace: one product with R,
+  // not three.
+  // A rolling end on the rotor's own axle has a_w already.
+  const auto invInertia = [](const BodyState& b, const Mat3& R, const PathPoint& p, const SolvePoint& s,
+                             const Vec3& v) {
+    if (!b.isRotor()) return Vec3(R * (b.inv_inertia * (R.transpose() * v)));
+    const Vec3 axle = p.roll_axis == b.rotor_axis ? s.axis : Vec3(R * b.rotor_axis);
+    return Vec3(axle * (axle.dot(v) * b.inv_inertia.trace()));
+  };
+  const Vec3 turn0 = invInertia(b0, R0, p0, first, weight * t0), turn1 = invInertia(b1, R1, p1, last, weight * t1);
   const double w = weight * u.squaredNorm() * (b0.inv_mass + b1.inv_mass) + t0.dot(turn0) + t1.dot(turn1);
   const DampedRow row = dampedRow(C, alpha_tilde, alpha_tilde * h * path.damping, length - path.start_length);
   if (!(w + row.alpha_tilde > 0.0)) return;

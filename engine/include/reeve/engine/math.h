@@ -22,10 +22,11 @@ Quat rotationBetween(const Vec3& from, const Vec3& to);
 
 /// Rotates `q` by the small world-space rotation vector `dphi` (rad) and
 /// renormalizes: q <- q + 1/2 [dphi, 0] q (Müller et al. 2020, eq. 8).
+/// One division, not normalize()'s four: every solver kernel ends here.
 inline void rotateBy(Quat& q, const Vec3& dphi) {
   const Quat dq(0.0, dphi.x(), dphi.y(), dphi.z());
   q.coeffs() += 0.5 * (dq * q).coeffs();
-  q.normalize();
+  q.coeffs() *= 1.0 / q.coeffs().norm();
 }
 
 /// Rotates `q` exactly by the world-space rotation vector `phi` (rad), with

@@ -16,6 +16,15 @@ endforeach()
 install(TARGETS reeve RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 file(GLOB REEVE_SHIPPED_SCENES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/scenes/*.json)
 install(FILES ${REEVE_SHIPPED_SCENES} DESTINATION ${REEVE_INSTALL_SCENES_DIR})
+# The replay's viewer (`reeve run --html`), with the three.js files it
+# inlines, where the installed program looks: PREFIX/share/reeve/viewer.
+set(REEVE_VIEWER_DIR ${CMAKE_INSTALL_DATADIR}/reeve/viewer)
+install(FILES ${PROJECT_SOURCE_DIR}/viewer/replay.html ${PROJECT_SOURCE_DIR}/viewer/replay.js
+        DESTINATION ${REEVE_VIEWER_DIR})
+install(FILES ${PROJECT_SOURCE_DIR}/viewer/node_modules/three/build/three.module.min.js
+        DESTINATION ${REEVE_VIEWER_DIR}/node_modules/three/build OPTIONAL)
+install(FILES ${PROJECT_SOURCE_DIR}/viewer/node_modules/three/examples/jsm/controls/OrbitControls.js
+        DESTINATION ${REEVE_VIEWER_DIR}/node_modules/three/examples/jsm/controls OPTIONAL)
 
 install(EXPORT ReeveTargets NAMESPACE Reeve:: DESTINATION ${REEVE_CMAKE_DIR})
 configure_package_config_file(${CMAKE_CURRENT_LIST_DIR}/ReeveConfig.cmake.in

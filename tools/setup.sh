@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
-# Installs the Debian packages Reeve builds with. Idempotent: installs only
+# Installs the Debian packages Reeve builds with, and the viewer's
+# JavaScript (three.js) from the npm registry into viewer/node_modules, at
+# the versions viewer/package-lock.json pins. Idempotent: installs only
 # what is missing, so a machine that has everything makes no network call.
 set -euo pipefail
+cd "$(dirname "$0")/.."
 packages=(
   build-essential cmake pkg-config
   libeigen3-dev          # engine maths
@@ -19,7 +22,11 @@ packages=(
   python3-numpy          # its arrays
   python3-pytest         # its tests
   python3-distributed    # reeve.sweep (Dask)
+  chromium               # the replay's test in a real browser (headless)
 )
+# npm for the viewer's JavaScript: Debian's, unless a Node.js with its own
+# npm is there already (NodeSource's, which Debian's npm conflicts with).
+command -v npm >/dev/null || packages+=(nodejs npm)
 # --sanitizers: what tools/sanitize.sh builds with (clang, its sanitizer and
 # libFuzzer runtimes, llvm-symbolizer for readable reports and suppressions).
 if [ "${1:-}" = "--sanitizers" ]; then
@@ -32,12 +39,18 @@ missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q '^install ok installed$' || missing+=("$p")
 done
-if [ ${#missing[@]} -eq 0 ]; then
-  exit 0
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "reeve setup: installing ${missing[*]}" >&2
+  SUDO=""
+  [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+  export DEBIAN_FRONTEND=noninteractive
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
-echo "reeve setup: installing ${missing[*]}" >&2
-SUDO=""
-[ "$(id -u)" -eq 0 ] || SUDO="sudo"
-export DEBIAN_FRONTEND=noninteractive
-$SUDO apt-get update -qq
-$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+# The viewer's JavaScript, again when the lock file is newer than what
+# npm installed (npm ci writes node_modules/.package-lock.json).
+installed=viewer/node_modules/.package-lock.json
+if [ ! -f "$installed" ] || [ viewer/package-lock.json -nt "$installed" ]; then
+  echo "reeve setup: installing the viewer's JavaScript (npm ci in viewer/)" >&2
+  npm ci --prefix viewer --no-audit --no-fund --loglevel=error >/dev/null
+fi

@@ -87,7 +87,7 @@ def _plain(value):
 
 
 def run(scene, frames=None, csv=None, png_dir=None, video=None, events=None, width=1280, height=720, force=False,
-        strict=False):
+        strict=False, html=None):
     """Steps `scene` and writes what `reeve run` writes, from its current state.
 
     frames: frames to step (default: the scene's frame_count). csv: a CSV of
@@ -96,7 +96,8 @@ def run(scene, frames=None, csv=None, png_dir=None, video=None, events=None, wid
     frame_00000.png, ... png files. video: an .mp4 file (H.264 through the
     ffmpeg program; even width and height). events: the cable events (hybrid
     links running out, merges, splits, breaks, spans wound empty) as JSON
-    lines. width, height: image size in pixels. force: replace outputs that
+    lines. html: a replay to open in a browser, one self-contained file
+    (`reeve run --html`). width, height: image size in pixels. force: replace outputs that
     exist. strict: energy created (the energy ledger, Scene.energy()) or a
     span wound empty is an error, as `reeve run --strict`.
 
@@ -112,7 +113,8 @@ def run(scene, frames=None, csv=None, png_dir=None, video=None, events=None, wid
     Ctrl-C after a whole frame (the outputs hold the frames done).
     """
     path = lambda p: None if p is None else _os.fspath(p)  # noqa: E731
-    return scene._run(frames, path(csv), path(png_dir), path(video), path(events), width, height, force, strict)
+    return scene._run(frames, path(csv), path(png_dir), path(video), path(events), path(html), width, height, force,
+                      strict)
 
 
 def scenes_dir():

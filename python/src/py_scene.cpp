@@ -12,6 +12,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "html_replay.h"
 #include "interrupt.h"
 #include "run_scene.h"
 
@@ -89,7 +90,8 @@ py::array_t<std::uint8_t> render(PyScene& s, int width, int height) {
 
 py::dict run(PyScene& s, std::optional<int> frames, std::optional<std::filesystem::path> csv,
              std::optional<std::filesystem::path> png_dir, std::optional<std::filesystem::path> video,
-             std::optional<std::filesystem::path> events, int width, int height, bool force, bool strict) {
+             std::optional<std::filesystem::path> events, std::optional<std::filesystem::path> html, int width,
+             int height, bool force, bool strict) {
   const int n = frames.value_or(s.scene.frameCount());
   if (n < 0) throw py::value_error("frames: expected a count >= 0, got " + std::to_string(n));
   RunOutputs outputs;
@@ -97,6 +99,7 @@ py::dict run(PyScene& s, std::optional<int> frames, std::optional<std::filesyste
   outputs.png_dir = png_dir.value_or("");
   outputs.video = video.value_or("");
   outputs.events = events.value_or("");
+  outputs.html = html.value_or("");
   outputs.width = width;
   outputs.height = height;
   outputs.force = force;
@@ -112,6 +115,9 @@ py::dict run(PyScene& s, std::optional<int> frames, std::optional<std::filesyste
     throw py::error_already_set();
   } catch (const OutputClash& e) {
     throw py::value_error(e.what());
+  } catch (const ViewerMissing& e) {
+    PyErr_SetString(PyExc_FileNotFoundError, e.what());
+    throw py::error_already_set();
   } catch (const std::invalid_argument& e) {
     throw py::value_error(e.what());
   } catch (const std::runtime_error& e) {
@@ -315,7 +321,7 @@ void bindScene(py::module_& m) {
            "dissipated: <= 0 (the integrator's own losses) unless energy was created. step() warns "
            "(RuntimeWarning) in a frame that created energy, as `reeve run` does.")
       .def("_run", &run, py::arg("frames"), py::arg("csv"), py::arg("png_dir"), py::arg("video"), py::arg("events"),
-           py::arg("width"), py::arg("height"), py::arg("force"), py::arg("strict"))
+           py::arg("html"), py::arg("width"), py::arg("height"), py::arg("force"), py::arg("strict"))
       .def("__repr__", [](const PyScene& s) {
         return "<reeve.Scene '" + s.scene.name + "' from " + s.source +
                ", t = " + py::repr(py::float_(s.scene.world->time())).cast<std::string>() + " s, " +

@@ -46,6 +46,29 @@ def test_run_writes_png_frames(scenes, tmp_path):
     assert sorted(p.name for p in (tmp_path / "frames").iterdir()) == ["frame_00000.png", "frame_00001.png"]
 
 
+def test_run_writes_the_replay_reeve_run_writes(scenes, tmp_path):
+    # The same run from Python and the command line: the same page, byte
+    # for byte (tests/viewer plays it in a browser).
+    reeve.run(reeve.load(scenes / "atwood.json"), frames=10, html=tmp_path / "py.html")
+    cli = subprocess.run([os.environ["REEVE_BINARY"], "run", str(scenes / "atwood.json"), "--frames", "10",
+                          "--html", str(tmp_path / "cli.html")], capture_output=True, text=True)
+    assert cli.returncode == 0, cli.stderr
+    assert filecmp.cmp(tmp_path / "py.html", tmp_path / "cli.html", shallow=False)
+    page = (tmp_path / "py.html").read_text()
+    assert "<title>Reeve replay: atwood</title>" in page and '"t":[0,' in page
+    with pytest.raises(FileExistsError, match="exists"):
+        reeve.run(reeve.load(scenes / "atwood.json"), frames=1, html=tmp_path / "py.html")
+    with pytest.raises(ValueError, match="same file"):
+        reeve.run(reeve.load(scenes / "atwood.json"), frames=1, csv=tmp_path / "b.html", html=tmp_path / "b.html")
+
+
+def test_a_replay_without_the_viewer_says_how_to_install_it(scenes, tmp_path, monkeypatch):
+    monkeypatch.setenv("REEVE_VIEWER_DIR", str(tmp_path / "nowhere"))
+    with pytest.raises(FileNotFoundError, match="tools/setup.sh"):
+        reeve.run(reeve.load(scenes / "atwood.json"), frames=1, html=tmp_path / "r.html")
+    assert not (tmp_path / "r.html").exists()
+
+
 REGRESSIONS = pathlib.Path(__file__).resolve().parents[2] / "tests" / "fuzz" / "regressions"
 
 

@@ -54,7 +54,7 @@ int simulate(const RunOptions& o) {
     return kExitUsage;
   }
   const int frames = o.frames.value_or(scene.frameCount());
-  const RunOutputs outputs{o.png_dir, o.video, o.csv, o.events, o.width, o.height, o.force, o.scene, o.strict};
+  const RunOutputs outputs{o.png_dir, o.video, o.csv, o.events, o.html, o.width, o.height, o.force, o.scene, o.strict};
   checkRunOutputs(outputs, frames);  // before the warnings: a refused output is the one message
   printWarnings(scene, o.scene.empty() ? "<built-in simple.json>" : o.scene);
   const RunResult r = runScene(scene, frames, outputs);
@@ -78,9 +78,10 @@ int simulate(const RunOptions& o) {
     std::printf("  PNG frames: %s .. %s\n", (o.png_dir / frameName(0)).c_str(), frameName(done - 1).c_str());
   if (!o.video.empty()) std::printf("  video:      %s\n", o.video.c_str());
   if (!o.csv.empty()) std::printf("  CSV:        %s\n", o.csv.c_str());
+  if (!o.html.empty()) std::printf("  replay:     %s (open it in a browser)\n", o.html.c_str());
   if (!o.events.empty()) std::printf("  events:     %s\n", o.events.c_str());
-  if (o.png_dir.empty() && o.video.empty() && o.csv.empty() && o.events.empty())
-    std::printf("  (no output requested: add --png DIR, --video FILE.mp4, --csv FILE or --events FILE)\n");
+  if (o.png_dir.empty() && o.video.empty() && o.csv.empty() && o.events.empty() && o.html.empty())
+    std::printf("  (no output requested: add --png DIR, --video FILE.mp4, --csv FILE, --events FILE or --html FILE)\n");
   return r.signal ? 128 + r.signal : 0;  // the shells' convention: 130 for SIGINT, 143 for SIGTERM
 }
 

@@ -17,7 +17,7 @@ struct RunOptions {
   std::optional<int> frames, substeps, iterations;
   std::string solver;  ///< "direct" or "gauss-seidel" (checked by the parser); empty: the scene's
   std::string projection;  ///< "end" or "start" (checked by the parser); empty: the scene's
-  std::filesystem::path png_dir, video, csv, events;
+  std::filesystem::path png_dir, video, csv, events, html;
   int width = 1280, height = 720;
   bool force = false;
   bool strict = false;  ///< energy created is an error (exit 1), not a warning

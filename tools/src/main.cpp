@@ -45,6 +45,7 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--png", run.png_dir, "Write frame_NNNNN.png files into this folder");
   run_cmd->add_option("--video", run.video, "Write an H.264 MP4 video (needs the ffmpeg program)");
   run_cmd->add_option("--csv", run.csv, "Write time, body positions and cable tensions per frame");
+  run_cmd->add_option("--html", run.html, "Write a replay to open in a browser: one HTML file, works offline");
   run_cmd->add_option("--events", run.events, "Write link switches, merges and splits as JSON lines");
   run_cmd->add_option("--width", run.width, "Image width in pixels")->check(CLI::Range(16, 8192))->capture_default_str();
   run_cmd->add_option("--height", run.height, "Image height in pixels")->check(CLI::Range(16, 8192))->capture_default_str();

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "csv_writer.h"
+#include "html_replay.h"
 #include "event_log.h"
 #include "frame_folder.h"
 #include "interrupt.h"
@@ -30,7 +31,7 @@ void refuseOverwrite(const fs::path& path, bool force) {
 void refuseClashes(const RunOutputs& o) {
   std::vector<std::pair<std::string, fs::path>> files;
   if (!o.scene_file.empty()) files.push_back({"the scene", o.scene_file});
-  for (const auto& [option, path] : {std::pair{"--csv", o.csv}, {"--events", o.events}, {"--video", o.video}})
+  for (const auto& [option, path] : {std::pair{"--csv", o.csv}, {"--events", o.events}, {"--video", o.video}, {"--html", o.html}})
     if (!path.empty()) files.push_back({option, path});
   for (std::size_t i = 0; i < files.size(); ++i)
     for (std::size_t j = i + 1; j < files.size(); ++j) {
@@ -92,6 +93,7 @@ void checkRunOutputs(const RunOutputs& o, int frames) {
   refuseClashes(o);
   if (!o.csv.empty()) refuseOverwrite(o.csv, o.force);
   if (!o.events.empty()) refuseOverwrite(o.events, o.force);
+  if (!o.html.empty()) refuseOverwrite(o.html, o.force);
   if (!o.video.empty()) {
     if (o.video.extension() != ".mp4")
       throw std::runtime_error(o.video.string() + ": expected a file name ending in .mp4");
@@ -144,6 +146,11 @@ RunResult runScene(Scene& scene, int frames, const RunOutputs& o) {
     createParent(o.csv);
     csv = std::make_unique<CsvWriter>(o.csv, o.force, *scene.cables, energy);
   }
+  std::unique_ptr<HtmlReplay> html;
+  if (!o.html.empty()) {
+    createParent(o.html);
+    html = std::make_unique<HtmlReplay>(o.html, o.force, scene);
+  }
   std::unique_ptr<EventLog> events;
   if (!o.events.empty()) {
     createParent(o.events);
@@ -191,6 +198,7 @@ RunResult runScene(Scene& scene, int frames, const RunOutputs& o) {
   scene.world->setInterruptFlag(InterruptGuard::flag());
   scene.world->setSubstepProgress([&](int done, int substeps) { progress.updateWithin(done, substeps); });
   if (csv) csv->writeRow();  // t = 0: the scene as loaded
+  if (html) html->record();
   for (int f = 0; f < frames && !interrupt.received(); ++f) {
     const auto t0 = std::chrono::steady_clock::now();
     scene.world->step(dt);
@@ -207,6 +215,7 @@ RunResult runScene(Scene& scene, int frames, const RunOutputs& o) {
       if (result.energy_created_frames++ < kMaxEnergyFindings) result.energy_created.push_back(*created);
     }
     if (csv) csv->writeRow();
+    if (html) html->record();
     const std::vector<CableEvent> happened = scene.cables->takeEvents();
     for (const CableEvent& e : happened) {
       if (e.kind != CableEvent::Kind::SpanRunsOut) continue;
@@ -227,12 +236,14 @@ RunResult runScene(Scene& scene, int frames, const RunOutputs& o) {
   if (video) video->finish();
   if (csv) csv->close();
   if (events) events->close();
+  if (html) html->close();
   if (video) {
     moveIntoPlace(video_file.path, o.video, o.force);
     video_file.path.clear();
   }
   if (csv) csv->commit();
   if (events) events->commit();
+  if (html) html->commit();
   if (pngs) pngs->commit();
   result.signal = interrupt.received();
   return result;

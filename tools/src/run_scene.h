@@ -30,6 +30,8 @@ struct OutputClash : std::runtime_error {
 /// scene came from, if any, which no output may replace.
 struct RunOutputs {
   std::filesystem::path png_dir, video, csv, events;
+  /// A replay in one HTML file (html_replay.h: HtmlReplay); none if empty.
+  std::filesystem::path html;
   int width = 1280, height = 720;  ///< pixels, of the PNG frames and the video (even for a video)
   bool force = false;              ///< replace outputs that exist
   std::filesystem::path scene_file;
@@ -83,7 +85,8 @@ Camera sceneCamera(const Scene& scene, double aspect);
 /// Steps `scene` by `frames` frames of 1 / frame_rate_hz, writing after
 /// each the CSV row (CsvWriter; a row for the state before the first
 /// frame too), the cable events, the PNG frame (frame_00000.png, ...) and
-/// the video frame (MP4, H.264, through the ffmpeg program). Every output
+/// the video frame (MP4, H.264, through the ffmpeg program), the replay's
+/// frame (HTML, the state before the first frame too). Every output
 /// is checked before the first step (checkRunOutputs) and appears only whole, at the end (on
 /// SIGINT or SIGTERM too, holding the whole frames done: a signal ends the
 /// frame under way after the solver iteration in progress). Throws WouldOverwrite,

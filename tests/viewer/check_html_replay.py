@@ -27,10 +27,13 @@ def chromium():
     return None
 
 
-def browse(browser, url, *flags):
+def browse(browser, url, profile, *flags):
     # --virtual-time-budget runs the page's timers in virtual time, so a
     # replay of seconds plays in a moment and the same way on any machine.
-    cmd = [browser, "--headless=new", "--no-sandbox", "--disable-gpu", "--enable-unsafe-swiftshader",
+    # A profile of its own and no /dev/shm: a container's HOME and shared
+    # memory may be read-only or tiny.
+    cmd = [browser, "--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
+           "--enable-unsafe-swiftshader", f"--user-data-dir={profile}", "--no-first-run",
            "--virtual-time-budget=5000", "--window-size=1000,700", *flags, url]
     return subprocess.run(cmd, check=True, capture_output=True, text=True, timeout=120).stdout
 
@@ -65,7 +68,7 @@ def main(reeve, scene, workdir):
     page, table = work / "replay.html", work / "replay.csv"
     subprocess.run([reeve, "run", scene, "--frames", "45", "--html", str(page), "--csv", str(table), "--force"],
                    check=True, capture_output=True)
-    dom = browse(browser, page.resolve().as_uri(), "--dump-dom")
+    dom = browse(browser, page.resolve().as_uri(), work / "profile", "--dump-dom")
     found = re.search(r'<pre id="reeve-status">(.*?)</pre>', dom, re.S)
     assert found and found.group(1), "the page never reported playing to the end"
     status = json.loads(html.unescape(found.group(1)))
@@ -85,7 +88,7 @@ def main(reeve, scene, workdir):
     assert max(max(t) for t in status["tensions"]) > 0.0, "the cable never pulled"
 
     shot = work / "replay.png"
-    browse(browser, page.resolve().as_uri(), f"--screenshot={shot}")
+    browse(browser, page.resolve().as_uri(), work / "profile", f"--screenshot={shot}")
     image = matplotlib.image.imread(shot)[:, :, :3]
     drawn = projected(status["projection"], image.shape[1], image.shape[0])
     assert drawn, "no body centre in the 3D view"

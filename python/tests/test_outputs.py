@@ -1,5 +1,6 @@
 """Scene.render and reeve.run: the command line's images and files."""
 import filecmp
+import json
 import os
 import pathlib
 import subprocess
@@ -60,6 +61,21 @@ def test_run_writes_the_replay_reeve_run_writes(scenes, tmp_path):
         reeve.run(reeve.load(scenes / "atwood.json"), frames=1, html=tmp_path / "py.html")
     with pytest.raises(ValueError, match="same file"):
         reeve.run(reeve.load(scenes / "atwood.json"), frames=1, csv=tmp_path / "b.html", html=tmp_path / "b.html")
+
+
+def test_a_replay_keeps_a_scenes_own_markup_as_text(scenes, tmp_path):
+    # Words in a scene that would end the page's data script or comment
+    # it out, or that look like the template's marks, stay data.
+    doc = json.loads((scenes / "atwood.json").read_text())
+    doc["name"] = "a<b>&/*REEVE_DATA*/"
+    doc["description"] = "</script><!-- <script> /*REEVE_VIEWER*/"
+    reeve.run(reeve.load(doc), frames=2, html=tmp_path / "m.html")
+    page = (tmp_path / "m.html").read_text()
+    assert "<title>Reeve replay: a&lt;b&gt;&amp;/*REEVE_DATA*/</title>" in page
+    data = page.split('<script id="reeve-data" type="application/json">', 1)[1].split("</script>", 1)[0]
+    replay = json.loads(data)
+    assert replay["name"] == doc["name"] and replay["description"] == doc["description"]
+    assert len(replay["frames"]["t"]) == 3 and page.count("</script>") == 3
 
 
 def test_a_replay_without_the_viewer_says_how_to_install_it(scenes, tmp_path, monkeypatch):

@@ -28,8 +28,8 @@ std::string readViewerFile(const fs::path& path) {
   std::ostringstream text;
   if (!(in && text << in.rdbuf()))
     throw ViewerMissing("--html: cannot read the viewer's " + path.string() +
-                             "; run `bash tools/setup.sh` (it installs three.js with npm ci in viewer/), or set "
-                             "REEVE_VIEWER_DIR to a folder holding the viewer");
+                        "; run `bash tools/setup.sh` (it installs three.js with npm ci in viewer/), or set "
+                        "REEVE_VIEWER_DIR to a folder holding the viewer");
   return text.str();
 }
 
@@ -47,10 +47,17 @@ std::string base64(const std::string& bytes) {
   return out;
 }
 
-// JSON for inside a <script> element: "</" would end it.
-std::string scriptSafe(std::string json) {
-  for (std::size_t at = 0; (at = json.find("</", at)) != std::string::npos; at += 3) json.replace(at, 2, "<\\/");
-  return json;
+// JSON for inside a <script> element, where "</script" would end it and
+// "<!--" change how it is read: every '<' (only ever inside a JSON
+// string) written as the escape \u003c.
+std::string scriptSafe(const std::string& json) {
+  std::string out;
+  out.reserve(json.size());
+  for (const char ch : json) {
+    if (ch == '<') out += "\\u003c";
+    else out += ch;
+  }
+  return out;
 }
 
 // The template with each mark, in the order given (its order in the

@@ -16,10 +16,13 @@ endforeach()
 install(TARGETS reeve RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 file(GLOB REEVE_SHIPPED_SCENES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/scenes/*.json)
 install(FILES ${REEVE_SHIPPED_SCENES} DESTINATION ${REEVE_INSTALL_SCENES_DIR})
-# The replay's viewer (`reeve run --html`), with the three.js files it
-# inlines, where the installed program looks: PREFIX/share/reeve/viewer.
+# The viewer's pages (`reeve run --html`'s replay, `reeve view`'s live
+# page), with the three.js files they use, where the installed program
+# looks: PREFIX/share/reeve/viewer.
 set(REEVE_VIEWER_DIR ${CMAKE_INSTALL_DATADIR}/reeve/viewer)
 install(FILES ${PROJECT_SOURCE_DIR}/viewer/replay.html ${PROJECT_SOURCE_DIR}/viewer/replay.js
+              ${PROJECT_SOURCE_DIR}/viewer/view3d.js ${PROJECT_SOURCE_DIR}/viewer/live.html
+              ${PROJECT_SOURCE_DIR}/viewer/live.js
         DESTINATION ${REEVE_VIEWER_DIR})
 install(FILES ${PROJECT_SOURCE_DIR}/viewer/node_modules/three/build/three.module.min.js
         DESTINATION ${REEVE_VIEWER_DIR}/node_modules/three/build OPTIONAL)

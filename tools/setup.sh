@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages Reeve builds with, and the viewer's
-# JavaScript (three.js) from the npm registry into viewer/node_modules, at
+# JavaScript (three.js; puppeteer-core and pngjs for its tests) from the
+# npm registry into viewer/node_modules, at
 # the versions viewer/package-lock.json pins. Idempotent: installs only
 # what is missing, so a machine that has everything makes no network call.
 set -euo pipefail
@@ -13,6 +14,7 @@ packages=(
   nlohmann-json3-dev     # scene files
   libvalijson-dev        # JSON Schema validation of scenes
   libcli11-dev           # command line
+  libcpp-httplib-dev     # reeve view's HTTP server
   libosmesa6-dev         # off-screen OpenGL
   libpng-dev             # PNG frames
   libgtest-dev           # tests
@@ -22,7 +24,7 @@ packages=(
   python3-numpy          # its arrays
   python3-pytest         # its tests
   python3-distributed    # reeve.sweep (Dask)
-  chromium               # the replay's test in a real browser (headless)
+  chromium               # the viewer's tests in a real browser (headless)
 )
 # npm for the viewer's JavaScript: Debian's, unless a Node.js with its own
 # npm is there already (NodeSource's, which Debian's npm conflicts with).

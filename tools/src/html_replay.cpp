@@ -3,16 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 #include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
-#include "reeve/engine/convex_hull.h"
 #include "reeve/render/cable_path.h"
 
 namespace reeve {
@@ -22,16 +18,6 @@ namespace fs = std::filesystem;
 
 // Wrap points on circles at most this far apart (rad), as drawn in PNGs.
 constexpr double kArcStepRad = 0.1;
-
-std::string readViewerFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  if (!(in && text << in.rdbuf()))
-    throw ViewerMissing("--html: cannot read the viewer's " + path.string() +
-                        "; run `bash tools/setup.sh` (it installs three.js with npm ci in viewer/), or set "
-                        "REEVE_VIEWER_DIR to a folder holding the viewer");
-  return text.str();
-}
 
 std::string base64(const std::string& bytes) {
   static const char* digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -96,41 +82,15 @@ void appendNumber(std::string& out, double value, const char* what) {
   out += text;
 }
 
-nlohmann::json vec(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
-
-nlohmann::json shapeJson(const Shape& shape) {
-  switch (shape.type) {
-    case Shape::Type::Box: return {{"type", "box"}, {"half_extents", vec(shape.half_extents)}};
-    case Shape::Type::Cylinder: return {{"type", "cylinder"}, {"radius", shape.radius}, {"half_length", shape.half_length}};
-    case Shape::Type::Sphere: return {{"type", "sphere"}, {"radius", shape.radius}};
-    case Shape::Type::Hull: {
-      nlohmann::json vertices = nlohmann::json::array(), faces = nlohmann::json::array();
-      for (const Vec3& v : shape.hull->vertices) vertices.push_back(vec(v));
-      for (const ConvexHull::Face& f : shape.hull->faces) faces.push_back(f.vertices);
-      return {{"type", "hull"}, {"vertices", vertices}, {"faces", faces}};
-    }
-  }
-  return nullptr;
-}
-
 }  // namespace
-
-fs::path viewerDir() {
-  if (const char* dir = std::getenv("REEVE_VIEWER_DIR"); dir && *dir) return dir;
-  // Installed (cmake --install): PREFIX/bin/reeve beside PREFIX/share/reeve/viewer.
-  std::error_code ec;
-  const fs::path installed = fs::read_symlink("/proc/self/exe", ec).parent_path().parent_path() / "share/reeve/viewer";
-  if (!ec && fs::is_regular_file(installed / "replay.html", ec)) return installed;
-  return REEVE_VIEWER_SOURCE_DIR;
-}
 
 HtmlReplay::HtmlReplay(const fs::path& path, bool replace, const Scene& scene)
     : out_(path, replace), scene_(scene) {
-  const fs::path dir = viewerDir();
-  page_ = readViewerFile(dir / "replay.html");
-  viewer_js_ = readViewerFile(dir / "replay.js");
-  three_js_ = readViewerFile(dir / "node_modules/three/build/three.module.min.js");
-  orbit_js_ = readViewerFile(dir / "node_modules/three/examples/jsm/controls/OrbitControls.js");
+  page_ = readViewerFile("replay.html", "--html");
+  viewer_js_ = readViewerFile("replay.js", "--html");
+  view3d_js_ = readViewerFile("view3d.js", "--html");
+  three_js_ = readViewerFile(kThreeModule, "--html");
+  orbit_js_ = readViewerFile(kOrbitControls, "--html");
 }
 
 void HtmlReplay::record() {
@@ -185,22 +145,7 @@ void HtmlReplay::record() {
 }
 
 void HtmlReplay::close() {
-  const World& world = *scene_.world;
-  nlohmann::json bodies = nlohmann::json::array(), cables = nlohmann::json::array();
-  for (BodyId id = 0; id < world.bodyCount(); ++id) {
-    const BodyDef& def = world.bodyDef(id);
-    bodies.push_back({{"name", def.name}, {"shape", shapeJson(def.shape)}, {"dynamic", world.bodyMass(id) > 0.0}});
-  }
-  for (const Cable& cable : scene_.cables->cables())
-    cables.push_back({{"name", cable.name}, {"joints", cable.joints.size()}});
-  nlohmann::json camera = nullptr;
-  if (scene_.camera)
-    camera = {{"eye", vec(scene_.camera->eye)}, {"target", vec(scene_.camera->target)},
-              {"up", vec(scene_.camera->up)}, {"fov_y_deg", scene_.camera->fov_y_deg}};
-  const nlohmann::json head = {{"name", scene_.name},     {"description", scene_.description},
-                               {"frame_rate_hz", scene_.frame_rate_hz}, {"gravity", vec(world.settings().gravity)},
-                               {"camera", camera},        {"bodies", bodies},
-                               {"cables", cables}};
+  const nlohmann::json head = sceneHead(scene_);
   std::string data = head.dump();
   data.pop_back();  // the closing brace: the frames follow
   data += ",\"frames\":{\"t\":[" + times_ + "],\"poses\":[" + poses_ + "],\"paths\":[" + paths_ +
@@ -208,7 +153,8 @@ void HtmlReplay::close() {
   const nlohmann::json imports = {
       {"imports",
        {{"three", "data:text/javascript;base64," + base64(three_js_)},
-        {"three/addons/controls/OrbitControls.js", "data:text/javascript;base64," + base64(orbit_js_)}}}};
+        {"three/addons/controls/OrbitControls.js", "data:text/javascript;base64," + base64(orbit_js_)},
+        {"reeve/view3d.js", "data:text/javascript;base64," + base64(view3d_js_)}}}};
   out_.write(fill(page_, {{"/*REEVE_TITLE*/", htmlEscaped(scene_.name)},
                           {"/*REEVE_IMPORTS*/", scriptSafe(imports.dump())},
                           {"/*REEVE_DATA*/", scriptSafe(data)},

@@ -5,23 +5,13 @@
 #pragma once
 
 #include <filesystem>
-#include <stdexcept>
 #include <string>
 
 #include "output_file.h"
 #include "reeve/scene/scene.h"
+#include "viewer_files.h"
 
 namespace reeve {
-
-/// The viewer's files are not where viewerDir() says (not installed).
-struct ViewerMissing : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-/// The folder of the viewer's files: $REEVE_VIEWER_DIR if set, else
-/// share/reeve/viewer beside an installed program's bin/, else the source
-/// tree's viewer/ this program was built from.
-std::filesystem::path viewerDir();
 
 /// Records a scene frame by frame and writes the replay page. The page
 /// plays the frames at the scene's frame rate (pause, step, a time
@@ -31,8 +21,9 @@ std::filesystem::path viewerDir();
 /// <pre id="reeve-status"> as JSON (what the tests read).
 class HtmlReplay {
  public:
-  /// Reads the viewer's files from viewerDir() (replay.html, replay.js and
-  /// from node_modules three's module build and OrbitControls) and opens
+  /// Reads the viewer's files from viewerDir() (replay.html, replay.js,
+  /// view3d.js and from node_modules three's module build and
+  /// OrbitControls) and opens
   /// `path` (an OutputFile: nothing appears there before commit()).
   /// Throws ViewerMissing naming a missing file and how to install it.
   HtmlReplay(const std::filesystem::path& path, bool replace, const Scene& scene);
@@ -46,7 +37,7 @@ class HtmlReplay {
  private:
   OutputFile out_;
   const Scene& scene_;
-  std::string page_, viewer_js_, three_js_, orbit_js_;
+  std::string page_, viewer_js_, view3d_js_, three_js_, orbit_js_;
   std::string times_, poses_, paths_, tensions_;  // JSON arrays' contents so far
   int frames_ = 0;
 };

@@ -13,6 +13,7 @@
 #include "commands.h"
 #include "generate_command.h"
 #include "segment_command.h"
+#include "view_server.h"
 #include "reeve/scene/scene.h"
 
 int main(int argc, char** argv) {
@@ -58,6 +59,27 @@ int main(int argc, char** argv) {
   run_cmd->add_flag("--strict", run.strict,
                     "Stop with exit 1 where the energy ledger shows energy created or a span is wound empty (by default "
                     "a warning)");
+
+  reeve::ViewOptions view;
+  std::string view_solver;
+  CLI::App* view_cmd = app.add_subcommand(
+      "view", "Run a scene live in a browser: play, pause, step, drag bodies, plot tensions (Ctrl-C stops).");
+  view_cmd->add_option("scene", view.scene, "Scene JSON file (default: the built-in Simple scene); reloaded when it changes");
+  view_cmd->add_option("--port", view.port, "Port to listen on; 0 picks a free one")
+      ->check(CLI::Range(0, 65535))->capture_default_str();
+  view_cmd->add_option("--host", view.host,
+                       "Address to listen on (default 127.0.0.1, this machine only; another prints a warning)")
+      ->capture_default_str();
+  view_cmd->add_option("--substeps", view.overrides.substeps, "Substeps per frame, 1..100000 (default: the scene's)")
+      ->check(CLI::Range(1, 100000));
+  view_cmd->add_option("--iterations", view.overrides.iterations, "Solver iterations per substep, 1..100000")
+      ->check(CLI::Range(1, 100000));
+  view_cmd->add_option("--solver", view_solver, "direct or gauss-seidel (default: the scene's)")
+      ->check(CLI::IsMember({"direct", "gauss-seidel"}));
+  view_cmd->footer(
+      "Open the printed address in a browser; on a remote machine, forward the port (ssh -L 8765:localhost:8765\n"
+      "HOST) and open http://localhost:8765/. Exit codes: 0 stopped by Ctrl-C; 1 the viewer's files are missing or\n"
+      "the address is taken; 2 the scene is invalid; 64 a bad command line.\n");
 
   std::string validate_scene;
   CLI::App* validate_cmd = app.add_subcommand("validate", "Check a scene file and report the first error.");
@@ -108,6 +130,10 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : reeve::kExitUsage;
   }
   if (*run_cmd) return reeve::runCommand(run);
+  if (*view_cmd) {
+    if (!view_solver.empty()) view.overrides.solver = reeve::solverMethodFromName(view_solver);
+    return reeve::viewCommand(view);
+  }
   if (*hilbert_cmd) return reeve::generateHilbertCommand(hilbert);
   if (*bench_cmd) return bench();
   if (*segment_cmd) {

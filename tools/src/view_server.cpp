@@ -1,0 +1,320 @@
+#include "view_server.h"
+
+#include <chrono>
+#include <condition_variable>
+#include <cstdio>
+#include <deque>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <mutex>
+#include <sstream>
+#include <thread>
+#include <vector>
+
+#include <httplib.h>
+#include <nlohmann/json.hpp>
+
+#include "interrupt.h"
+#include "viewer_files.h"
+
+namespace reeve {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+// Messages kept for streams that fall behind; one further back lost its
+// frames (the page says so by the frame numbers), not the connection.
+constexpr std::size_t kKeptMessages = 1024;
+// How often the scene file is looked at for changes.
+constexpr auto kWatchEvery = std::chrono::milliseconds(250);
+// How long a stream waits for a message before it looks whether its page
+// is still there and the server still running.
+constexpr auto kStreamPoll = std::chrono::milliseconds(200);
+
+bool isLoopback(const std::string& host) {
+  return host == "127.0.0.1" || host == "localhost" || host == "::1" || host.rfind("127.", 0) == 0;
+}
+
+// The host part of a Host header ("localhost:8765", "[::1]:8765").
+std::string hostName(const std::string& header) {
+  if (!header.empty() && header.front() == '[') return header.substr(1, header.find(']') - 1);
+  return header.substr(0, header.find(':'));
+}
+
+std::string errorJson(const std::string& text) { return nlohmann::json{{"error", text}}.dump(); }
+
+}  // namespace
+
+struct ViewServer::Impl {
+  ViewOptions options;
+  httplib::Server http;
+  int port = 0;
+  struct File {
+    std::string bytes;
+    const char* type;
+  };
+  std::map<std::string, File> files;  // by URL path: all that is served
+
+  std::mutex mutex;  // guards everything below
+  std::condition_variable wake;      // the stepping thread: a command, a stop
+  std::condition_variable messages;  // the streams: a message, a stop
+  LiveScene live;
+  std::deque<std::shared_ptr<const std::string>> log;
+  std::uint64_t first_seq = 0, next_seq = 0;  // of log.front(), and of the next message
+  std::shared_ptr<const std::string> scene_message, status_message, frame_message;  // what a new page starts from
+  int streams = 0;
+  bool stopping = false;
+  Clock::time_point next_frame;
+  fs::file_time_type watched_time;
+  std::thread stepper, server;
+
+  explicit Impl(const ViewOptions& o) : options(o), live(o.scene, o.overrides) {}
+
+  // Under `mutex`.
+  void publish(std::string message, std::shared_ptr<const std::string>* latest = nullptr) {
+    auto shared = std::make_shared<const std::string>(std::move(message));
+    if (latest) *latest = shared;
+    log.push_back(std::move(shared));
+    ++next_seq;
+    if (log.size() > kKeptMessages) {
+      log.pop_front();
+      ++first_seq;
+    }
+    messages.notify_all();
+  }
+  void publishScene() {
+    publish(live.sceneMessage(), &scene_message);
+    publish(live.statusMessage(), &status_message);
+    publish(live.frameMessage(), &frame_message);
+  }
+  void publishError(const std::string& text, const std::string& file = "", const std::string& json_path = "") {
+    publish(jsonMessage(nlohmann::json{{"type", "error"}, {"message", text}, {"file", file}, {"json_path", json_path}}.dump()));
+  }
+
+  // The scene file changed on disk: the new one from t = 0, or its error
+  // in the page and the old one on.
+  void watch() {
+    if (options.scene.empty()) return;
+    std::error_code ec;
+    const fs::file_time_type time = fs::last_write_time(options.scene, ec);
+    if (ec || time == watched_time) return;
+    watched_time = time;
+    try {
+      std::ifstream in(options.scene, std::ios::binary);
+      std::ostringstream text;
+      text << in.rdbuf();
+      live.reload(text.str());
+      publishScene();
+    } catch (const SceneError& e) {
+      publishError(e.what(), e.file(), e.jsonPath());
+    }
+  }
+
+  void stepLoop() {
+    std::unique_lock lock(mutex);
+    auto next_watch = Clock::now() + kWatchEvery;
+    next_frame = Clock::now();
+    while (!stopping) {
+      const auto now = Clock::now();
+      if (now >= next_watch) {
+        watch();
+        next_watch = now + kWatchEvery;
+      }
+      // Time runs while a page watches: not before the first opens, nor
+      // while none is open.
+      const bool playing = live.playing() && streams > 0;
+      const bool due = playing ? now >= next_frame : live.stepsWanted() > 0;
+      if (!due) {
+        if (!playing) next_frame = now;
+        wake.wait_until(lock, playing ? std::min(next_frame, next_watch) : next_watch);
+        continue;
+      }
+      const bool failed = live.failure().has_value();
+      live.stepFrame();
+      publish(live.frameMessage(), &frame_message);
+      for (std::string& event : live.takeEventMessages()) publish(std::move(event));
+      if (!failed && live.failure()) {
+        publish(live.statusMessage(), &status_message);
+        publishError("paused: " + *live.failure());
+      }
+      if (!live.playing() && live.stepsWanted() == 0) publish(live.statusMessage(), &status_message);
+      // Real time at the page's factor; a frame that took longer than its
+      // share is not caught up on (the machine runs as fast as it can).
+      next_frame = std::max(next_frame + std::chrono::duration_cast<Clock::duration>(
+                                             std::chrono::duration<double>(live.frameSeconds() / live.realTimeFactor())),
+                            now - std::chrono::milliseconds(100));
+    }
+  }
+
+  void control(const httplib::Request& req, httplib::Response& res) {
+    if (req.get_header_value("Content-Type").rfind("application/json", 0) != 0) {
+      // Only a page of this server sends it so: a cross-site form or
+      // fetch would need a preflight the server never answers.
+      res.status = 415;
+      res.set_content(errorJson("a command is sent as application/json"), "application/json");
+      return;
+    }
+    std::lock_guard lock(mutex);
+    const std::uint32_t before = sceneGeneration();
+    if (const auto error = live.command(req.body)) {
+      res.status = 400;
+      res.set_content(errorJson(*error), "application/json");
+      return;
+    }
+    if (sceneGeneration() != before) publishScene();  // reset
+    else publish(live.statusMessage(), &status_message);
+    next_frame = Clock::now();
+    wake.notify_all();
+    res.set_content(R"({"ok":true})", "application/json");
+  }
+
+  std::uint32_t sceneGeneration() const { return live.sceneGeneration(); }
+
+  void stream(const httplib::Request&, httplib::Response& res) {
+    std::unique_lock lock(mutex);
+    if (streams >= kMaxStreams) {
+      res.status = 503;
+      res.set_content(errorJson("at most " + std::to_string(kMaxStreams) + " pages watch at once; close one"),
+                      "application/json");
+      return;
+    }
+    ++streams;
+    wake.notify_all();
+    // A new page starts from the scene, its status and its latest frame.
+    auto start = std::make_shared<std::vector<std::shared_ptr<const std::string>>>(
+        std::vector{scene_message, status_message, frame_message});
+    auto next = std::make_shared<std::uint64_t>(next_seq);
+    res.set_header("Cache-Control", "no-store");
+    res.set_chunked_content_provider(
+        "application/octet-stream",
+        [this, start, next](std::size_t, httplib::DataSink& sink) {
+          std::vector<std::shared_ptr<const std::string>> batch;
+          {
+            std::unique_lock lock(mutex);
+            if (start->empty())
+              messages.wait_for(lock, kStreamPoll, [&] { return stopping || *next < next_seq; });
+            if (stopping) {
+              sink.done();
+              return true;
+            }
+            batch.swap(*start);
+            *next = std::max(*next, first_seq);  // fell behind: what is kept
+            for (; *next < next_seq; ++*next) batch.push_back(log[*next - first_seq]);
+          }
+          if (batch.empty()) return sink.is_writable();
+          for (const auto& m : batch)
+            if (!sink.write(m->data(), m->size())) return false;  // the page went: end this stream only
+          return true;
+        },
+        [this](bool) {
+          std::lock_guard lock(mutex);
+          --streams;
+        });
+  }
+
+  // Only the page's own host names, against a site rebinding its name to
+  // this address (loopback only; a public --host was warned about).
+  bool hostAllowed(const httplib::Request& req) const {
+    if (!isLoopback(options.host)) return true;
+    const std::string host = hostName(req.get_header_value("Host"));
+    return isLoopback(host) || host == options.host;
+  }
+};
+
+ViewServer::ViewServer(const ViewOptions& options) : impl_(std::make_unique<Impl>(options)) {
+  Impl& m = *impl_;
+  std::error_code ec;
+  if (!options.scene.empty()) m.watched_time = fs::last_write_time(options.scene, ec);
+  m.files["/"] = {readViewerFile("live.html", "reeve view"), "text/html; charset=utf-8"};
+  m.files["/viewer/live.js"] = {readViewerFile("live.js", "reeve view"), "text/javascript"};
+  m.files["/viewer/view3d.js"] = {readViewerFile("view3d.js", "reeve view"), "text/javascript"};
+  m.files["/viewer/three.module.min.js"] = {readViewerFile(kThreeModule, "reeve view"), "text/javascript"};
+  m.files["/viewer/OrbitControls.js"] = {readViewerFile(kOrbitControls, "reeve view"), "text/javascript"};
+  m.publishScene();
+
+  httplib::Server& http = m.http;
+  http.set_payload_max_length(kMaxCommandBytes);
+  http.set_keep_alive_timeout(1);
+  http.set_default_headers({{"X-Content-Type-Options", "nosniff"}});
+  http.set_pre_routing_handler([&m](const httplib::Request& req, httplib::Response& res) {
+    if (m.hostAllowed(req)) return httplib::Server::HandlerResponse::Unhandled;
+    res.status = 403;
+    res.set_content(errorJson("this server answers only to its own address"), "application/json");
+    return httplib::Server::HandlerResponse::Handled;
+  });
+  // Every file by its exact path: nothing outside them, however encoded.
+  http.Get(R"(/.*)", [&m](const httplib::Request& req, httplib::Response& res) {
+    if (req.path == "/stream") return m.stream(req, res);
+    const auto found = m.files.find(req.path);
+    if (found == m.files.end()) {
+      res.status = 404;
+      res.set_content("not found\n", "text/plain");
+      return;
+    }
+    res.set_header("Cache-Control", "no-store");
+    res.set_content(found->second.bytes, found->second.type);
+  });
+  http.Post("/control", [&m](const httplib::Request& req, httplib::Response& res) { m.control(req, res); });
+  m.port = options.port == 0 ? http.bind_to_any_port(options.host) : (http.bind_to_port(options.host, options.port) ? options.port : -1);
+  if (m.port < 0)
+    throw std::runtime_error("cannot listen on " + options.host + ":" + std::to_string(options.port) +
+                             " (in use, or not this machine's address); pass another --port, or --port 0 for any free one");
+}
+
+ViewServer::~ViewServer() { stop(); }
+
+int ViewServer::port() const { return impl_->port; }
+
+std::string ViewServer::url() const {
+  const std::string& host = impl_->options.host;
+  return "http://" + (host.find(':') != std::string::npos ? "[" + host + "]" : host) + ":" + std::to_string(port()) + "/";
+}
+
+void ViewServer::start() {
+  Impl& m = *impl_;
+  m.server = std::thread([&m] { m.http.listen_after_bind(); });
+  m.stepper = std::thread([&m] { m.stepLoop(); });
+}
+
+void ViewServer::stop() {
+  Impl& m = *impl_;
+  {
+    std::lock_guard lock(m.mutex);
+    m.stopping = true;
+  }
+  m.wake.notify_all();
+  m.messages.notify_all();
+  if (m.stepper.joinable()) m.stepper.join();
+  m.http.stop();
+  if (m.server.joinable()) m.server.join();
+}
+
+int viewCommand(const ViewOptions& options) {
+  try {
+    const InterruptGuard interrupt;
+    ViewServer server(options);
+    if (!isLoopback(options.host))
+      std::fprintf(stderr,
+                   "reeve view: warning: listening on %s, not only this machine: anyone who reaches it can watch and "
+                   "control the scene (for a remote machine, forward a port over SSH instead: README)\n",
+                   options.host.c_str());
+    server.start();
+    std::printf("reeve view: '%s' at %s (Ctrl-C stops)\n", options.scene.empty() ? "simple" : options.scene.c_str(),
+                server.url().c_str());
+    std::fflush(stdout);
+    while (!interrupt.received()) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    server.stop();
+    std::printf("reeve view: stopped\n");
+    return 0;
+  } catch (const SceneError& e) {
+    std::cerr << "reeve: " << e.what() << '\n';
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "reeve: " << e.what() << '\n';
+    return 1;
+  }
+}
+
+}  // namespace reeve

@@ -1,0 +1,87 @@
+#include "viewer_files.h"
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "reeve/engine/convex_hull.h"
+
+namespace reeve {
+namespace {
+
+namespace fs = std::filesystem;
+
+nlohmann::json vec(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+
+nlohmann::json shapeJson(const Shape& shape) {
+  switch (shape.type) {
+    case Shape::Type::Box: return {{"type", "box"}, {"half_extents", vec(shape.half_extents)}};
+    case Shape::Type::Cylinder: return {{"type", "cylinder"}, {"radius", shape.radius}, {"half_length", shape.half_length}};
+    case Shape::Type::Sphere: return {{"type", "sphere"}, {"radius", shape.radius}};
+    case Shape::Type::Hull: {
+      nlohmann::json vertices = nlohmann::json::array(), faces = nlohmann::json::array();
+      for (const Vec3& v : shape.hull->vertices) vertices.push_back(vec(v));
+      for (const ConvexHull::Face& f : shape.hull->faces) faces.push_back(f.vertices);
+      return {{"type", "hull"}, {"vertices", vertices}, {"faces", faces}};
+    }
+  }
+  return nullptr;
+}
+
+const char* driveName(HingeDrive::Mode mode) {
+  switch (mode) {
+    case HingeDrive::Mode::None: return "none";
+    case HingeDrive::Mode::Angle: return "angle";
+    case HingeDrive::Mode::Velocity: return "velocity";
+  }
+  return "none";
+}
+
+std::string bodyName(const World& world, BodyId id) {
+  return id == kWorldBody ? std::string("world") : world.bodyDef(id).name;
+}
+
+}  // namespace
+
+fs::path viewerDir() {
+  if (const char* dir = std::getenv("REEVE_VIEWER_DIR"); dir && *dir) return dir;
+  // Installed (cmake --install): PREFIX/bin/reeve beside PREFIX/share/reeve/viewer.
+  std::error_code ec;
+  const fs::path installed = fs::read_symlink("/proc/self/exe", ec).parent_path().parent_path() / "share/reeve/viewer";
+  if (!ec && fs::is_regular_file(installed / "replay.html", ec)) return installed;
+  return REEVE_VIEWER_SOURCE_DIR;
+}
+
+std::string readViewerFile(const std::string& name, const char* option) {
+  const fs::path path = viewerDir() / name;
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  if (!(in && text << in.rdbuf()))
+    throw ViewerMissing(std::string(option) + ": cannot read the viewer's " + path.string() +
+                        "; run `bash tools/setup.sh` (it installs three.js with npm ci in viewer/), or set "
+                        "REEVE_VIEWER_DIR to a folder holding the viewer");
+  return text.str();
+}
+
+nlohmann::json sceneHead(const Scene& scene) {
+  const World& world = *scene.world;
+  nlohmann::json bodies = nlohmann::json::array(), cables = nlohmann::json::array(), hinges = nlohmann::json::array();
+  for (BodyId id = 0; id < world.bodyCount(); ++id) {
+    const BodyDef& def = world.bodyDef(id);
+    bodies.push_back({{"name", def.name}, {"shape", shapeJson(def.shape)}, {"dynamic", world.bodyMass(id) > 0.0}});
+  }
+  for (const Cable& cable : scene.cables->cables())
+    cables.push_back({{"name", cable.name}, {"joints", cable.joints.size()}, {"winch", cable.winch.has_value()}});
+  for (const HingeJoint& j : world.hinges())
+    hinges.push_back({{"body", bodyName(world, j.a)}, {"other", bodyName(world, j.b)}, {"drive", driveName(j.drive.mode)}});
+  nlohmann::json camera = nullptr;
+  if (scene.camera)
+    camera = {{"eye", vec(scene.camera->eye)}, {"target", vec(scene.camera->target)},
+              {"up", vec(scene.camera->up)}, {"fov_y_deg", scene.camera->fov_y_deg}};
+  return {{"name", scene.name},     {"description", scene.description},
+          {"frame_rate_hz", scene.frame_rate_hz}, {"gravity", vec(world.settings().gravity)},
+          {"camera", camera},       {"bodies", bodies},
+          {"cables", cables},       {"hinges", hinges}};
+}
+
+}  // namespace reeve

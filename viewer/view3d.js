@@ -1,0 +1,202 @@
+// The 3D view shared by Reeve's pages (the replay of `reeve run --html`
+// and the live page of `reeve view`): bodies drawn by their shapes, a
+// spoke on each wheel, cables as the polylines Reeve sends (coloured by
+// their highest span tension), an orbit camera starting at the scene's.
+// `head` is the scene's fixed part (tools/src/viewer_files.h, sceneHead).
+import * as THREE from 'three';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+
+/// Blue (0 N) through yellow to red (`max` N and above).
+export function tensionColor(t, max) {
+  const x = max > 0 ? Math.min(1, Math.max(0, t / max)) : 0;
+  const low = new THREE.Color(0x3060c0), mid = new THREE.Color(0xd0a020), high = new THREE.Color(0xd02020);
+  return x < 0.5 ? low.lerp(mid, 2 * x) : mid.lerp(high, 2 * x - 1);
+}
+
+function shapeGeometry(shape) {
+  switch (shape.type) {
+    case 'box': {
+      const [x, y, z] = shape.half_extents;
+      return new THREE.BoxGeometry(2 * x, 2 * y, 2 * z);
+    }
+    case 'cylinder': {  // Reeve's cylinders lie along their local z
+      const g = new THREE.CylinderGeometry(shape.radius, shape.radius, 2 * shape.half_length, 48);
+      g.rotateX(Math.PI / 2);
+      return g;
+    }
+    case 'sphere':
+      return new THREE.SphereGeometry(shape.radius, 32, 16);
+    case 'hull': {
+      const positions = [];
+      for (const face of shape.faces)  // a fan over each convex face
+        for (let k = 1; k + 1 < face.length; ++k)
+          for (const i of [face[0], face[k], face[k + 1]]) positions.push(...shape.vertices[i]);
+      const g = new THREE.BufferGeometry();
+      g.setAttribute('position', new THREE.Float32BufferAttribute(positions, 3));
+      g.computeVertexNormals();
+      return g;
+    }
+  }
+  return new THREE.BufferGeometry();
+}
+
+// A spoke from the centre out along local x shows a wheel turning.
+function spoke(shape) {
+  if (shape.type !== 'cylinder' && shape.type !== 'sphere') return null;
+  const reach = shape.radius, depth = shape.type === 'cylinder' ? shape.half_length : 0;
+  const g = new THREE.BoxGeometry(reach, 0.08 * reach, 0.02 * reach + 1e-4);
+  g.translate(reach / 2, 0, depth + 0.01 * reach);
+  return new THREE.Mesh(g, new THREE.MeshStandardMaterial({ color: 0xc04020 }));
+}
+
+/// The view of `head` inside `container`. `poses` (7 numbers a body: x, y,
+/// z, qx, qy, qz, qw) and `paths` (per cable, its polylines as flat x, y,
+/// z, ...) of the first frame frame the camera when the scene has none.
+/// `onError(text)` hears why there is no WebGL (the rest still works).
+/// `renderer`: one kept from a view before (dispose(true)), whose WebGL
+/// context is reused; by default a new one.
+export class View3D {
+  constructor(container, head, poses, paths, onError, renderer = null) {
+    this.container = container;
+    this.head = head;
+    this.renderer = renderer;
+    if (!renderer) {
+      try {
+        this.renderer = new THREE.WebGLRenderer({ antialias: true });
+        this.renderer.setPixelRatio(window.devicePixelRatio);
+        container.appendChild(this.renderer.domElement);
+      } catch (e) {
+        onError(`No 3D view: ${e.message}`);
+      }
+    }
+    const scene = this.scene = new THREE.Scene();
+    scene.background = new THREE.Color(0xf4f4f2);
+    scene.add(new THREE.HemisphereLight(0xffffff, 0x667788, 2.2));
+    const sun = new THREE.DirectionalLight(0xffffff, 1.5);
+    sun.position.set(3, 5, 4);
+    scene.add(sun);
+    this.bodyMeshes = head.bodies.map((body, i) => {
+      const material = new THREE.MeshStandardMaterial({
+        color: body.dynamic ? 0x8fa8c8 : 0x9a9a9a, roughness: 0.7, metalness: 0.1,
+      });
+      const mesh = new THREE.Mesh(shapeGeometry(body.shape), material);
+      const marker = spoke(body.shape);
+      if (marker) mesh.add(marker);
+      mesh.userData = { kind: 'body', index: i, name: body.name };
+      scene.add(mesh);
+      return mesh;
+    });
+    this.cableGroups = head.cables.map((cable, c) => {
+      const group = new THREE.Group();
+      group.userData = { kind: 'cable', index: c };
+      scene.add(group);
+      return group;
+    });
+    // The camera: the scene's, or one framing the first frame.
+    const camera = this.camera = new THREE.PerspectiveCamera(40, 1, 0.01, 1000);
+    const box = new THREE.Box3();
+    for (let k = 0; k + 2 < poses.length; k += 7) box.expandByPoint(new THREE.Vector3(poses[k], poses[k + 1], poses[k + 2]));
+    for (const cable of paths) for (const piece of cable)
+      for (let k = 0; k + 2 < piece.length; k += 3) box.expandByPoint(new THREE.Vector3(piece[k], piece[k + 1], piece[k + 2]));
+    if (head.camera) {
+      camera.fov = head.camera.fov_y_deg;
+      camera.position.set(...head.camera.eye);
+      camera.up.set(...head.camera.up);
+    } else {
+      const centre = box.getCenter(new THREE.Vector3()), size = box.getSize(new THREE.Vector3()).length() || 1;
+      camera.position.copy(centre).add(new THREE.Vector3(0, 0, 1.6 * size));
+    }
+    const target = head.camera ? new THREE.Vector3(...head.camera.target) : box.getCenter(new THREE.Vector3());
+    camera.lookAt(target);
+    this.controls = this.renderer ? new OrbitControls(camera, this.renderer.domElement) : null;
+    if (this.controls) this.controls.target.copy(target);
+    this.ray = new THREE.Raycaster();
+    this.ray.params.Line.threshold = 0.03;
+  }
+
+  /// Frees the GPU's copies (a scene reloaded); the renderer too, unless
+  /// `keepRenderer`. Returns the renderer kept, if any.
+  dispose(keepRenderer = false) {
+    this.scene.traverse((o) => { if (o.geometry) o.geometry.dispose(); if (o.material) o.material.dispose(); });
+    if (this.controls) this.controls.dispose();
+    if (!this.renderer || keepRenderer) return this.renderer;
+    this.renderer.dispose();
+    this.renderer.domElement.remove();
+    return null;
+  }
+
+  resize(width, height) {
+    this.camera.aspect = width / height;
+    this.camera.updateProjectionMatrix();
+    if (this.renderer) this.renderer.setSize(width, height);
+  }
+
+  /// Moves body i to poses[7 i .. 7 i + 7).
+  setPoses(poses) {
+    this.bodyMeshes.forEach((mesh, i) => {
+      mesh.position.set(poses[7 * i], poses[7 * i + 1], poses[7 * i + 2]);
+      mesh.quaternion.set(poses[7 * i + 3], poses[7 * i + 4], poses[7 * i + 5], poses[7 * i + 6]);
+    });
+  }
+
+  /// Redraws cable c as paths[c]'s polylines in the colour of the highest
+  /// of tensions[c] on the scale 0 .. maxTension N.
+  setCables(paths, tensions, maxTension) {
+    this.cableGroups.forEach((group, c) => {
+      for (const line of group.children) {
+        line.geometry.dispose();
+        line.material.dispose();
+      }
+      group.clear();
+      let high = 0;
+      for (const t of tensions[c]) high = Math.max(high, t);
+      const color = tensionColor(high, maxTension);
+      for (const piece of paths[c]) {
+        const g = new THREE.BufferGeometry();
+        g.setAttribute('position', new THREE.Float32BufferAttribute(piece, 3));
+        const line = new THREE.Line(g, new THREE.LineBasicMaterial({ color }));
+        line.userData = { kind: 'cable', index: c };
+        group.add(line);
+      }
+    });
+  }
+
+  render() {
+    if (this.controls) this.controls.update();
+    if (this.renderer) this.renderer.render(this.scene, this.camera);
+  }
+
+  /// The ray through a mouse event's pixel.
+  rayAt(event) {
+    const r = this.renderer.domElement.getBoundingClientRect();
+    this.ray.setFromCamera(new THREE.Vector2(((event.clientX - r.left) / r.width) * 2 - 1,
+                                             -((event.clientY - r.top) / r.height) * 2 + 1), this.camera);
+    return this.ray;
+  }
+
+  /// The cable ({cable: index}) or body ({body: index, point: the point
+  /// hit, world}) under a mouse event, cables first (bodies first with
+  /// `bodiesFirst`); null for neither.
+  pick(event, bodiesFirst = false) {
+    if (!this.renderer) return null;
+    const ray = this.rayAt(event);
+    const cableHit = () => {
+      const hit = ray.intersectObjects(this.cableGroups, true).find((h) => h.object.userData.kind === 'cable');
+      return hit ? { cable: hit.object.userData.index } : null;
+    };
+    const bodyHit = () => {
+      const hit = ray.intersectObjects(this.bodyMeshes, false)[0];
+      return hit ? { body: hit.object.userData.index, point: hit.point } : null;
+    };
+    return bodiesFirst ? bodyHit() || cableHit() : cableHit() || bodyHit();
+  }
+
+  /// What a screenshot's test needs to find the bodies (it projects them
+  /// itself): each dynamic body's centre (m, world), the camera's view
+  /// matrix (column-major) and vertical field of view (deg).
+  projection() {
+    const centres = {};
+    this.head.bodies.forEach((body, i) => { if (body.dynamic) centres[body.name] = this.bodyMeshes[i].position.toArray(); });
+    return { centres, view_matrix: this.camera.matrixWorldInverse.toArray(), fov_y_deg: this.camera.fov };
+  }
+}

@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "reeve/engine/fp_exceptions.h"
 #include "reeve/render/cable_path.h"
 #include "reeve/scene/warnings.h"
 #include "run_scene.h"
@@ -153,7 +154,10 @@ void LiveScene::reload(const std::string& text) {
 std::optional<std::string> LiveScene::command(const std::string& text) {
   if (text.size() > kMaxCommandBytes)
     return "a command is at most " + std::to_string(kMaxCommandBytes) + " bytes, got " + std::to_string(text.size());
-  const json command = json::parse(text, nullptr, /*allow_exceptions=*/false);
+  const json command = [&] {
+    const FloatingPointExceptionsMasked overflow_is_tested;  // strtod on "1e400": refused below, not trapped
+    return json::parse(text, nullptr, /*allow_exceptions=*/false);
+  }();
   if (command.is_discarded()) return "expected a JSON object, got text that is not JSON";
   if (!command.is_object()) return "expected a JSON object, got " + command.dump().substr(0, 80);
   if (!command.contains("cmd") || !command.at("cmd").is_string())

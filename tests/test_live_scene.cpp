@@ -1,0 +1,258 @@
+// `reeve view`'s scene under the page's commands (tools/src/live_scene.h):
+// it steps as `reeve run` does, bit for bit; its frame messages hold the
+// state as the wire format says; every malformed command is refused and
+// changes nothing; drags, drive targets and budgets do what they say.
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "live_scene.h"
+#include "scene_fixture.h"
+
+namespace reeve {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path atwoodFile() { return fs::path(REEVE_SCENES_DIR) / "atwood.json"; }
+
+// `json` written to a file of its own (LiveScene reads scenes from files).
+fs::path sceneFile(const std::string& name, const std::string& json) {
+  const fs::path file = fs::temp_directory_path() / ("reeve_live_" + name + ".json");
+  std::ofstream(file) << json;
+  return file;
+}
+
+// A 1 kg box, 0.2 m a side, floating without gravity, and an arm on a
+// hinge to the world with a rigid angle drive.
+const char* kFloating = R"({"name": "floating", "duration_s": 2,
+  "solver": {"frame_rate_hz": 60, "substeps": 10, "iterations": 2, "gravity_m_per_s2": [0, 0, 0]},
+  "bodies": [
+    {"name": "box", "shape": {"type": "box", "half_extents_m": [0.1, 0.1, 0.1]}, "mass_kg": 1.0, "position_m": [0, 0, 0]},
+    {"name": "arm", "shape": {"type": "box", "half_extents_m": [0.5, 0.05, 0.05]}, "mass_kg": 2.0, "position_m": [3.5, 0, 0]},
+    {"name": "post", "static": true, "shape": {"type": "box", "half_extents_m": [0.1, 0.1, 0.1]}, "position_m": [0, -2, 0]}
+  ],
+  "hinges": [{"body": "arm", "anchor_m": [3, 0, 0], "axis": [0, 0, 1], "drive": {"mode": "angle", "target_rad": 0}}]})";
+
+// The frame message (live_scene.h) read back.
+struct Frame {
+  std::uint32_t generation = 0, frame = 0, iterations = 0;
+  double t = 0.0, physics_ms = 0.0;
+  std::vector<double> bodies;  // 10 a body
+  std::vector<double> hinges;  // 2 a hinge
+  std::vector<std::vector<double>> joints;  // per cable, 2 a joint
+  std::vector<std::vector<std::vector<float>>> paths;
+};
+
+Frame readFrame(const std::string& message) {
+  std::size_t at = 0;
+  const auto take = [&](auto& value) {
+    EXPECT_LE(at + sizeof value, message.size());
+    std::memcpy(&value, message.data() + at, sizeof value);
+    at += sizeof value;
+  };
+  const auto count = [&] {
+    std::uint32_t n = 0;
+    take(n);
+    return n;
+  };
+  EXPECT_EQ(count(), message.size() - 4);
+  EXPECT_EQ(message[4], static_cast<char>(kFrameMessage));
+  at = 5;
+  Frame f;
+  take(f.generation);
+  take(f.frame);
+  take(f.t);
+  take(f.iterations);
+  take(f.physics_ms);
+  f.bodies.resize(10 * count());
+  for (double& v : f.bodies) take(v);
+  f.hinges.resize(2 * count());
+  for (double& v : f.hinges) take(v);
+  f.joints.resize(count());
+  f.paths.resize(f.joints.size());
+  for (std::size_t c = 0; c < f.joints.size(); ++c) {
+    f.joints[c].resize(2 * count());
+    for (double& v : f.joints[c]) take(v);
+    f.paths[c].resize(count());
+    for (std::vector<float>& piece : f.paths[c]) {
+      piece.resize(3 * count());
+      for (float& v : piece) take(v);
+    }
+  }
+  EXPECT_EQ(at, message.size()) << "bytes left over";
+  return f;
+}
+
+TEST(LiveScene, StepsAsReeveRunDoesBitForBitAndAgainAfterAReset) {
+  LiveScene live(atwoodFile(), {});
+  Scene run = loadScene(atwoodFile());
+  for (int f = 0; f < 40; ++f) {
+    live.stepFrame();
+    test::frame(run);
+  }
+  const auto same = [&] {
+    const World &a = *live.scene().world, &b = *run.world;
+    EXPECT_EQ(a.time(), b.time());
+    for (BodyId id = 0; id < a.bodyCount(); ++id) {
+      EXPECT_EQ(a.body(id).x, b.body(id).x) << a.bodyDef(id).name;
+      EXPECT_EQ(a.body(id).q.coeffs(), b.body(id).q.coeffs()) << a.bodyDef(id).name;
+      EXPECT_EQ(a.body(id).v, b.body(id).v) << a.bodyDef(id).name;
+    }
+    for (int j = 0; j < 2; ++j) EXPECT_EQ(live.scene().cables->tension(0, j), run.cables->tension(0, j));
+  };
+  same();
+  EXPECT_GT(run.cables->tension(0, 1), 10.0);  // the heavy side: a real load, not zeros
+  ASSERT_FALSE(live.command(R"({"cmd": "reset"})"));
+  EXPECT_EQ(live.sceneGeneration(), 2u);
+  EXPECT_EQ(live.scene().world->time(), 0.0);
+  for (int f = 0; f < 40; ++f) live.stepFrame();
+  same();
+}
+
+TEST(LiveScene, FrameMessageHoldsTheStateAsTheWireFormatSays) {
+  LiveScene live(atwoodFile(), {});
+  for (int f = 0; f < 12; ++f) live.stepFrame();
+  const Frame frame = readFrame(live.frameMessage());
+  const World& world = *live.scene().world;
+  const CableSystem& cables = *live.scene().cables;
+  EXPECT_EQ(frame.generation, live.sceneGeneration());
+  EXPECT_EQ(frame.frame, 12u);
+  EXPECT_EQ(frame.t, world.time());
+  EXPECT_EQ(frame.iterations, static_cast<std::uint32_t>(world.lastStepIterations()));
+  ASSERT_EQ(frame.bodies.size(), 10u * world.bodyCount());
+  for (BodyId id = 0; id < world.bodyCount(); ++id) {
+    const BodyState& b = world.body(id);
+    const double* v = &frame.bodies[10 * id];
+    EXPECT_EQ(Vec3(v[0], v[1], v[2]), b.x);
+    EXPECT_EQ(Eigen::Vector4d(v[3], v[4], v[5], v[6]), b.q.coeffs());  // x, y, z, w
+    EXPECT_EQ(Vec3(v[7], v[8], v[9]), b.v);
+  }
+  ASSERT_EQ(frame.hinges.size(), 2u);
+  EXPECT_EQ(frame.hinges[0], world.hingeAngle(0));
+  EXPECT_LT(frame.hinges[0], -0.1);  // the wheel turned with the falling heavy box
+  ASSERT_EQ(frame.joints.size(), 1u);
+  ASSERT_EQ(frame.joints[0].size(), 4u);
+  for (int j = 0; j < 2; ++j) {
+    EXPECT_EQ(frame.joints[0][2 * j], cables.tension(0, j));
+    EXPECT_EQ(frame.joints[0][2 * j + 1], cables.restLength(0, j));
+  }
+  // The path runs from the light box's tie point to the heavy box's.
+  ASSERT_FALSE(frame.paths[0].empty());
+  const std::vector<float>& first = frame.paths[0].front();
+  const Vec3 light_tie = world.body(test::body(live.scene(), "light")).toWorld(Vec3(0, 0.1, 0));
+  EXPECT_NEAR(first[0], light_tie.x(), 1e-6);
+  EXPECT_NEAR(first[1], light_tie.y(), 1e-6);
+}
+
+TEST(LiveScene, RefusesEveryMalformedCommandWithItsReasonAndChangesNothing) {
+  LiveScene live(sceneFile("refusals", kFloating), {});
+  for (int f = 0; f < 3; ++f) live.stepFrame();
+  const std::string status = live.statusMessage(), frame = live.frameMessage();
+  const std::vector<std::pair<std::string, std::string>> refused = {
+      {"", "not JSON"},
+      {"{", "not JSON"},
+      {"[1, 2]", "expected a JSON object"},
+      {R"({"command": "play"})", "/cmd"},
+      {R"({"cmd": 3})", "/cmd"},
+      {R"({"cmd": "fly"})", "/cmd"},
+      {R"({"cmd": "play", "now": true})", "/now"},
+      {R"({"cmd": "step", "frames": 0})", "/frames"},
+      {R"({"cmd": "step", "frames": 1.5})", "/frames"},
+      {R"({"cmd": "set"})", "expected substeps"},
+      {R"({"cmd": "set", "substeps": 0})", "/substeps"},
+      {R"({"cmd": "set", "substeps": 100001})", "/substeps"},
+      {R"({"cmd": "set", "substeps": 20, "iterations": -1})", "/iterations"},  // nothing of it applied
+      {R"({"cmd": "set", "solver": "jacobi"})", "/solver"},
+      {R"({"cmd": "set", "rtf": 0})", "/rtf"},
+      {R"({"cmd": "set", "rtf": 1e400})", "not JSON"},
+      {R"({"cmd": "drive", "hinge": 1, "target": 0.5})", "/hinge"},
+      {R"({"cmd": "drive", "hinge": 0, "target": "up"})", "/target"},
+      {R"({"cmd": "winch", "cable": 0, "speed": 1})", "no cables"},
+      {R"({"cmd": "drag", "body": 2, "point": [0, 0, 0], "target": [1, 0, 0]})", "not dynamic"},
+      {R"({"cmd": "drag", "body": -1, "point": [0, 0, 0], "target": [1, 0, 0]})", "/body"},
+      {R"({"cmd": "drag", "body": 0, "point": [0, 0], "target": [1, 0, 0]})", "/point"},
+      {R"({"cmd": "drag", "body": 0, "point": [0, 0, 0], "target": [1, null, 0]})", "/target"},
+      {R"({"cmd": "drag", "body": 0, "point": [0, 0, 0], "target": [1e7, 0, 0]})", "/target"},
+      {std::string(kMaxCommandBytes + 1, ' '), "at most"},
+  };
+  for (const auto& [command, says] : refused) {
+    const auto error = live.command(command);
+    ASSERT_TRUE(error) << command;
+    EXPECT_NE(error->find(says), std::string::npos) << command << " -> " << *error;
+  }
+  EXPECT_EQ(live.statusMessage(), status);
+  EXPECT_EQ(live.frameMessage(), frame);
+  live.stepFrame();  // and no drag was left on: the box floats still
+  EXPECT_EQ(live.scene().world->body(0).x, Vec3::Zero());
+}
+
+TEST(LiveScene, DragPullsABodyOntoItsTargetAndReleaseGivesBackItsLoad) {
+  LiveScene live(sceneFile("drag", kFloating), {});
+  BodyState& box = const_cast<World&>(*live.scene().world).body(0);
+  box.applied_force = Vec3(0, 0, 0.25);  // a user's own push, which the drag adds to
+  ASSERT_FALSE(live.command(R"({"cmd": "drag", "body": 0, "point": [0, 0, 0], "target": [1, 0, 0]})"));
+  double farthest = 0.0;
+  for (int f = 0; f < 120; ++f) {  // 2 s: a critically damped 1.5 Hz spring settles in about 0.5 s
+    live.stepFrame();
+    farthest = std::max(farthest, box.x.x());
+  }
+  EXPECT_NEAR(box.x.x(), 1.0, 1e-3);
+  EXPECT_LT(farthest, 1.02);  // no overshoot past 2 % of the pull
+  EXPECT_NEAR(box.x.y(), 0.0, 1e-12);
+  ASSERT_FALSE(live.command(R"({"cmd": "release"})"));
+  EXPECT_EQ(box.applied_force, Vec3(0, 0, 0.25));
+  EXPECT_EQ(box.applied_torque, Vec3::Zero());
+}
+
+TEST(LiveScene, DriveTargetAndBudgetApplyAndTheBudgetOutlivesAReset) {
+  LiveScene live(sceneFile("drive", kFloating), {});
+  ASSERT_FALSE(live.command(R"({"cmd": "drive", "hinge": 0, "target": 0.5})"));
+  for (int f = 0; f < 5; ++f) live.stepFrame();
+  EXPECT_NEAR(live.scene().world->hingeAngle(0), 0.5, 1e-9);  // a rigid drive meets its target
+  ASSERT_FALSE(live.command(R"({"cmd": "set", "substeps": 7, "iterations": 3, "solver": "gauss-seidel", "rtf": 0.5})"));
+  ASSERT_FALSE(live.command(R"({"cmd": "reset"})"));
+  const SolverSettings& s = live.scene().world->settings();
+  EXPECT_EQ(s.substeps, 7);
+  EXPECT_EQ(s.iterations, 3);
+  EXPECT_EQ(s.solver, SolverKind::GaussSeidel);
+  EXPECT_EQ(live.realTimeFactor(), 0.5);
+  EXPECT_EQ(live.scene().world->hinge(0).drive.target, 0.0);  // the scene's own again
+}
+
+TEST(LiveScene, PausesOnceAtTheScenesDurationAndStepsOnlyWhatIsAsked) {
+  LiveScene live(sceneFile("duration", kFloating), {});
+  ASSERT_TRUE(live.playing());
+  for (int f = 0; f < 120; ++f) live.stepFrame();  // 2 s at 60 Hz
+  EXPECT_FALSE(live.playing());
+  ASSERT_FALSE(live.command(R"({"cmd": "play"})"));
+  live.stepFrame();
+  EXPECT_TRUE(live.playing());  // once only
+  ASSERT_FALSE(live.command(R"({"cmd": "step", "frames": 3})"));
+  EXPECT_FALSE(live.playing());
+  EXPECT_EQ(live.stepsWanted(), 3);
+  live.stepFrame();
+  EXPECT_EQ(live.stepsWanted(), 2);
+}
+
+TEST(LiveScene, AnInvalidReloadIsRefusedAndTheOldSceneRunsOn) {
+  LiveScene live(atwoodFile(), {});
+  live.stepFrame();
+  const std::string frame = live.frameMessage();
+  try {
+    live.reload(R"({"name": "x", "solver": {}, "bodies": [{"name": "b", "mass_kg": -1}]})");
+    FAIL() << "a negative mass loaded";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.jsonPath().rfind("/bodies/0", 0), 0u) << e.what();
+  }
+  EXPECT_EQ(live.sceneGeneration(), 1u);
+  EXPECT_EQ(live.frameMessage(), frame);
+}
+
+}  // namespace
+}  // namespace reeve

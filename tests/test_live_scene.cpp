@@ -46,6 +46,7 @@ struct Frame {
   std::vector<double> bodies;  // 10 a body
   std::vector<double> hinges;  // 2 a hinge
   std::vector<std::vector<double>> joints;  // per cable, 2 a joint
+  std::vector<std::vector<float>> spans;    // per cable, 6 a joint: start and end
   std::vector<std::vector<std::vector<float>>> paths;
 };
 
@@ -75,10 +76,17 @@ Frame readFrame(const std::string& message) {
   f.hinges.resize(2 * count());
   for (double& v : f.hinges) take(v);
   f.joints.resize(count());
+  f.spans.resize(f.joints.size());
   f.paths.resize(f.joints.size());
   for (std::size_t c = 0; c < f.joints.size(); ++c) {
-    f.joints[c].resize(2 * count());
-    for (double& v : f.joints[c]) take(v);
+    const std::uint32_t joints = count();
+    f.joints[c].resize(2 * joints);
+    f.spans[c].resize(6 * joints);
+    for (std::uint32_t j = 0; j < joints; ++j) {
+      take(f.joints[c][2 * j]);
+      take(f.joints[c][2 * j + 1]);
+      for (int k = 0; k < 6; ++k) take(f.spans[c][6 * j + k]);
+    }
     f.paths[c].resize(count());
     for (std::vector<float>& piece : f.paths[c]) {
       piece.resize(3 * count());
@@ -141,6 +149,10 @@ TEST(LiveScene, FrameMessageHoldsTheStateAsTheWireFormatSays) {
   for (int j = 0; j < 2; ++j) {
     EXPECT_EQ(frame.joints[0][2 * j], cables.tension(0, j));
     EXPECT_EQ(frame.joints[0][2 * j + 1], cables.restLength(0, j));
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_EQ(frame.spans[0][6 * j + k], static_cast<float>(cables.startPoint(0, j)[k]));
+      EXPECT_EQ(frame.spans[0][6 * j + 3 + k], static_cast<float>(cables.endPoint(0, j)[k]));
+    }
   }
   // The path runs from the light box's tie point to the heavy box's.
   ASSERT_FALSE(frame.paths[0].empty());

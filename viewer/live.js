@@ -29,6 +29,7 @@ async function sendText(text) {
 }
 const send = (command) => sendText(JSON.stringify(command));
 live.send = sendText;  // the tests send malformed ones too
+live.addPlot = (kind, index) => addPlot(kind, index);  // ('cable' | 'body' | 'hinge', index)
 
 $('play').addEventListener('click', () => send({ cmd: live.playing ? 'pause' : 'play' }));
 $('step').addEventListener('click', () => send({ cmd: 'step' }));
@@ -122,8 +123,12 @@ function drawPlot(plot) {
   ctx.fillText(`${t0.toFixed(2)} .. ${t1.toFixed(2)} s`, left, h - 2);
   ctx.strokeStyle = '#ccc';
   ctx.strokeRect(left, 4, w - left - 4, h - bottom - 8);
-  const n = plot.values[0].length;
+  const n = plot.values[0].length, names = seriesNames(plot);
   for (let s = 0; s < n; ++s) {
+    if (s < 8) {  // a legend of the first series
+      ctx.fillStyle = colors[s % colors.length];
+      ctx.fillText(names[s] || '', w - 44, 14 + 11 * s);
+    }
     ctx.strokeStyle = colors[s % colors.length];
     ctx.beginPath();
     plot.values.forEach((row, k) => ctx[k ? 'lineTo' : 'moveTo'](x(plot.t[k]), y(row[s])));
@@ -239,10 +244,15 @@ function parseFrame(view, o) {
   f.hinges = new Float64Array(2 * hinges);
   for (let k = 0; k < 2 * hinges; ++k) f.hinges[k] = f64();
   const cables = u32();
-  f.tensions = []; f.rest = []; f.paths = [];
+  f.tensions = []; f.rest = []; f.spans = []; f.paths = [];
   for (let c = 0; c < cables; ++c) {
     const joints = u32(), tensions = new Float64Array(joints), rest = new Float64Array(joints);
-    for (let j = 0; j < joints; ++j) { tensions[j] = f64(); rest[j] = f64(); }
+    const spans = new Float32Array(6 * joints);
+    for (let j = 0; j < joints; ++j) {
+      tensions[j] = f64(); rest[j] = f64();
+      for (let k = 0; k < 6; ++k) { spans[6 * j + k] = view.getFloat32(o, true); o += 4; }
+    }
+    f.spans.push(spans);
     const pieces = [], count = u32();
     for (let p = 0; p < count; ++p) {
       const n = u32(), piece = new Float32Array(3 * n);
@@ -265,7 +275,7 @@ function onFrame(f) {
   for (const cable of f.tensions) for (const t of cable) maxTension = Math.max(maxTension, t);
   $('legend-max').textContent = `${maxTension.toPrecision(4)} N`;
   view3d.setPoses(f.poses);
-  view3d.setCables(f.paths, f.tensions, maxTension);
+  view3d.setCables(f.paths, f.tensions, maxTension, f.spans);
   if (f.frame !== (last ? last.frame : -1)) for (const plot of live.plots) record(plot, f);
   last = f;
   Object.assign(live, { frame: f.frame, t: f.t, poses: Array.from(f.poses), frames_received: live.frames_received + 1 });
@@ -286,9 +296,17 @@ function onStatus(s) {
   else if ($('message').textContent.startsWith('paused at the scene')) $('message').textContent = '';
 }
 
+// Milliseconds the page spent on frames (reading and applying them) and
+// on drawing, summed; the page's own cost beside the server's.
+live.page_ms = { frames: 0, draw: 0, draws: 0 };
 function onMessage(bytes) {
   const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
-  if (bytes[0] === 1) return onFrame(parseFrame(view, 1));
+  if (bytes[0] === 1) {
+    const start = performance.now();
+    onFrame(parseFrame(view, 1));
+    live.page_ms.frames += performance.now() - start;
+    return;
+  }
   const message = JSON.parse(new TextDecoder().decode(bytes.subarray(1)));
   if (message.type === 'scene') startScene(message);
   else if (message.type === 'status') onStatus(message);
@@ -400,7 +418,8 @@ function hover(event) {
   let text;
   if (hit.cable !== undefined) {
     const spans = Array.from(last.tensions[hit.cable]).map((t, j) => `span ${j}: ${t.toPrecision(5)} N, rest ${last.rest[hit.cable][j].toPrecision(5)} m`);
-    text = [subjectName('cable', hit.cable), ...spans.slice(0, 12), spans.length > 12 ? `(${spans.length} spans)` : ''].join('\n');
+    const here = hit.span >= 0 ? [`> ${spans[hit.span]}`] : [];
+    text = [subjectName('cable', hit.cable), ...here, ...spans.slice(0, 12), spans.length > 12 ? `(${spans.length} spans)` : ''].join('\n');
   } else {
     const i = hit.body, p = last.poses.subarray(7 * i, 7 * i + 3), v = last.velocities.subarray(3 * i, 3 * i + 3);
     text = `${subjectName('body', i)}\nposition ${Array.from(p).map((x) => x.toFixed(4)).join(', ')} m\nspeed ${Math.hypot(...v).toPrecision(5)} m/s`;
@@ -417,7 +436,8 @@ live.projection = () => {
   return { ...view3d.projection(), view_px: [r.left, r.top, r.width, r.height] };
 };
 
-// --- drawing, at most 60 times a second, only when something changed ---
+// --- drawing, at most 60 times a second, only when a frame came or the
+// camera moved ---
 let dirty = true;
 function resize() {
   if (view3d) view3d.resize($('view').clientWidth || 800, $('view').clientHeight || 600);
@@ -425,8 +445,12 @@ function resize() {
 }
 window.addEventListener('resize', resize);
 setInterval(() => {
-  if (!view3d) return;
-  view3d.render();  // the orbit controls' damping needs it every tick
-  if (dirty) { for (const plot of live.plots) drawPlot(plot); drawTimeline(); dirty = false; }
+  if (!view3d || !(dirty || view3d.moved)) return;
+  const start = performance.now();
+  view3d.render();
+  if (dirty) { for (const plot of live.plots) drawPlot(plot); drawTimeline(); }
+  dirty = false;
+  live.page_ms.draw += performance.now() - start;
+  live.page_ms.draws += 1;
 }, 1000 / 60);
 connect();

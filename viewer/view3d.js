@@ -110,6 +110,10 @@ export class View3D {
     camera.lookAt(target);
     this.controls = this.renderer ? new OrbitControls(camera, this.renderer.domElement) : null;
     if (this.controls) this.controls.target.copy(target);
+    // The camera moved since the last render() (a page that draws only
+    // when something changed reads it).
+    this.moved = true;
+    if (this.controls) this.controls.addEventListener('change', () => { this.moved = true; });
     this.ray = new THREE.Raycaster();
     this.ray.params.Line.threshold = 0.03;
   }
@@ -140,30 +144,72 @@ export class View3D {
   }
 
   /// Redraws cable c as paths[c]'s polylines in the colour of the highest
-  /// of tensions[c] on the scale 0 .. maxTension N.
-  setCables(paths, tensions, maxTension) {
+  /// of tensions[c] on the scale 0 .. maxTension N; with `spans` (per
+  /// cable, each joint's start and end point: 6 numbers, NaN while
+  /// disabled), the polylines grey and every pulling span over them in the
+  /// colour of its own tension.
+  setCables(paths, tensions, maxTension, spans = null) {
+    // The lines are kept from frame to frame and their buffers written in
+    // place while their sizes hold (hilbert3: 511 spans, 60 frames a second).
     this.cableGroups.forEach((group, c) => {
-      for (const line of group.children) {
-        line.geometry.dispose();
-        line.material.dispose();
-      }
-      group.clear();
       let high = 0;
       for (const t of tensions[c]) high = Math.max(high, t);
-      const color = tensionColor(high, maxTension);
-      for (const piece of paths[c]) {
-        const g = new THREE.BufferGeometry();
-        g.setAttribute('position', new THREE.Float32BufferAttribute(piece, 3));
-        const line = new THREE.Line(g, new THREE.LineBasicMaterial({ color }));
-        line.userData = { kind: 'cable', index: c };
-        group.add(line);
+      const color = spans ? new THREE.Color(0x606060) : tensionColor(high, maxTension);
+      const lines = group.userData.lines || (group.userData.lines = []);
+      paths[c].forEach((piece, i) => {
+        let line = lines[i];
+        if (!line || line.geometry.attributes.position.array.length !== piece.length) {
+          if (line) { group.remove(line); line.geometry.dispose(); line.material.dispose(); }
+          const g = new THREE.BufferGeometry();
+          g.setAttribute('position', new THREE.Float32BufferAttribute(new Float32Array(piece.length), 3));
+          line = lines[i] = new THREE.Line(g, new THREE.LineBasicMaterial());
+          line.userData = { kind: 'cable', index: c, span: -1 };
+          group.add(line);
+        }
+        line.geometry.attributes.position.array.set(piece);
+        line.geometry.attributes.position.needsUpdate = true;
+        line.geometry.computeBoundingSphere();
+        line.material.color.copy(color);
+      });
+      for (const extra of lines.splice(paths[c].length)) {
+        group.remove(extra);
+        extra.geometry.dispose();
+        extra.material.dispose();
       }
+      if (!spans) return;
+      // Every pulling span, one segment each in the colour of its tension.
+      const joints = tensions[c].length;
+      let overlay = group.userData.spans;
+      if (!overlay || overlay.userData.spanOf.length !== joints) {
+        if (overlay) { group.remove(overlay); overlay.geometry.dispose(); overlay.material.dispose(); }
+        const g = new THREE.BufferGeometry();
+        g.setAttribute('position', new THREE.Float32BufferAttribute(new Float32Array(6 * joints), 3));
+        g.setAttribute('color', new THREE.Float32BufferAttribute(new Float32Array(6 * joints), 3));
+        overlay = group.userData.spans = new THREE.LineSegments(g, new THREE.LineBasicMaterial({ vertexColors: true }));
+        overlay.userData = { kind: 'cable', index: c, spanOf: new Int32Array(joints) };
+        group.add(overlay);
+      }
+      const position = overlay.geometry.attributes.position, colour = overlay.geometry.attributes.color;
+      let n = 0;
+      for (let j = 0; j < joints; ++j) {
+        const t = tensions[c][j], ends = spans[c].subarray(6 * j, 6 * j + 6);
+        if (!(t > 0) || Number.isNaN(ends[0])) continue;
+        position.array.set(ends, 6 * n);
+        const rgb = tensionColor(t, maxTension);
+        for (const k of [0, 3]) { colour.array[6 * n + k] = rgb.r; colour.array[6 * n + k + 1] = rgb.g; colour.array[6 * n + k + 2] = rgb.b; }
+        overlay.userData.spanOf[n++] = j;
+      }
+      overlay.geometry.setDrawRange(0, 2 * n);
+      overlay.userData.count = n;
+      position.needsUpdate = colour.needsUpdate = true;
+      overlay.geometry.computeBoundingSphere();
     });
   }
 
   render() {
     if (this.controls) this.controls.update();
     if (this.renderer) this.renderer.render(this.scene, this.camera);
+    this.moved = false;
   }
 
   /// The ray through a mouse event's pixel.
@@ -174,15 +220,19 @@ export class View3D {
     return this.ray;
   }
 
-  /// The cable ({cable: index}) or body ({body: index, point: the point
+  /// The cable ({cable: index, span: its joint's index, -1 off the spans
+  /// setCables colours}) or body ({body: index, point: the point
   /// hit, world}) under a mouse event, cables first (bodies first with
   /// `bodiesFirst`); null for neither.
   pick(event, bodiesFirst = false) {
     if (!this.renderer) return null;
     const ray = this.rayAt(event);
     const cableHit = () => {
-      const hit = ray.intersectObjects(this.cableGroups, true).find((h) => h.object.userData.kind === 'cable');
-      return hit ? { cable: hit.object.userData.index } : null;
+      const hit = ray.intersectObjects(this.cableGroups, true).find((h) =>
+        h.object.userData.kind === 'cable' && (!h.object.userData.spanOf || h.index / 2 < h.object.userData.count));
+      if (!hit) return null;
+      const data = hit.object.userData;
+      return { cable: data.index, span: data.spanOf ? data.spanOf[Math.floor(hit.index / 2)] : -1 };
     };
     const bodyHit = () => {
       const hit = ray.intersectObjects(this.bodyMeshes, false)[0];

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
@@ -340,6 +341,9 @@ std::string LiveScene::frameMessage() const {
     for (int j = 0; j < joints; ++j) {
       b.f64(cables.tension(c, j));
       b.f64(cables.restLength(c, j));
+      const bool enabled = cables.jointEnabled(c, j);
+      for (const Vec3& p : {cables.startPoint(c, j), cables.endPoint(c, j)})
+        for (int k = 0; k < 3; ++k) b.put(enabled ? static_cast<float>(p[k]) : std::numeric_limits<float>::quiet_NaN());
     }
     const std::vector<std::vector<Vec3>> pieces = cablePaths(cables, c, kArcStepRad);
     b.u32(pieces.size());

@@ -22,7 +22,9 @@ namespace reeve {
 ///   u32 B, then per body f64 x, y, z (m), qx, qy, qz, qw, vx, vy, vz (m/s);
 ///   u32 H, then per hinge f64 angle (rad), drive torque (N m);
 ///   u32 C, then per cable: u32 J, per joint f64 tension (N), rest length
-///   (m); u32 P pieces of its drawn path, per piece u32 N and 3 N f32 (m).
+///   (m), f32 x, y, z of its start and of its end point (m; NaN while the
+///   joint is disabled); u32 P pieces of its drawn path (cablePaths), per
+///   piece u32 N and 3 N f32 (m).
 /// kJsonMessage's payload is UTF-8 JSON with a "type": "scene" (sceneHead
 /// and generation, file, warnings), "status", "event", "error".
 inline constexpr unsigned char kFrameMessage = 1;

@@ -39,6 +39,7 @@ from ._reeve import (  # noqa: F401  (the public names)
     SceneError,
     Settings,
     SimulationError,
+    Viewer,
     __version__,
     default_scene_json,
     scene_schema_json,
@@ -48,7 +49,7 @@ from .sweep import sweep  # noqa: F401
 
 __all__ = [
     "Batch", "Bodies", "Cable", "Cables", "Hinges", "Joints", "Scene", "SceneError", "Settings", "SimulationError",
-    "default_scene_json", "load", "run", "scene_schema_json", "scenes_dir", "sweep", "__version__",
+    "Viewer", "default_scene_json", "load", "run", "scene_schema_json", "scenes_dir", "sweep", "__version__",
 ]
 
 

@@ -13,4 +13,5 @@ PYBIND11_MODULE(_reeve, m) {
   reeve::python::bindCables(m);
   reeve::python::bindJoints(m);
   reeve::python::bindBatch(m);
+  reeve::python::bindView(m);
 }

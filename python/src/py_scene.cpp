@@ -26,7 +26,7 @@ std::unique_ptr<PyScene> fromFile(const std::filesystem::path& path) {
 }
 
 std::unique_ptr<PyScene> fromText(const std::string& text, const std::string& source) {
-  return std::make_unique<PyScene>(parseScene(text, source), source);
+  return std::make_unique<PyScene>(parseScene(text, source), source, text);
 }
 
 // The bounds the scene schema puts on the solver settings.
@@ -312,6 +312,12 @@ void bindScene(py::module_& m) {
           },
           "The prismatic, spherical and fixed joints (reeve.Joints), in the order of the "
           "scene's \"joints\".")
+      .def("view", &viewScene, py::arg("port") = 8765, py::arg("host") = "127.0.0.1", py::arg("block") = true,
+           "Runs the scene live in a browser, as `reeve view` does: from its start as its source has it (a file "
+           "is reloaded when it changes on disk), with the scene's current substeps, iterations and solver. Prints "
+           "the address to open. block=True serves until Ctrl-C (KeyboardInterrupt); block=False returns a "
+           "reeve.Viewer serving on threads of its own (its url, stop(), a context manager). port 0 picks a free "
+           "one. Raises FileNotFoundError without the viewer's files, RuntimeError when it cannot listen there.")
       .def("energy", &energy,
            "The energy ledger now (issue 28; DESIGN.md, \"Energy ledger\"), a dict of floats in J: kinetic_J, "
            "potential_J (gravity, 0 at the origin), elastic_J (compliant cables, joints, springs), total_J (their "

@@ -16,11 +16,12 @@ namespace reeve::python {
 
 /// A scene loaded from Python, with the renderer its render() reuses.
 struct PyScene {
-  PyScene(Scene scene_, std::string source_)
-      : scene(std::move(scene_)), source(std::move(source_)), start_balance_J(energyLedger(scene).balance_J()),
-        energy(scene) {}
+  PyScene(Scene scene_, std::string source_, std::string text_ = {})
+      : scene(std::move(scene_)), source(std::move(source_)), text(std::move(text_)),
+        start_balance_J(energyLedger(scene).balance_J()), energy(scene) {}
   Scene scene;
   std::string source;                  ///< file name, "<text>" or "<dict>": for messages
+  std::string text;                    ///< the JSON it was loaded from; empty for a file
   std::unique_ptr<Renderer> renderer;  ///< made by the first render(), remade for another size
   double start_balance_J;              ///< EnergyLedger::balance_J as loaded: energy()'s residual_J
   EnergyWatch energy;                  ///< step()'s watch: warns of energy created
@@ -51,6 +52,9 @@ void bindBodies(pybind11::module_& m);
 void bindCables(pybind11::module_& m);
 void bindJoints(pybind11::module_& m);
 void bindBatch(pybind11::module_& m);
+void bindView(pybind11::module_& m);
+/// Scene.view() (py_view.cpp): `reeve view` on the scene's source.
+pybind11::object viewScene(const PyScene& s, int port, const std::string& host, bool block);
 
 /// Raises reeve.SimulationError (a RuntimeError) with `message`.
 [[noreturn]] void throwSimulationError(const std::string& message);

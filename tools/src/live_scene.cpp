@@ -122,10 +122,12 @@ std::string framed(unsigned char type, const std::string& payload) {
 std::string jsonMessage(const std::string& text) { return framed(kJsonMessage, text); }
 
 LiveScene::LiveScene(fs::path file, Overrides overrides)
-    : file_(std::move(file)),
-      text_(file_.empty() ? std::string(defaultSceneJson()) : readSceneText(file_)),
-      overrides_(overrides) {
-  start(parseScene(text_, file_.empty() ? kBuiltIn : file_.string()));
+    : LiveScene(file.empty() ? std::string(defaultSceneJson()) : readSceneText(file),
+                file.empty() ? kBuiltIn : file.string(), overrides) {}
+
+LiveScene::LiveScene(std::string text, std::string source, Overrides overrides)
+    : source_(std::move(source)), text_(std::move(text)), overrides_(overrides) {
+  start(parseScene(text_, source_));
 }
 
 void LiveScene::start(Scene scene) {
@@ -146,7 +148,7 @@ void LiveScene::start(Scene scene) {
 }
 
 void LiveScene::reload(const std::string& text) {
-  Scene scene = parseScene(text, file_.empty() ? kBuiltIn : file_.string());
+  Scene scene = parseScene(text, source_);
   text_ = text;
   start(std::move(scene));
   playing_ = true;  // an edit is made to be seen running
@@ -168,7 +170,7 @@ std::optional<std::string> LiveScene::command(const std::string& text) {
   try {
     if (cmd == "play" || cmd == "pause" || cmd == "reset" || cmd == "release") {
       onlyKeys(command, {});
-      if (cmd == "reset") start(parseScene(text_, file_.empty() ? kBuiltIn : file_.string()));
+      if (cmd == "reset") start(parseScene(text_, source_));
       else if (cmd == "release") releaseDrag();
       else {
         playing_ = cmd == "play";
@@ -287,7 +289,7 @@ std::string LiveScene::sceneMessage() const {
   json head = sceneHead(scene_);
   head["type"] = "scene";
   head["generation"] = generation_;
-  head["file"] = file_.empty() ? kBuiltIn : file_.string();
+  head["file"] = source_;
   json warnings = json::array();
   for (const SceneWarning& w : sceneWarnings(scene_)) warnings.push_back({{"json_path", w.json_path}, {"message", w.message}});
   head["warnings"] = warnings;

@@ -48,6 +48,9 @@ class LiveScene {
 
   /// Loads `file` (empty: the built-in simple.json). Throws SceneError.
   LiveScene(std::filesystem::path file, Overrides overrides);
+  /// Loads the scene in `text`, `source` naming it in errors (a Python
+  /// Scene's "<dict>"). Throws SceneError.
+  LiveScene(std::string text, std::string source, Overrides overrides);
 
   /// Runs a command from the page: {"cmd": "play" | "pause" | "reset" |
   /// "step" [, "frames": 1..1000] | "set" with any of "substeps"
@@ -76,7 +79,8 @@ class LiveScene {
   double realTimeFactor() const { return rtf_; }
   double frameSeconds() const { return 1.0 / scene_.frame_rate_hz; }
   const std::optional<std::string>& failure() const { return failure_; }
-  const std::filesystem::path& file() const { return file_; }
+  /// The scene's file, or what names it ("<built-in simple.json>").
+  const std::string& source() const { return source_; }
   /// Counts the scenes started (the first is 1; reset and reload start
   /// one): a frame of an older one is stale.
   std::uint32_t sceneGeneration() const { return generation_; }
@@ -97,7 +101,7 @@ class LiveScene {
   void applyDrag();
   void releaseDrag();
 
-  std::filesystem::path file_;
+  std::string source_;
   std::string text_;  // of the scene running, reloaded by reset
   Overrides overrides_;
   Scene scene_;

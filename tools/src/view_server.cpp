@@ -70,7 +70,9 @@ struct ViewServer::Impl {
   fs::file_time_type watched_time;
   std::thread stepper, server;
 
-  explicit Impl(const ViewOptions& o) : options(o), live(o.scene, o.overrides) {}
+  explicit Impl(const ViewOptions& o)
+      : options(o),
+        live(o.scene_text ? LiveScene(*o.scene_text, o.scene.string(), o.overrides) : LiveScene(o.scene, o.overrides)) {}
 
   // Under `mutex`.
   void publish(std::string message, std::shared_ptr<const std::string>* latest = nullptr) {
@@ -96,7 +98,7 @@ struct ViewServer::Impl {
   // The scene file changed on disk: the new one from t = 0, or its error
   // in the page and the old one on.
   void watch() {
-    if (options.scene.empty()) return;
+    if (options.scene.empty() || options.scene_text) return;
     std::error_code ec;
     const fs::file_time_type time = fs::last_write_time(options.scene, ec);
     if (ec || time == watched_time) return;
@@ -226,7 +228,7 @@ struct ViewServer::Impl {
 ViewServer::ViewServer(const ViewOptions& options) : impl_(std::make_unique<Impl>(options)) {
   Impl& m = *impl_;
   std::error_code ec;
-  if (!options.scene.empty()) m.watched_time = fs::last_write_time(options.scene, ec);
+  if (!options.scene.empty() && !options.scene_text) m.watched_time = fs::last_write_time(options.scene, ec);
   m.files["/"] = {readViewerFile("live.html", "reeve view"), "text/html; charset=utf-8"};
   m.files["/viewer/live.js"] = {readViewerFile("live.js", "reeve view"), "text/javascript"};
   m.files["/viewer/view3d.js"] = {readViewerFile("view3d.js", "reeve view"), "text/javascript"};

@@ -13,6 +13,7 @@
 #include <atomic>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "live_scene.h"
@@ -20,7 +21,10 @@
 namespace reeve {
 
 struct ViewOptions {
-  std::filesystem::path scene;     ///< empty: the built-in simple.json
+  std::filesystem::path scene;     ///< empty: the built-in simple.json; watched for edits
+  /// The scene's JSON instead of a file (Python's Scene.view()); `scene`
+  /// then only names it, and nothing is watched.
+  std::optional<std::string> scene_text;
   std::string host = "127.0.0.1";  ///< address to listen on
   int port = 8765;                 ///< 0: any free port
   LiveScene::Overrides overrides;

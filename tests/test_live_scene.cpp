@@ -252,6 +252,27 @@ TEST(LiveScene, PausesOnceAtTheScenesDurationAndStepsOnlyWhatIsAsked) {
   EXPECT_EQ(live.stepsWanted(), 2);
 }
 
+TEST(LiveScene, ABrokenBookkeepingPausesWithTheReasonAndResetStartsAgain) {
+  // The fuzzer's spool with no stored cable (tests/test_cli.cpp): its
+  // weight pays out what the spool does not hold within a frame or two.
+  LiveScene live(fs::path(REEVE_FUZZ_REGRESSIONS_DIR) / "gear_spool_runs_out.json", {});
+  for (int f = 0; f < 30 && !live.failure(); ++f) live.stepFrame();
+  ASSERT_TRUE(live.failure());
+  EXPECT_NE(live.failure()->find("Its rolling end ran out of cable"), std::string::npos) << *live.failure();
+  EXPECT_FALSE(live.playing());
+  EXPECT_NE(live.statusMessage().find("ran out of cable"), std::string::npos);
+  const double stopped = live.scene().world->time();
+  ASSERT_FALSE(live.command(R"({"cmd": "step"})"));
+  live.stepFrame();  // nothing: it stays where it failed
+  EXPECT_EQ(live.scene().world->time(), stopped);
+  ASSERT_FALSE(live.command(R"({"cmd": "play"})"));
+  EXPECT_FALSE(live.playing());
+  ASSERT_FALSE(live.command(R"({"cmd": "reset"})"));
+  EXPECT_FALSE(live.failure());
+  EXPECT_TRUE(live.playing());
+  EXPECT_EQ(live.scene().world->time(), 0.0);
+}
+
 TEST(LiveScene, AnInvalidReloadIsRefusedAndTheOldSceneRunsOn) {
   LiveScene live(atwoodFile(), {});
   live.stepFrame();

@@ -9,7 +9,7 @@ import { View3D } from 'reeve/view3d.js';
 const $ = (id) => document.getElementById(id);
 const live = window.reeveLive = {
   generation: 0, frame: -1, t: 0, frames_received: 0, playing: false, settings: null, failure: null,
-  errors: [], events: [], plots: [], poses: null, connected: false,
+  errors: [], events: [], plots: [], poses: null, connected: false, frames_skipped: 0,
 };
 let head = null, view3d = null, renderer = null, maxTension = 0, last = null;
 
@@ -277,10 +277,13 @@ function onFrame(f) {
   view3d.setPoses(f.poses);
   view3d.setCables(f.paths, f.tensions, maxTension, f.spans);
   if (f.frame !== (last ? last.frame : -1)) for (const plot of live.plots) record(plot, f);
+  // Frames the server left out for this page, which fell behind.
+  if (last && f.frame > last.frame + 1) live.frames_skipped += f.frame - last.frame - 1;
   last = f;
   Object.assign(live, { frame: f.frame, t: f.t, poses: Array.from(f.poses), frames_received: live.frames_received + 1 });
   $('clock').textContent = `t = ${f.t.toFixed(3)} s`;
-  $('rate').textContent = `${f.physics_ms.toFixed(2)} ms/frame, ${f.iterations} iterations`;
+  $('rate').textContent = `${f.physics_ms.toFixed(2)} ms/frame, ${f.iterations} iterations` +
+    (live.frames_skipped ? `; ${live.frames_skipped} frames not drawn (the page is slower)` : '');
   updateDragLine();
   dirty = true;
 }
@@ -444,13 +447,20 @@ function resize() {
   dirty = true;
 }
 window.addEventListener('resize', resize);
+// A draw that takes longer than a frame (software WebGL, a huge scene)
+// waits as long again before the next, so that drawing takes at most
+// half the time and frames, the plots and the server keep up.
+let lastDraw = { end: 0, cost: 0 };
 setInterval(() => {
   if (!view3d || !(dirty || view3d.moved)) return;
   const start = performance.now();
+  if (start - lastDraw.end < lastDraw.cost) return;
   view3d.render();
   if (dirty) { for (const plot of live.plots) drawPlot(plot); drawTimeline(); }
   dirty = false;
-  live.page_ms.draw += performance.now() - start;
+  const end = performance.now();
+  lastDraw = { end, cost: end - start };
+  live.page_ms.draw += end - start;
   live.page_ms.draws += 1;
 }, 1000 / 60);
 connect();

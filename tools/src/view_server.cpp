@@ -13,6 +13,7 @@
 #include <vector>
 
 #include <httplib.h>
+#include <netinet/tcp.h>
 #include <nlohmann/json.hpp>
 
 #include "interrupt.h"
@@ -29,6 +30,11 @@ using Clock = std::chrono::steady_clock;
 constexpr std::size_t kKeptMessages = 1024;
 // How often the scene file is looked at for changes.
 constexpr auto kWatchEvery = std::chrono::milliseconds(250);
+// A page more bytes behind than this (20 frames of hilbert3, thousands of
+// a small machine's) is sent the other messages it missed but only the
+// latest frame: a live view keeps its latency, not every frame (the frame
+// numbers show the gap).
+constexpr std::size_t kMaxBacklogBytes = 4u << 20;
 // How long a stream waits for a message before it looks whether its page
 // is still there and the server still running.
 constexpr auto kStreamPoll = std::chrono::milliseconds(200);
@@ -203,12 +209,25 @@ struct ViewServer::Impl {
             }
             batch.swap(*start);
             *next = std::max(*next, first_seq);  // fell behind: what is kept
-            for (; *next < next_seq; ++*next) batch.push_back(log[*next - first_seq]);
+            const auto frame = [&](std::uint64_t seq) { return static_cast<unsigned char>((*log[seq - first_seq])[4]) == kFrameMessage; };
+            std::size_t behind = 0;
+            for (std::uint64_t seq = *next; seq < next_seq; ++seq) behind += log[seq - first_seq]->size();
+            std::uint64_t latest_frame = next_seq;  // none
+            if (behind > kMaxBacklogBytes)
+              for (std::uint64_t seq = next_seq; seq-- > *next;)
+                if (frame(seq)) {
+                  latest_frame = seq;
+                  break;
+                }
+            for (; *next < next_seq; ++*next)
+              if (latest_frame == next_seq || *next == latest_frame || !frame(*next)) batch.push_back(log[*next - first_seq]);
           }
           if (batch.empty()) return sink.is_writable();
-          for (const auto& m : batch)
-            if (!sink.write(m->data(), m->size())) return false;  // the page went: end this stream only
-          return true;
+          // One chunk for what came since the last: fewer writes for a page
+          // that fell behind.
+          std::string chunk;
+          for (const auto& m : batch) chunk += *m;
+          return sink.write(chunk.data(), chunk.size());  // false: the page went; this stream ends, only it
         },
         [this](bool) {
           std::lock_guard lock(mutex);
@@ -237,6 +256,14 @@ ViewServer::ViewServer(const ViewOptions& options) : impl_(std::make_unique<Impl
   m.publishScene();
 
   httplib::Server& http = m.http;
+  // Frames go out as they come, each a small write: without TCP_NODELAY
+  // Nagle's algorithm holds one back until the page acknowledges the last,
+  // which a page delays (accepted sockets inherit it from the listener).
+  http.set_socket_options([](socket_t socket) {
+    httplib::default_socket_options(socket);
+    const int yes = 1;
+    setsockopt(socket, IPPROTO_TCP, TCP_NODELAY, &yes, sizeof yes);
+  });
   http.set_payload_max_length(kMaxCommandBytes);
   http.set_keep_alive_timeout(1);
   http.set_default_headers({{"X-Content-Type-Options", "nosniff"}});

@@ -47,7 +47,9 @@ struct Frame {
   std::vector<double> hinges;  // 2 a hinge
   std::vector<std::vector<double>> joints;  // per cable, 2 a joint
   std::vector<std::vector<float>> spans;    // per cable, 6 a joint: start and end
-  std::vector<std::vector<std::vector<float>>> paths;
+  std::vector<std::vector<std::vector<float>>> paths, coils;
+  std::vector<std::uint32_t> marker_kinds;
+  std::vector<float> markers;  // 3 a marker
 };
 
 Frame readFrame(const std::string& message) {
@@ -78,6 +80,14 @@ Frame readFrame(const std::string& message) {
   f.joints.resize(count());
   f.spans.resize(f.joints.size());
   f.paths.resize(f.joints.size());
+  f.coils.resize(f.joints.size());
+  const auto polylines = [&](std::vector<std::vector<float>>& pieces) {
+    pieces.resize(count());
+    for (std::vector<float>& piece : pieces) {
+      piece.resize(3 * count());
+      for (float& v : piece) take(v);
+    }
+  };
   for (std::size_t c = 0; c < f.joints.size(); ++c) {
     const std::uint32_t joints = count();
     f.joints[c].resize(2 * joints);
@@ -87,11 +97,14 @@ Frame readFrame(const std::string& message) {
       take(f.joints[c][2 * j + 1]);
       for (int k = 0; k < 6; ++k) take(f.spans[c][6 * j + k]);
     }
-    f.paths[c].resize(count());
-    for (std::vector<float>& piece : f.paths[c]) {
-      piece.resize(3 * count());
-      for (float& v : piece) take(v);
-    }
+    polylines(f.paths[c]);
+    polylines(f.coils[c]);
+  }
+  f.marker_kinds.resize(count());
+  f.markers.resize(3 * f.marker_kinds.size());
+  for (std::size_t m = 0; m < f.marker_kinds.size(); ++m) {
+    take(f.marker_kinds[m]);
+    for (int k = 0; k < 3; ++k) take(f.markers[3 * m + k]);
   }
   EXPECT_EQ(at, message.size()) << "bytes left over";
   return f;
@@ -160,6 +173,28 @@ TEST(LiveScene, FrameMessageHoldsTheStateAsTheWireFormatSays) {
   const Vec3 light_tie = world.body(test::body(live.scene(), "light")).toWorld(Vec3(0, 0.1, 0));
   EXPECT_NEAR(first[0], light_tie.x(), 1e-6);
   EXPECT_NEAR(first[1], light_tie.y(), 1e-6);
+  EXPECT_TRUE(frame.coils[0].empty());  // no spool
+  // A marker at both ends of each span: the tie points green (attachment),
+  // the wheel's two tangent points red (rolling), where the spans meet them.
+  ASSERT_EQ(frame.marker_kinds.size(), 4u);
+  int attachments = 0;
+  for (std::size_t m = 0; m < 4; ++m) {
+    attachments += frame.marker_kinds[m] == 1;
+    EXPECT_TRUE(frame.marker_kinds[m] == 0 || frame.marker_kinds[m] == 1) << frame.marker_kinds[m];
+  }
+  EXPECT_EQ(attachments, 2);
+  EXPECT_NEAR(frame.markers[0], light_tie.x(), 1e-6);
+}
+
+TEST(LiveScene, FrameMessageHoldsTheCoilOfASpoolsStoredCable) {
+  LiveScene live(fs::path(REEVE_SCENES_DIR) / "spool.json", {});
+  live.stepFrame();
+  const Frame frame = readFrame(live.frameMessage());
+  std::size_t coils = 0;
+  for (const auto& cable : frame.coils) coils += cable.size();
+  EXPECT_GE(coils, 1u);
+  for (const auto& cable : frame.coils)
+    for (const auto& coil : cable) EXPECT_GE(coil.size(), 6u);  // a spiral of points, not a dot
 }
 
 TEST(LiveScene, RefusesEveryMalformedCommandWithItsReasonAndChangesNothing) {

@@ -30,6 +30,7 @@ async function sendText(text) {
 const send = (command) => sendText(JSON.stringify(command));
 live.send = sendText;  // the tests send malformed ones too
 live.addPlot = (kind, index) => addPlot(kind, index);  // ('cable' | 'body' | 'hinge', index)
+live.view = () => view3d;  // the 3D view (view3d.js), for scripts and tests
 
 $('play').addEventListener('click', () => send({ cmd: live.playing ? 'pause' : 'play' }));
 $('step').addEventListener('click', () => send({ cmd: 'step' }));
@@ -253,13 +254,24 @@ function parseFrame(view, o) {
       for (let k = 0; k < 6; ++k) { spans[6 * j + k] = view.getFloat32(o, true); o += 4; }
     }
     f.spans.push(spans);
-    const pieces = [], count = u32();
-    for (let p = 0; p < count; ++p) {
-      const n = u32(), piece = new Float32Array(3 * n);
-      for (let k = 0; k < 3 * n; ++k) { piece[k] = view.getFloat32(o, true); o += 4; }
-      pieces.push(piece);
-    }
-    f.tensions.push(tensions); f.rest.push(rest); f.paths.push(pieces);
+    const polylines = () => {
+      const pieces = [], count = u32();
+      for (let p = 0; p < count; ++p) {
+        const n = u32(), piece = new Float32Array(3 * n);
+        for (let k = 0; k < 3 * n; ++k) { piece[k] = view.getFloat32(o, true); o += 4; }
+        pieces.push(piece);
+      }
+      return pieces;
+    };
+    const pieces = polylines(), coils = polylines();  // the coils of stored cable drawn as the cable
+    f.tensions.push(tensions); f.rest.push(rest); f.paths.push(pieces.concat(coils));
+  }
+  const markers = u32();
+  f.markerKinds = new Uint32Array(markers);
+  f.markers = new Float32Array(3 * markers);
+  for (let m = 0; m < markers; ++m) {
+    f.markerKinds[m] = u32();
+    for (let k = 0; k < 3; ++k) { f.markers[3 * m + k] = view.getFloat32(o, true); o += 4; }
   }
   return f;
 }
@@ -276,6 +288,7 @@ function onFrame(f) {
   $('legend-max').textContent = `${maxTension.toPrecision(4)} N`;
   view3d.setPoses(f.poses);
   view3d.setCables(f.paths, f.tensions, maxTension, f.spans);
+  view3d.setMarkers(f.markerKinds, f.markers);
   if (f.frame !== (last ? last.frame : -1)) for (const plot of live.plots) record(plot, f);
   // Frames the server left out for this page, which fell behind.
   if (last && f.frame > last.frame + 1) live.frames_skipped += f.frame - last.frame - 1;

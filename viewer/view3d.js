@@ -187,6 +187,7 @@ export class View3D {
         g.setAttribute('color', new THREE.Float32BufferAttribute(new Float32Array(6 * joints), 3));
         overlay = group.userData.spans = new THREE.LineSegments(g, new THREE.LineBasicMaterial({ vertexColors: true }));
         overlay.userData = { kind: 'cable', index: c, spanOf: new Int32Array(joints) };
+        overlay.renderOrder = 1;  // after the grey lines it lies on, which it covers
         group.add(overlay);
       }
       const position = overlay.geometry.attributes.position, colour = overlay.geometry.attributes.color;
@@ -204,6 +205,31 @@ export class View3D {
       position.needsUpdate = colour.needsUpdate = true;
       overlay.geometry.computeBoundingSphere();
     });
+  }
+
+  /// Link markers in the paper's colours (as the PNGs draw them): rolling
+  /// red, attachment green, pinhole blue, a hybrid by what it is now (3:
+  /// rolling, red; 4: tied, green); kinds[m] at positions[3 m ..].
+  setMarkers(kinds, positions) {
+    const colours = [0xd02020, 0x20a040, 0x2050d0, 0xd02020, 0x20a040];
+    if (!this.markers || this.markers.instanceMatrix.count < kinds.length) {  // room for them all
+      if (this.markers) { this.scene.remove(this.markers); this.markers.geometry.dispose(); this.markers.material.dispose(); }
+      const radius = 0.004 * this.camera.position.distanceTo(this.controls ? this.controls.target : new THREE.Vector3());
+      // Over everything, as the PNGs draw them: a tie point inside its body shows.
+      this.markers = new THREE.InstancedMesh(new THREE.SphereGeometry(radius, 10, 6),
+                                             new THREE.MeshBasicMaterial({ depthTest: false }), Math.max(16, 2 * kinds.length));
+      this.markers.frustumCulled = false;
+      this.markers.renderOrder = 1;
+      this.scene.add(this.markers);
+    }
+    const place = new THREE.Matrix4(), colour = new THREE.Color();
+    for (let m = 0; m < kinds.length; ++m) {
+      this.markers.setMatrixAt(m, place.makeTranslation(positions[3 * m], positions[3 * m + 1], positions[3 * m + 2]));
+      this.markers.setColorAt(m, colour.setHex(colours[kinds[m]] ?? 0x000000));
+    }
+    this.markers.count = kinds.length;
+    this.markers.instanceMatrix.needsUpdate = true;
+    if (this.markers.instanceColor) this.markers.instanceColor.needsUpdate = true;
   }
 
   render() {

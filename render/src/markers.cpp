@@ -1,4 +1,4 @@
-#include "markers.h"
+#include "reeve/render/markers.h"
 
 namespace reeve {
 

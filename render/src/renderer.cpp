@@ -10,7 +10,7 @@
 
 #include "draw.h"
 #include "reeve/engine/fp_exceptions.h"
-#include "markers.h"
+#include "reeve/render/markers.h"
 #include "reeve/render/cable_path.h"
 #include "scene_points.h"
 #include "supersample.h"

@@ -177,6 +177,15 @@ try {
     });
   });
   check(plot.values[30][1] > 10, 'the heavy side pulls (a real tension, not zeros)');
+  // Both spans pull, so both are drawn in their tension's colour, over the
+  // grey polyline they lie on; the four link markers are drawn.
+  const lines = await page.evaluate(() => {
+    const v = window.reeveLive.view(), kids = v.cableGroups[0].children;
+    const spans = kids.find((k) => k.type === 'LineSegments');
+    return { spans: spans.userData.count, over: kids.every((k) => k === spans || k.renderOrder < spans.renderOrder),
+             markers: v.markers.count };
+  });
+  check(lines.spans === 2 && lines.over && lines.markers === 4, `spans coloured over the cable, markers (${JSON.stringify(lines)})`);
 
   let before;
   mark('plot equals the CSV');

@@ -15,6 +15,7 @@
 
 #include "reeve/engine/fp_exceptions.h"
 #include "reeve/render/cable_path.h"
+#include "reeve/render/markers.h"
 #include "reeve/scene/warnings.h"
 #include "run_scene.h"
 #include "viewer_files.h"
@@ -29,6 +30,9 @@ static_assert(std::endian::native == std::endian::little, "the page reads the fr
 
 // Wrap points on circles at most this far apart (rad), as drawn in PNGs.
 constexpr double kArcStepRad = 0.1;
+// A spool's coil: turns this fraction of its radius apart, a full coil
+// at most this fraction of it thick (cable_path.h, spoolCoil).
+constexpr double kCoilPitch = 0.02, kCoilBand = 0.2;
 // The drag's spring: critically damped at this frequency (Hz) for any
 // mass (MuJoCo's perturbation likewise scales with the body), its pull at
 // most this acceleration (m/s^2), so a far target cannot fling the body.
@@ -347,13 +351,31 @@ std::string LiveScene::frameMessage() const {
       for (const Vec3& p : {cables.startPoint(c, j), cables.endPoint(c, j)})
         for (int k = 0; k < 3; ++k) b.put(enabled ? static_cast<float>(p[k]) : std::numeric_limits<float>::quiet_NaN());
     }
-    const std::vector<std::vector<Vec3>> pieces = cablePaths(cables, c, kArcStepRad);
-    b.u32(pieces.size());
-    for (const std::vector<Vec3>& piece : pieces) {
-      b.u32(piece.size());
-      for (const Vec3& p : piece)
-        for (int k = 0; k < 3; ++k) b.put(static_cast<float>(p[k]));
+    const auto polylines = [&](const std::vector<std::vector<Vec3>>& pieces) {
+      b.u32(pieces.size());
+      for (const std::vector<Vec3>& piece : pieces) {
+        b.u32(piece.size());
+        for (const Vec3& p : piece)
+          for (int k = 0; k < 3; ++k) b.put(static_cast<float>(p[k]));
+      }
+    };
+    polylines(cablePaths(cables, c, kArcStepRad));
+    // The stored cable on its end spools, its turns spaced by a fiftieth
+    // of the spool's radius (the PNGs space them by the cable's drawn width).
+    const std::vector<Link>& links = cables.cables()[c].links;
+    std::vector<std::vector<Vec3>> coils;
+    for (const int k : {0, static_cast<int>(links.size()) - 1}) {
+      const double radius = links[k].section.perimeter() / (2.0 * std::numbers::pi);
+      std::vector<Vec3> coil = spoolCoil(cables, c, k, kCoilPitch * radius, kArcStepRad, kCoilBand * radius);
+      if (coil.size() >= 2) coils.push_back(std::move(coil));
     }
+    polylines(coils);
+  }
+  const std::vector<Marker> markers = linkMarkers(cables);
+  b.u32(markers.size());
+  for (const Marker& m : markers) {
+    b.u32(static_cast<std::size_t>(m.kind));
+    for (int k = 0; k < 3; ++k) b.put(static_cast<float>(m.at[k]));
   }
   return framed(kFrameMessage, b.out);
 }

@@ -24,7 +24,11 @@ namespace reeve {
 ///   u32 C, then per cable: u32 J, per joint f64 tension (N), rest length
 ///   (m), f32 x, y, z of its start and of its end point (m; NaN while the
 ///   joint is disabled); u32 P pieces of its drawn path (cablePaths), per
-///   piece u32 N and 3 N f32 (m).
+///   piece u32 N and 3 N f32 (m); u32 S coils of stored cable on its end
+///   spools (spoolCoil), each u32 N and 3 N f32 (m);
+///   u32 M link markers (linkMarkers), each u32 kind (MarkerKind: 0
+///   rolling, 1 attachment, 2 pinhole, 3 hybrid rolling, 4 hybrid tied)
+///   and f32 x, y, z (m).
 /// kJsonMessage's payload is UTF-8 JSON with a "type": "scene" (sceneHead
 /// and generation, file, warnings), "status", "event", "error".
 inline constexpr unsigned char kFrameMessage = 1;

@@ -272,6 +272,31 @@ TEST(LiveScene, DriveTargetAndBudgetApplyAndTheBudgetOutlivesAReset) {
   EXPECT_EQ(live.scene().world->hinge(0).drive.target, 0.0);  // the scene's own again
 }
 
+TEST(LiveScene, AWinchCommandReelsAtItsSpeedInsteadOfItsSchedule) {
+  // The crane's luffing winch: its schedule holds still until 3 s; told
+  // 0.1 m/s (of at most 0.2), it reels in 0.1 m of rope a second. (A
+  // winch starts at once: the jerk pulls the rope up to the winch's 30 kN
+  // for a few substeps, in which it stalls and pays out, as the scene
+  // says; timed after that.)
+  LiveScene live(fs::path(REEVE_SCENES_DIR) / "crane.json", {});
+  const int luff = test::cable(live.scene(), "luff");
+  const auto stored = [&] { return live.scene().cables->cables()[luff].links.back().stored; };
+  const auto refused = live.command(R"({"cmd": "winch", "cable": )" + std::to_string(luff) + R"(, "speed": 0.5})");
+  ASSERT_TRUE(refused);
+  EXPECT_NE(refused->find("/speed"), std::string::npos) << *refused;
+  for (int f = 0; f < 5; ++f) live.stepFrame();
+  const double still = stored();
+  ASSERT_FALSE(live.command(R"({"cmd": "winch", "cable": )" + std::to_string(luff) + R"(, "speed": 0.1})"));
+  for (int f = 0; f < 5; ++f) live.stepFrame();
+  EXPECT_GT(stored(), still);  // the schedule would have held it
+  const double before = stored();
+  for (int f = 0; f < 60; ++f) live.stepFrame();
+  EXPECT_NEAR(stored() - before, 0.1, 1e-9);
+  const double pull = live.scene().cables->winchPull(luff);  // holding the boom, not stalled: the speed holds
+  EXPECT_GT(pull, 0.0);
+  EXPECT_LT(pull, 30000.0);
+}
+
 TEST(LiveScene, PausesOnceAtTheScenesDurationAndStepsOnlyWhatIsAsked) {
   LiveScene live(sceneFile("duration", kFloating), {});
   ASSERT_TRUE(live.playing());

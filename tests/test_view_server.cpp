@@ -68,10 +68,18 @@ TEST(ViewServer, ServesOnlyTheViewersOwnFilesHoweverThePathIsWritten) {
     EXPECT_EQ(r->status, 404) << path;
     EXPECT_EQ(r->body.find("root:"), std::string::npos) << path;
   }
-  // A name other than the server's own (a site rebinding its name here).
-  const auto foreign = client.Get("/", {{"Host", "attacker.example"}});
-  ASSERT_TRUE(foreign);
-  EXPECT_EQ(foreign->status, 403);
+  // A name other than the server's own (a site rebinding its name here),
+  // one that only looks like a loopback address among them.
+  for (const char* host : {"attacker.example", "127.0.0.1.attacker.example:8765", "localhost.attacker.example", ""}) {
+    const auto foreign = client.Get("/", {{"Host", host}});
+    ASSERT_TRUE(foreign) << host;
+    EXPECT_EQ(foreign->status, 403) << host;
+  }
+  for (const char* host : {"localhost:8765", "127.0.0.1", "127.1.2.3:80", "[::1]:8765"}) {
+    const auto own = client.Get("/", {{"Host", host}});
+    ASSERT_TRUE(own) << host;
+    EXPECT_EQ(own->status, 200) << host;
+  }
   server.stop();
 }
 

@@ -1,9 +1,11 @@
 // Reeve's replay viewer (`reeve run --html`): plays the frames recorded
 // in #reeve-data. Bodies are drawn by their shapes at each frame's pose,
-// cables by their recorded paths, coloured by their highest span tension;
-// the plot shows the tensions of the cable picked (in the list or by a
-// click on it). Having played to the end once, it writes what it plotted
-// into #reeve-status as JSON, which the tests read.
+// cables by their recorded paths with each pulling span in the colour of
+// its tension, link markers as the PNGs draw them; the cable events are
+// marked on a timeline and listed (a click jumps to one); the plot shows
+// the tensions of the cable picked (in the list or by a click on it).
+// Having played to the end once, it writes what it plotted into
+// #reeve-status as JSON, which the tests read.
 import { View3D } from 'reeve/view3d.js';
 
 const data = JSON.parse(document.getElementById('reeve-data').textContent);
@@ -21,20 +23,50 @@ $('legend-max').textContent = `${maxTension.toPrecision(4)} N`;
 const view = $('view');
 const view3d = new View3D(view, data, frames.poses[0], frames.paths[0], (text) => { $('message').textContent = text; });
 
+// Each joint's end points (null while disabled) as view3d takes them.
+const spansOf = (f) => frames.spans[f].map((cable) => Float32Array.from(cable, (v) => (v === null ? NaN : v)));
 function showFrame(f) {
   view3d.setPoses(frames.poses[f]);
-  view3d.setCables(frames.paths[f], frames.tensions[f], maxTension);
+  view3d.setCables(frames.paths[f], frames.tensions[f], maxTension, spansOf(f));
+  const markers = frames.markers[f];  // kind, x, y, z per marker
+  view3d.setMarkers(markers.filter((_, k) => k % 4 === 0), markers.filter((_, k) => k % 4 !== 0));
   $('clock').textContent = `t = ${frames.t[f].toFixed(3)} s`;
   $('time').value = f;
 }
 
 function resize() {
   view3d.resize(view.clientWidth || 800, view.clientHeight || 450);
+  drawTimeline();
   const plot = $('plot');
   plot.width = plot.clientWidth || 800;
   plot.height = plot.clientHeight || 160;
 }
 window.addEventListener('resize', () => { resize(); draw(); });
+
+// --- the cable events: marks on the timeline under the slider, and a
+// list whose entries jump to their frame ---
+function frameAt(time) {
+  let f = 0;
+  while (f + 1 < frameCount && frames.t[f] < time - 1e-12) ++f;
+  return f;
+}
+function drawTimeline() {
+  const canvas = $('timeline');
+  canvas.width = canvas.clientWidth || 260;
+  canvas.height = 10;
+  const ctx = canvas.getContext('2d'), end = frames.t[frameCount - 1] || 1;
+  ctx.fillStyle = '#e4e4e4';
+  ctx.fillRect(0, 3, canvas.width, 4);
+  ctx.fillStyle = '#c03020';
+  for (const e of data.events) ctx.fillRect(Math.min(canvas.width - 2, (e.time_s / end) * canvas.width), 0, 2, 10);
+}
+for (const e of data.events) {
+  const row = document.createElement('div');
+  row.textContent = `${e.time_s.toFixed(4)} s ${e.cable} link ${e.link}: ${e.event}`;
+  row.addEventListener('click', () => { playing = false; $('play').textContent = 'play'; frame = clock = frameAt(e.time_s); draw(); });
+  $('events').append(row);
+}
+$('events').style.display = data.events.length ? '' : 'none';
 
 // --- the cable picked, and its plot ---
 let picked = 0;

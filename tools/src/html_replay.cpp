@@ -10,14 +10,12 @@
 #include <nlohmann/json.hpp>
 
 #include "reeve/render/cable_path.h"
+#include "reeve/render/markers.h"
 
 namespace reeve {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Wrap points on circles at most this far apart (rad), as drawn in PNGs.
-constexpr double kArcStepRad = 0.1;
 
 std::string base64(const std::string& bytes) {
   static const char* digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -100,56 +98,69 @@ void HtmlReplay::record() {
   times_ += sep;
   appendNumber(times_, world.time(), "the time");
   // Per frame: [x, y, z, qx, qy, qz, qw] per body; per cable its
-  // polylines as flat [x, y, z, ...]; per cable its joints' tensions (N).
+  // polylines (paths, then spool coils) as flat [x, y, z, ...], its
+  // joints' tensions (N) and end points ([x, y, z] twice a joint, null
+  // while disabled); the link markers as flat [kind, x, y, z, ...].
+  const auto numbers = [](std::string& out, std::initializer_list<double> values, const char* what) {
+    for (const double v : values) {
+      if (out.back() != '[') out += ',';
+      appendNumber(out, v, what);
+    }
+  };
   poses_ += sep;
   poses_ += '[';
   for (BodyId id = 0; id < world.bodyCount(); ++id) {
     const BodyState& b = world.body(id);
-    const double v[7] = {b.x.x(), b.x.y(), b.x.z(), b.q.x(), b.q.y(), b.q.z(), b.q.w()};
-    for (int k = 0; k < 7; ++k) {
-      if (id > 0 || k > 0) poses_ += ',';
-      appendNumber(poses_, v[k], "a body's pose");
-    }
+    numbers(poses_, {b.x.x(), b.x.y(), b.x.z(), b.q.x(), b.q.y(), b.q.z(), b.q.w()}, "a body's pose");
   }
   poses_ += ']';
-  paths_ += sep;
-  paths_ += '[';
-  tensions_ += sep;
-  tensions_ += '[';
+  for (std::string* list : {&paths_, &tensions_, &spans_}) *list += std::string(sep) + '[';
   const int cable_count = static_cast<int>(cables.cables().size());
   for (int c = 0; c < cable_count; ++c) {
-    paths_ += c == 0 ? "[" : ",[";
-    bool first_piece = true;
-    for (const std::vector<Vec3>& piece : cablePaths(cables, c, kArcStepRad)) {
-      paths_ += first_piece ? "[" : ",[";
-      first_piece = false;
-      for (std::size_t i = 0; i < piece.size(); ++i)
-        for (int k = 0; k < 3; ++k) {
-          if (i > 0 || k > 0) paths_ += ',';
-          appendNumber(paths_, piece[i][k], "a cable's path");
-        }
+    for (std::string* list : {&paths_, &tensions_, &spans_}) *list += c == 0 ? "[" : ",[";
+    std::vector<std::vector<Vec3>> pieces = cablePaths(cables, c, kViewerArcStepRad);
+    for (std::vector<Vec3>& coil : viewerSpoolCoils(cables, c)) pieces.push_back(std::move(coil));
+    for (const std::vector<Vec3>& piece : pieces) {
+      paths_ += paths_.back() == '[' ? "[" : ",[";
+      for (const Vec3& p : piece) numbers(paths_, {p.x(), p.y(), p.z()}, "a cable's path");
       paths_ += ']';
     }
-    paths_ += ']';
-    tensions_ += c == 0 ? "[" : ",[";
     const int joints = static_cast<int>(cables.cables()[c].joints.size());
     for (int j = 0; j < joints; ++j) {
-      if (j > 0) tensions_ += ',';
-      appendNumber(tensions_, cables.tension(c, j), "a cable's tension");
+      numbers(tensions_, {cables.tension(c, j)}, "a cable's tension");
+      if (!cables.jointEnabled(c, j)) {
+        spans_ += spans_.back() == '[' ? "null,null,null,null,null,null" : ",null,null,null,null,null,null";
+        continue;
+      }
+      const Vec3 a = cables.startPoint(c, j), b = cables.endPoint(c, j);
+      numbers(spans_, {a.x(), a.y(), a.z(), b.x(), b.y(), b.z()}, "a span's end");
     }
-    tensions_ += ']';
+    for (std::string* list : {&paths_, &tensions_, &spans_}) *list += ']';
   }
-  paths_ += ']';
-  tensions_ += ']';
+  for (std::string* list : {&paths_, &tensions_, &spans_}) *list += ']';
+  markers_ += std::string(sep) + '[';
+  for (const Marker& m : linkMarkers(cables))
+    numbers(markers_, {static_cast<double>(m.kind), m.at.x(), m.at.y(), m.at.z()}, "a link marker");
+  markers_ += ']';
   ++frames_;
+}
+
+void HtmlReplay::recordEvents(const std::vector<CableEvent>& events) {
+  for (const CableEvent& e : events) {
+    if (!events_.empty()) events_ += ',';
+    nlohmann::json event = {{"time_s", e.time_s}, {"cable", scene_.cables->cables()[e.cable].name},
+                            {"link", e.link},     {"event", eventName(e.kind)}};
+    events_ += event.dump();
+  }
 }
 
 void HtmlReplay::close() {
   const nlohmann::json head = sceneHead(scene_);
   std::string data = head.dump();
   data.pop_back();  // the closing brace: the frames follow
-  data += ",\"frames\":{\"t\":[" + times_ + "],\"poses\":[" + poses_ + "],\"paths\":[" + paths_ +
-          "],\"tensions\":[" + tensions_ + "]}}";
+  data += ",\"events\":[" + events_ + "],\"frames\":{\"t\":[" + times_ + "],\"poses\":[" + poses_ +
+          "],\"paths\":[" + paths_ + "],\"tensions\":[" + tensions_ + "],\"spans\":[" + spans_ +
+          "],\"markers\":[" + markers_ + "]}}";
   const nlohmann::json imports = {
       {"imports",
        {{"three", "data:text/javascript;base64," + base64(three_js_)},

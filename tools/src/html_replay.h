@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "output_file.h"
 #include "reeve/scene/scene.h"
@@ -27,9 +28,13 @@ class HtmlReplay {
   /// `path` (an OutputFile: nothing appears there before commit()).
   /// Throws ViewerMissing naming a missing file and how to install it.
   HtmlReplay(const std::filesystem::path& path, bool replace, const Scene& scene);
-  /// Records the scene's state now (reeve run: t = 0, then every frame).
-  /// Throws std::runtime_error if a pose or tension is not finite.
+  /// Records the scene's state now (reeve run: t = 0, then every frame):
+  /// poses, cable paths with spool coils, span tensions and end points,
+  /// link markers. Throws std::runtime_error if a pose or tension is not
+  /// finite.
   void record();
+  /// Records cable events (CableSystem::takeEvents) for the timeline.
+  void recordEvents(const std::vector<CableEvent>& events);
   /// Writes the page with the frames recorded and closes the file.
   void close();
   void commit() { out_.commit(); }
@@ -38,7 +43,7 @@ class HtmlReplay {
   OutputFile out_;
   const Scene& scene_;
   std::string page_, viewer_js_, view3d_js_, three_js_, orbit_js_;
-  std::string times_, poses_, paths_, tensions_;  // JSON arrays' contents so far
+  std::string times_, poses_, paths_, tensions_, spans_, markers_, events_;  // JSON arrays' contents so far
   int frames_ = 0;
 };
 

@@ -28,11 +28,6 @@ using nlohmann::json;
 
 static_assert(std::endian::native == std::endian::little, "the page reads the frames little-endian");
 
-// Wrap points on circles at most this far apart (rad), as drawn in PNGs.
-constexpr double kArcStepRad = 0.1;
-// A spool's coil: turns this fraction of its radius apart, a full coil
-// at most this fraction of it thick (cable_path.h, spoolCoil).
-constexpr double kCoilPitch = 0.02, kCoilBand = 0.2;
 // The drag's spring: critically damped at this frequency (Hz) for any
 // mass (MuJoCo's perturbation likewise scales with the body), its pull at
 // most this acceleration (m/s^2), so a far target cannot fling the body.
@@ -359,17 +354,8 @@ std::string LiveScene::frameMessage() const {
           for (int k = 0; k < 3; ++k) b.put(static_cast<float>(p[k]));
       }
     };
-    polylines(cablePaths(cables, c, kArcStepRad));
-    // The stored cable on its end spools, its turns spaced by a fiftieth
-    // of the spool's radius (the PNGs space them by the cable's drawn width).
-    const std::vector<Link>& links = cables.cables()[c].links;
-    std::vector<std::vector<Vec3>> coils;
-    for (const int k : {0, static_cast<int>(links.size()) - 1}) {
-      const double radius = links[k].section.perimeter() / (2.0 * std::numbers::pi);
-      std::vector<Vec3> coil = spoolCoil(cables, c, k, kCoilPitch * radius, kArcStepRad, kCoilBand * radius);
-      if (coil.size() >= 2) coils.push_back(std::move(coil));
-    }
-    polylines(coils);
+    polylines(cablePaths(cables, c, kViewerArcStepRad));
+    polylines(viewerSpoolCoils(cables, c));
   }
   const std::vector<Marker> markers = linkMarkers(cables);
   b.u32(markers.size());

@@ -223,6 +223,7 @@ RunResult runScene(Scene& scene, int frames, const RunOutputs& o) {
       if (result.spans_run_out++ < kMaxEnergyFindings) result.span_run_out.push_back(spanRunsOutMessage(e, scene));
     }
     if (events) events->write(*scene.cables, happened);
+    if (html) html->recordEvents(happened);
     if (draw) {
       const Image image = renderer->render(*scene.world, *scene.cables, camera);
       if (pngs) pngs->write(f, image);

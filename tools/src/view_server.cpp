@@ -13,6 +13,8 @@
 #include <vector>
 
 #include <httplib.h>
+#include <arpa/inet.h>
+#include <netinet/in.h>
 #include <netinet/tcp.h>
 #include <nlohmann/json.hpp>
 
@@ -39,8 +41,14 @@ constexpr std::size_t kMaxBacklogBytes = 4u << 20;
 // is still there and the server still running.
 constexpr auto kStreamPoll = std::chrono::milliseconds(200);
 
+// "localhost", or an address literal of this machine (127.0.0.0/8, ::1);
+// not a name that only starts so ("127.0.0.1.example.com" is anyone's).
 bool isLoopback(const std::string& host) {
-  return host == "127.0.0.1" || host == "localhost" || host == "::1" || host.rfind("127.", 0) == 0;
+  in_addr v4{};
+  in6_addr v6{};
+  if (host == "localhost") return true;
+  if (inet_pton(AF_INET, host.c_str(), &v4) == 1) return (ntohl(v4.s_addr) >> 24) == 127;
+  return inet_pton(AF_INET6, host.c_str(), &v6) == 1 && IN6_IS_ADDR_LOOPBACK(&v6);
 }
 
 // The host part of a Host header ("localhost:8765", "[::1]:8765").
@@ -143,10 +151,7 @@ struct ViewServer::Impl {
       live.stepFrame();
       publish(live.frameMessage(), &frame_message);
       for (std::string& event : live.takeEventMessages()) publish(std::move(event));
-      if (!failed && live.failure()) {
-        publish(live.statusMessage(), &status_message);
-        publishError("paused: " + *live.failure());
-      }
+      if (!failed && live.failure()) publishError("paused: " + *live.failure());
       if (!live.playing() && live.stepsWanted() == 0) publish(live.statusMessage(), &status_message);
       // Real time at the page's factor; a frame that took longer than its
       // share is not caught up on (the machine runs as fast as it can).

@@ -4,7 +4,10 @@
 #include <fstream>
 #include <sstream>
 
+#include <numbers>
+
 #include "reeve/engine/convex_hull.h"
+#include "reeve/render/cable_path.h"
 
 namespace reeve {
 namespace {
@@ -61,6 +64,18 @@ std::string readViewerFile(const std::string& name, const char* option) {
                         "; run `bash tools/setup.sh` (it installs three.js with npm ci in viewer/), or set "
                         "REEVE_VIEWER_DIR to a folder holding the viewer");
   return text.str();
+}
+
+std::vector<std::vector<Vec3>> viewerSpoolCoils(const CableSystem& cables, int c) {
+  constexpr double kPitch = 0.02, kBand = 0.2;  // of the spool's radius
+  const std::vector<Link>& links = cables.cables()[c].links;
+  std::vector<std::vector<Vec3>> coils;
+  for (const int k : {0, static_cast<int>(links.size()) - 1}) {
+    const double radius = links[k].section.perimeter() / (2.0 * std::numbers::pi);
+    std::vector<Vec3> coil = spoolCoil(cables, c, k, kPitch * radius, kViewerArcStepRad, kBand * radius);
+    if (coil.size() >= 2) coils.push_back(std::move(coil));
+  }
+  return coils;
 }
 
 nlohmann::json sceneHead(const Scene& scene) {

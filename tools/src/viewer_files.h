@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -34,6 +35,15 @@ std::string readViewerFile(const std::string& name, const char* option);
 /// as readViewerFile names them.
 inline constexpr const char* kThreeModule = "node_modules/three/build/three.module.min.js";
 inline constexpr const char* kOrbitControls = "node_modules/three/examples/jsm/controls/OrbitControls.js";
+
+/// Wrap points on circles at most this far apart (rad) in the pages'
+/// cable paths, as in the PNGs.
+inline constexpr double kViewerArcStepRad = 0.1;
+
+/// The coils of stored cable on the end spools of cable `c` as the pages
+/// draw them (spoolCoil: turns a fiftieth of the spool's radius apart, a
+/// full coil at most a fifth of it thick), world points (m).
+std::vector<std::vector<Vec3>> viewerSpoolCoils(const CableSystem& cables, int c);
 
 /// A scene's fixed part as viewer/view3d.js draws it: name, description,
 /// frame_rate_hz, gravity (m/s^2), camera (or null), bodies (name, shape

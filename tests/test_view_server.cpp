@@ -152,6 +152,35 @@ TEST(ViewServer, AStreamStartsWithTheSceneItsStatusAndAFrameAndFramesFollow) {
   server.stop();
 }
 
+TEST(ViewServer, ASceneSlowerThanRealTimeHoldsUpNeitherPagesNorCommands) {
+  // hilbert3 at 100 substeps a frame: about 50 ms of physics for 17 ms of
+  // time, stepped back to back (once, the stepper held the scene's lock
+  // the whole time, and a page waited for its first message for ever).
+  ViewOptions o;
+  o.scene = std::filesystem::path(REEVE_SCENES_DIR) / "hilbert3.json";
+  o.port = 0;
+  o.overrides.substeps = 100;
+  ViewServer server(o);
+  server.start();
+  {
+    Watcher page(server.port(), 5);  // scene, status, a frame, and two more frames
+    page.thread.join();
+    EXPECT_EQ(page.status, 200);
+    EXPECT_GE(messageTypes(page.bytes).size(), 5u);
+  }
+  {
+    Watcher page(server.port(), 1u << 30);  // watching, so that time runs
+    httplib::Client client("127.0.0.1", server.port());
+    client.set_read_timeout(30, 0);
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto paused = client.Post("/control", R"({"cmd": "pause"})", "application/json");
+    ASSERT_TRUE(paused);
+    EXPECT_EQ(paused->status, 200);
+    EXPECT_LT(std::chrono::steady_clock::now() - t0, 20s);  // a frame or so, not for ever
+  }
+  server.stop();
+}
+
 TEST(ViewServer, AtMostFourPagesWatchAndStopEndsTheirStreams) {
   ViewServer server(atwood());
   server.start();

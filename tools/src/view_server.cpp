@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <deque>
 #include <fstream>
+#include <future>
 #include <iostream>
 #include <map>
 #include <mutex>
@@ -61,6 +62,11 @@ std::string errorJson(const std::string& text) { return nlohmann::json{{"error",
 
 }  // namespace
 
+// Threads. The stepping thread alone touches the scene (LiveScene): it
+// steps, watches the file and runs the commands, which the HTTP threads
+// queue for it and wait for. The log of messages has a mutex of its own,
+// held only to add or copy pointers, so a scene slower than real time
+// (stepped back to back) holds up neither the pages nor the commands.
 struct ViewServer::Impl {
   ViewOptions options;
   httplib::Server http;
@@ -71,26 +77,39 @@ struct ViewServer::Impl {
   };
   std::map<std::string, File> files;  // by URL path: all that is served
 
-  std::mutex mutex;  // guards everything below
-  std::condition_variable wake;      // the stepping thread: a command, a stop
-  std::condition_variable messages;  // the streams: a message, a stop
+  // The stepping thread's own.
   LiveScene live;
+  Clock::time_point next_frame;
+  fs::file_time_type watched_time;
+
+  // Commands for the stepping thread, and their answers.
+  struct Command {
+    std::string text;
+    std::promise<std::optional<std::string>> answer;  // nullopt: done; else why not
+  };
+  std::mutex queue_mutex;        // guards `queue` and `stopping`
+  std::condition_variable wake;  // the stepping thread: a command, a page, a stop
+  std::deque<std::shared_ptr<Command>> queue;
+  bool stopping = false;
+
+  // The messages, for the pages' streams.
+  std::mutex log_mutex;              // guards everything below
+  std::condition_variable messages;  // the streams: a message, a stop
   std::deque<std::shared_ptr<const std::string>> log;
   std::uint64_t first_seq = 0, next_seq = 0;  // of log.front(), and of the next message
   std::shared_ptr<const std::string> scene_message, status_message, frame_message;  // what a new page starts from
   int streams = 0;
-  bool stopping = false;
-  Clock::time_point next_frame;
-  fs::file_time_type watched_time;
+  bool closing = false;  // the streams end
+
   std::thread stepper, server;
 
   explicit Impl(const ViewOptions& o)
       : options(o),
         live(o.scene_text ? LiveScene(*o.scene_text, o.scene.string(), o.overrides) : LiveScene(o.scene, o.overrides)) {}
 
-  // Under `mutex`.
   void publish(std::string message, std::shared_ptr<const std::string>* latest = nullptr) {
     auto shared = std::make_shared<const std::string>(std::move(message));
+    std::lock_guard lock(log_mutex);
     if (latest) *latest = shared;
     log.push_back(std::move(shared));
     ++next_seq;
@@ -107,6 +126,10 @@ struct ViewServer::Impl {
   }
   void publishError(const std::string& text, const std::string& file = "", const std::string& json_path = "") {
     publish(jsonMessage(nlohmann::json{{"type", "error"}, {"message", text}, {"file", file}, {"json_path", json_path}}.dump()));
+  }
+  bool watched() {
+    std::lock_guard lock(log_mutex);
+    return streams > 0;
   }
 
   // The scene file changed on disk: the new one from t = 0, or its error
@@ -128,11 +151,30 @@ struct ViewServer::Impl {
     }
   }
 
+  // The commands queued, each answered.
+  void runCommands(std::deque<std::shared_ptr<Command>>& commands) {
+    for (const std::shared_ptr<Command>& command : commands) {
+      const std::uint32_t before = live.sceneGeneration();
+      const std::optional<std::string> error = live.command(command->text);
+      if (!error && live.sceneGeneration() != before) publishScene();  // reset
+      else if (!error) publish(live.statusMessage(), &status_message);
+      if (!error) next_frame = Clock::now();
+      command->answer.set_value(error);
+    }
+    commands.clear();
+  }
+
   void stepLoop() {
-    std::unique_lock lock(mutex);
     auto next_watch = Clock::now() + kWatchEvery;
     next_frame = Clock::now();
-    while (!stopping) {
+    std::deque<std::shared_ptr<Command>> commands;
+    for (;;) {
+      {
+        std::lock_guard lock(queue_mutex);
+        if (stopping) break;
+        commands.swap(queue);
+      }
+      runCommands(commands);
       const auto now = Clock::now();
       if (now >= next_watch) {
         watch();
@@ -140,11 +182,13 @@ struct ViewServer::Impl {
       }
       // Time runs while a page watches: not before the first opens, nor
       // while none is open.
-      const bool playing = live.playing() && streams > 0;
+      const bool playing = live.playing() && watched();
       const bool due = playing ? now >= next_frame : live.stepsWanted() > 0;
       if (!due) {
         if (!playing) next_frame = now;
-        wake.wait_until(lock, playing ? std::min(next_frame, next_watch) : next_watch);
+        std::unique_lock lock(queue_mutex);
+        wake.wait_until(lock, playing ? std::min(next_frame, next_watch) : next_watch,
+                        [&] { return stopping || !queue.empty(); });
         continue;
       }
       const bool failed = live.failure().has_value();
@@ -159,6 +203,10 @@ struct ViewServer::Impl {
                                              std::chrono::duration<double>(live.frameSeconds() / live.realTimeFactor())),
                             now - std::chrono::milliseconds(100));
     }
+    // Commands that came too late are told so, not left waiting.
+    std::lock_guard lock(queue_mutex);
+    for (const std::shared_ptr<Command>& command : queue) command->answer.set_value("the server is stopping");
+    queue.clear();
   }
 
   void control(const httplib::Request& req, httplib::Response& res) {
@@ -169,24 +217,31 @@ struct ViewServer::Impl {
       res.set_content(errorJson("a command is sent as application/json"), "application/json");
       return;
     }
-    std::lock_guard lock(mutex);
-    const std::uint32_t before = sceneGeneration();
-    if (const auto error = live.command(req.body)) {
+    auto command = std::make_shared<Command>();
+    command->text = req.body;
+    std::future<std::optional<std::string>> answer = command->answer.get_future();
+    {
+      std::lock_guard lock(queue_mutex);
+      if (stopping) {
+        res.status = 503;
+        res.set_content(errorJson("the server is stopping"), "application/json");
+        return;
+      }
+      queue.push_back(command);
+    }
+    wake.notify_all();
+    // Answered between two frames of the scene, however long one takes.
+    const std::optional<std::string> error = answer.get();
+    if (error) {
       res.status = 400;
       res.set_content(errorJson(*error), "application/json");
       return;
     }
-    if (sceneGeneration() != before) publishScene();  // reset
-    else publish(live.statusMessage(), &status_message);
-    next_frame = Clock::now();
-    wake.notify_all();
     res.set_content(R"({"ok":true})", "application/json");
   }
 
-  std::uint32_t sceneGeneration() const { return live.sceneGeneration(); }
-
   void stream(const httplib::Request&, httplib::Response& res) {
-    std::unique_lock lock(mutex);
+    std::unique_lock lock(log_mutex);
     if (streams >= kMaxStreams) {
       res.status = 503;
       res.set_content(errorJson("at most " + std::to_string(kMaxStreams) + " pages watch at once; close one"),
@@ -194,7 +249,9 @@ struct ViewServer::Impl {
       return;
     }
     ++streams;
+    lock.unlock();
     wake.notify_all();
+    lock.lock();
     // A new page starts from the scene, its status and its latest frame.
     auto start = std::make_shared<std::vector<std::shared_ptr<const std::string>>>(
         std::vector{scene_message, status_message, frame_message});
@@ -205,10 +262,10 @@ struct ViewServer::Impl {
         [this, start, next](std::size_t, httplib::DataSink& sink) {
           std::vector<std::shared_ptr<const std::string>> batch;
           {
-            std::unique_lock lock(mutex);
+            std::unique_lock lock(log_mutex);
             if (start->empty())
-              messages.wait_for(lock, kStreamPoll, [&] { return stopping || *next < next_seq; });
-            if (stopping) {
+              messages.wait_for(lock, kStreamPoll, [&] { return closing || *next < next_seq; });
+            if (closing) {
               sink.done();
               return true;
             }
@@ -235,7 +292,7 @@ struct ViewServer::Impl {
           return sink.write(chunk.data(), chunk.size());  // false: the page went; this stream ends, only it
         },
         [this](bool) {
-          std::lock_guard lock(mutex);
+          std::lock_guard lock(log_mutex);
           --streams;
         });
   }
@@ -315,12 +372,21 @@ void ViewServer::start() {
 void ViewServer::stop() {
   Impl& m = *impl_;
   {
-    std::lock_guard lock(m.mutex);
+    std::lock_guard lock(m.queue_mutex);
     m.stopping = true;
   }
   m.wake.notify_all();
-  m.messages.notify_all();
   if (m.stepper.joinable()) m.stepper.join();
+  else {  // never started: no one answers the queue
+    std::lock_guard lock(m.queue_mutex);
+    for (const auto& command : m.queue) command->answer.set_value("the server is stopping");
+    m.queue.clear();
+  }
+  {
+    std::lock_guard lock(m.log_mutex);
+    m.closing = true;
+  }
+  m.messages.notify_all();
   m.http.stop();
   if (m.server.joinable()) m.server.join();
 }

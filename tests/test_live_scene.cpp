@@ -297,6 +297,28 @@ TEST(LiveScene, AWinchCommandReelsAtItsSpeedInsteadOfItsSchedule) {
   EXPECT_LT(pull, 30000.0);
 }
 
+TEST(LiveScene, TellsWhereAFrictionWrapBeginsToSlipAndNotWhereItHolds) {
+  // capstan.json: mu 0.3 over half a turn bounds the tension ratio at
+  // exp(0.3 pi) = 2.57 < 3 kg / 1 kg, so 'slipping_rope' slides from the
+  // start and on; the bollard's wrap (bound 16.9 > 15) and the hole's
+  // (1.87 > 1.5) hold.
+  LiveScene live(fs::path(REEVE_SCENES_DIR) / "capstan.json", {});
+  std::vector<std::string> events;
+  for (int f = 0; f < 60; ++f) {
+    live.stepFrame();
+    for (const std::string& m : live.takeEventMessages()) events.push_back(m.substr(5));
+  }
+  int slips = 0;
+  for (const std::string& e : events) {
+    EXPECT_EQ(e.find("sticks"), std::string::npos) << e;  // none stops, once sliding
+    if (e.find(R"("event":"slips")") == std::string::npos) continue;
+    ++slips;
+    EXPECT_NE(e.find(R"("cable":"slipping_rope")"), std::string::npos) << e;
+    EXPECT_NE(e.find(R"("link":1)"), std::string::npos) << e;
+  }
+  EXPECT_EQ(slips, 1);
+}
+
 TEST(LiveScene, PausesOnceAtTheScenesDurationAndStepsOnlyWhatIsAsked) {
   LiveScene live(sceneFile("duration", kFloating), {});
   ASSERT_TRUE(live.playing());

@@ -144,6 +144,11 @@ void LiveScene::start(Scene scene) {
   steps_wanted_ = 0;
   ended_ = false;
   failure_.reset();
+  slipping_.clear();
+  for (const Cable& cable : scene_.cables->cables()) {
+    slipping_.emplace_back();
+    for (const Link& link : cable.links) slipping_.back().push_back(link.slipping);
+  }
 }
 
 void LiveScene::reload(const std::string& text) {
@@ -380,6 +385,16 @@ std::vector<std::string> LiveScene::takeEventMessages() {
     if (e.kind == CableEvent::Kind::SpanRunsOut) event["message"] = spanRunsOutMessage(e, scene_);
     out.push_back(jsonMessage(event.dump()));
   }
+  const std::vector<Cable>& cables = scene_.cables->cables();
+  for (std::size_t c = 0; c < cables.size(); ++c)
+    for (std::size_t k = 0; k < cables[c].links.size(); ++k) {
+      const Link& link = cables[c].links[k];
+      if (!(link.mu > 0.0 && std::isfinite(link.mu)) || static_cast<bool>(slipping_[c][k]) == link.slipping) continue;
+      slipping_[c][k] = link.slipping;
+      const json event = {{"type", "event"}, {"generation", generation_},        {"time_s", scene_.world->time()},
+                          {"cable", cables[c].name}, {"link", k}, {"event", link.slipping ? "slips" : "sticks"}};
+      out.push_back(jsonMessage(event.dump()));
+    }
   return out;
 }
 

@@ -97,7 +97,9 @@ class LiveScene {
   std::string statusMessage() const;
   /// kFrameMessage of the state now.
   std::string frameMessage() const;
-  /// kJsonMessage "event" per cable event since the last call.
+  /// kJsonMessage "event" per cable event since the last call
+  /// (CableEvent), and per friction link (0 < mu < infinity) that began or
+  /// stopped slipping since then ("slips", "sticks"; seen at frame ends).
   std::vector<std::string> takeEventMessages();
 
  private:
@@ -118,6 +120,7 @@ class LiveScene {
   int steps_wanted_ = 0;
   double rtf_ = 1.0;
   std::optional<std::string> failure_;
+  std::vector<std::vector<char>> slipping_;  // per cable and link, at the last takeEventMessages()
   struct Drag {
     BodyId body;
     Vec3 point;   // body-local, m

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstring>
 #include <filesystem>
+#include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
@@ -104,17 +105,24 @@ TEST(ViewServer, AnswersCommandsOnlyAsJsonAndWithTheirReason) {
 }
 
 // A page's stream, read on a thread of its own until `stop` or `enough`
-// messages.
+// messages. `bytes` and `status` once the thread is joined; messages()
+// meanwhile.
 struct Watcher {
   std::string bytes;
   int status = 0;
   std::atomic<bool> stop{false};
+  std::mutex mutex;  // guards bytes while the thread runs
   std::thread thread;
+  std::size_t messages() {
+    std::lock_guard lock(mutex);
+    return messageTypes(bytes).size();
+  }
   Watcher(int port, std::size_t enough) {
     thread = std::thread([this, port, enough] {
       httplib::Client client("127.0.0.1", port);
       client.set_read_timeout(10, 0);
       const auto r = client.Get("/stream", [&](const char* data, std::size_t n) {
+        std::lock_guard lock(mutex);
         bytes.append(data, n);
         return !stop && messageTypes(bytes).size() < enough;
       });
@@ -188,7 +196,7 @@ TEST(ViewServer, AtMostFourPagesWatchAndStopEndsTheirStreams) {
   for (int i = 0; i < kMaxStreams; ++i) pages.push_back(std::make_unique<Watcher>(server.port(), 1u << 30));
   for (const auto& page : pages) {  // each has its scene message
     const auto until = std::chrono::steady_clock::now() + 10s;
-    while (messageTypes(page->bytes).size() < 3 && std::chrono::steady_clock::now() < until) std::this_thread::sleep_for(10ms);
+    while (page->messages() < 3 && std::chrono::steady_clock::now() < until) std::this_thread::sleep_for(10ms);
   }
   httplib::Client client("127.0.0.1", server.port());
   const auto fifth = client.Get("/stream");

@@ -82,6 +82,11 @@ export class View3D {
       const mesh = new THREE.Mesh(shapeGeometry(body.shape), material);
       const marker = spoke(body.shape);
       if (marker) mesh.add(marker);
+      for (const outline of body.outlines || []) {  // sections its shape does not show
+        const g = new THREE.BufferGeometry();
+        g.setAttribute('position', new THREE.Float32BufferAttribute(outline, 3));
+        mesh.add(new THREE.Line(g, new THREE.LineBasicMaterial({ color: 0x404850 })));
+      }
       mesh.userData = { kind: 'body', index: i, name: body.name };
       scene.add(mesh);
       return mesh;

@@ -1,5 +1,6 @@
 #include "viewer_files.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -81,9 +82,35 @@ std::vector<std::vector<Vec3>> viewerSpoolCoils(const CableSystem& cables, int c
 nlohmann::json sceneHead(const Scene& scene) {
   const World& world = *scene.world;
   nlohmann::json bodies = nlohmann::json::array(), cables = nlohmann::json::array(), hinges = nlohmann::json::array();
+  // The sections rolling links wrap where the body's shape does not show
+  // them (a polygon on a cylinder, a circle on a box), as the PNGs outline
+  // them: body-local polylines, one per body and section.
+  std::vector<nlohmann::json> outlines(world.bodyCount(), nlohmann::json::array());
+  std::vector<std::pair<BodyId, const Link*>> outlined;
+  const BodyState at_origin;  // body-local points
+  for (const Cable& cable : scene.cables->cables())
+    for (const Link& link : cable.links) {
+      if ((link.type != LinkType::Rolling && link.type != LinkType::Hybrid) ||
+          sectionMatchesShape(link, world.bodyDef(link.body).shape))
+        continue;
+      const bool seen = std::any_of(outlined.begin(), outlined.end(), [&](const auto& o) {
+        return o.first == link.body && o.second->plane_offset == link.plane_offset &&
+               o.second->section.kind == link.section.kind && o.second->section.radius == link.section.radius &&
+               o.second->section.vertices == link.section.vertices;
+      });
+      if (seen) continue;
+      outlined.emplace_back(link.body, &link);
+      nlohmann::json points = nlohmann::json::array();
+      for (const Vec3& p : sectionOutline(link, at_origin, kViewerArcStepRad))
+        for (int k = 0; k < 3; ++k) points.push_back(p[k]);
+      outlines[link.body].push_back(points);
+    }
   for (BodyId id = 0; id < world.bodyCount(); ++id) {
     const BodyDef& def = world.bodyDef(id);
-    bodies.push_back({{"name", def.name}, {"shape", shapeJson(def.shape)}, {"dynamic", world.bodyMass(id) > 0.0}});
+    bodies.push_back({{"name", def.name},
+                      {"shape", shapeJson(def.shape)},
+                      {"dynamic", world.bodyMass(id) > 0.0},
+                      {"outlines", outlines[id]}});
   }
   for (const Cable& cable : scene.cables->cables())
     cables.push_back({{"name", cable.name}, {"joints", cable.joints.size()}, {"winch", cable.winch.has_value()}});

@@ -47,8 +47,10 @@ std::vector<std::vector<Vec3>> viewerSpoolCoils(const CableSystem& cables, int c
 
 /// A scene's fixed part as viewer/view3d.js draws it: name, description,
 /// frame_rate_hz, gravity (m/s^2), camera (or null), bodies (name, shape
-/// in metres, dynamic), cables (name, joints), hinges (index, the bodies'
-/// names, drive: "none", "angle" or "velocity").
+/// in metres, dynamic, outlines: the sections its rolling links wrap that
+/// its shape does not show, body-local polylines flat x, y, z), cables
+/// (name, joints, winch), hinges (the bodies' names, drive: "none",
+/// "angle" or "velocity").
 nlohmann::json sceneHead(const Scene& scene);
 
 }  // namespace reeve

@@ -124,6 +124,14 @@ function drawPlot(plot) {
   ctx.fillText(`${t0.toFixed(2)} .. ${t1.toFixed(2)} s`, left, h - 2);
   ctx.strokeStyle = '#ccc';
   ctx.strokeRect(left, 4, w - left - 4, h - bottom - 8);
+  ctx.strokeStyle = '#f0b0a8';  // the cable events in this time, as on the timeline
+  for (const e of live.events) {
+    if (e.time_s < t0 || e.time_s > t1) continue;
+    ctx.beginPath();
+    ctx.moveTo(x(e.time_s), 4);
+    ctx.lineTo(x(e.time_s), h - bottom - 4);
+    ctx.stroke();
+  }
   const n = plot.values[0].length, names = seriesNames(plot);
   for (let s = 0; s < n; ++s) {
     if (s < 8) {  // a legend of the first series

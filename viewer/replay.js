@@ -96,6 +96,13 @@ function plot(f) {
   ctx.fillText(`${tEnd.toFixed(2)} s`, w - 48, h - 4);
   ctx.strokeStyle = '#bbb';
   ctx.strokeRect(left, 4, w - left - 8, h - bottom - 4);
+  ctx.strokeStyle = '#f0b0a8';  // the cable events, as on the timeline
+  for (const e of data.events) {
+    ctx.beginPath();
+    ctx.moveTo(x(e.time_s), 4);
+    ctx.lineTo(x(e.time_s), h - bottom);
+    ctx.stroke();
+  }
   const joints = frames.tensions[0][picked].length;
   for (let j = 0; j < joints; ++j) {
     ctx.strokeStyle = spanColors[j % spanColors.length];

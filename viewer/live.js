@@ -311,7 +311,7 @@ function onFrame(f) {
 
 function onStatus(s) {
   if (s.generation !== live.generation) return;
-  Object.assign(live, { playing: s.playing, settings: s.settings, failure: s.failure, ended: s.ended, rtf: s.rtf });
+  Object.assign(live, { playing: s.playing, settings: s.settings, failure: s.failure, ended: s.ended, rtf: s.rtf, dragging: s.dragging });
   $('play').textContent = s.playing ? 'pause' : 'play';
   for (const key of ['substeps', 'iterations', 'solver'])
     if (document.activeElement !== $(key)) $(key).value = s.settings[key];

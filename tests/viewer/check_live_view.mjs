@@ -111,7 +111,7 @@ try {
   await page.goto(url);
   const live = () => page.evaluate(() => {
     const l = window.reeveLive;
-    return { generation: l.generation, frame: l.frame, t: l.t, playing: l.playing, settings: l.settings,
+    return { generation: l.generation, frame: l.frame, t: l.t, playing: l.playing, settings: l.settings, dragging: l.dragging,
              frames: l.frames_received, errors: l.errors, poses: l.poses, events: l.events.length,
              plots: l.plots.map((p) => ({ kind: p.kind, index: p.index, quantity: p.quantity, t: p.t, values: p.values })) };
   });
@@ -207,14 +207,17 @@ try {
   before = (await live()).generation;
   await page.click('#reset');
   await until('reset', (st) => st.generation === before + 1 && st.frame === 0);
-  await page.click('#play');
-  await until('playing', (st) => st.playing);
+  // Grabbed while paused, where the box is (a moving one has left its
+  // projection by the time the mouse comes down on a loaded machine).
   const x0 = (await live()).poses[7 * heavy];
   const proj = await page.evaluate(() => window.reeveLive.projection());
   const [hx, hy] = project(proj, proj.centres.heavy);
   await page.keyboard.down('Shift');
   await page.mouse.move(hx, hy);
   await page.mouse.down();
+  await until('the server holds the drag', (st) => st.dragging === heavy);
+  await page.evaluate(() => window.reeveLive.send('{"cmd":"play"}'));  // the mouse stays on the box
+  await until('playing', (st) => st.playing);
   await page.mouse.move(hx + 150, hy, { steps: 6 });
   await sleep(800);
   const dragged = (await live()).poses[7 * heavy];

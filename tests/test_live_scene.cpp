@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "live_scene.h"
+#include "reeve/scene/energy.h"
 #include "scene_fixture.h"
 
 namespace reeve {
@@ -244,11 +245,18 @@ TEST(LiveScene, DragPullsABodyOntoItsTargetAndReleaseGivesBackItsLoad) {
   BodyState& box = const_cast<World&>(*live.scene().world).body(0);
   box.applied_force = Vec3(0, 0, 0.25);  // a user's own push, which the drag adds to
   ASSERT_FALSE(live.command(R"({"cmd": "drag", "body": 0, "point": [0, 0, 0], "target": [1, 0, 0]})"));
-  double farthest = 0.0;
+  const double start_balance = energyLedger(live.scene()).balance_J();
+  double farthest = 0.0, most_kinetic = 0.0;
   for (int f = 0; f < 120; ++f) {  // 2 s: a critically damped 1.5 Hz spring settles in about 0.5 s
     live.stepFrame();
     farthest = std::max(farthest, box.x.x());
+    // The ledger books the drag as an applied load's work: the box's
+    // kinetic energy (up to about 1 J here) is not energy created.
+    const EnergyLedger e = energyLedger(live.scene());
+    most_kinetic = std::max(most_kinetic, e.kinetic_J);
+    EXPECT_LE(e.balance_J() - start_balance, 1e-3 * std::max(e.kinetic_J, 1e-3)) << "frame " << f;
   }
+  EXPECT_GT(most_kinetic, 0.1);  // it moved: a balance that could fail
   EXPECT_NEAR(box.x.x(), 1.0, 1e-3);
   EXPECT_LT(farthest, 1.02);  // no overshoot past 2 % of the pull
   EXPECT_NEAR(box.x.y(), 0.0, 1e-12);

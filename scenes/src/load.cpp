@@ -4,10 +4,11 @@
 #include <system_error>
 
 #include "reeve/scene/scene.h"
+#include "reeve/scene/scene_file.h"
 
 namespace reeve {
 
-Scene loadScene(const std::filesystem::path& path) {
+std::string readSceneFile(const std::filesystem::path& path) {
   const std::string name = path.string();
   const auto unreadable = [&] {
     return SceneError::unreadable(name, std::generic_category().message(errno));
@@ -46,7 +47,9 @@ Scene loadScene(const std::filesystem::path& path) {
     if (text.size() > kMaxSceneFileBytes) throw too_large(text.size());  // it grew while read
   }
   if (std::ferror(file.get())) throw unreadable();
-  return parseScene(text, name);
+  return text;
 }
+
+Scene loadScene(const std::filesystem::path& path) { return parseScene(readSceneFile(path), path.string()); }
 
 }  // namespace reeve

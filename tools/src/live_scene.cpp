@@ -4,10 +4,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <limits>
 #include <numbers>
-#include <sstream>
 #include <stdexcept>
 #include <utility>
 
@@ -16,6 +14,7 @@
 #include "reeve/engine/fp_exceptions.h"
 #include "reeve/render/cable_path.h"
 #include "reeve/render/markers.h"
+#include "reeve/scene/scene_file.h"
 #include "reeve/scene/warnings.h"
 #include "run_scene.h"
 #include "viewer_files.h"
@@ -35,19 +34,6 @@ constexpr double kDragHz = 1.5;
 constexpr double kMaxDragAcceleration = 500.0;
 
 const std::string kBuiltIn = "<built-in simple.json>";
-
-// The scene file's text, with the loader's checks (loadScene): a regular
-// file, at most kMaxSceneFileBytes.
-std::string readSceneText(const fs::path& file) {
-  std::error_code ec;
-  if (!fs::is_regular_file(file, ec)) throw SceneError::unreadable(file.string(), "not a regular file");
-  if (fs::file_size(file, ec) > kMaxSceneFileBytes)
-    throw SceneError::unreadable(file.string(), "larger than " + std::to_string(kMaxSceneFileBytes) + " bytes");
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream text;
-  if (!(in && text << in.rdbuf())) throw SceneError::unreadable(file.string(), std::strerror(errno));
-  return text.str();
-}
 
 struct CommandError : std::runtime_error {
   using std::runtime_error::runtime_error;
@@ -121,7 +107,7 @@ std::string framed(unsigned char type, const std::string& payload) {
 std::string jsonMessage(const std::string& text) { return framed(kJsonMessage, text); }
 
 LiveScene::LiveScene(fs::path file, Overrides overrides)
-    : LiveScene(file.empty() ? std::string(defaultSceneJson()) : readSceneText(file),
+    : LiveScene(file.empty() ? std::string(defaultSceneJson()) : readSceneFile(file),
                 file.empty() ? kBuiltIn : file.string(), overrides) {}
 
 LiveScene::LiveScene(std::string text, std::string source, Overrides overrides)
@@ -150,6 +136,8 @@ void LiveScene::start(Scene scene) {
     for (const Link& link : cable.links) slipping_.back().push_back(link.slipping);
   }
 }
+
+void LiveScene::reloadFile(const fs::path& file) { reload(readSceneFile(file)); }
 
 void LiveScene::reload(const std::string& text) {
   Scene scene = parseScene(text, source_);

@@ -76,6 +76,8 @@ class LiveScene {
   /// Loads `text` as the scene (the file changed on disk) and plays it
   /// from t = 0 with the overrides. Throws SceneError, keeping the old.
   void reload(const std::string& text);
+  /// reload() of the text of `file` (readSceneFile's checks).
+  void reloadFile(const std::filesystem::path& file);
 
   bool playing() const { return playing_ && !failure_; }
   /// Frames the page asked to step while paused, not yet stepped.

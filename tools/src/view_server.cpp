@@ -4,12 +4,10 @@
 #include <condition_variable>
 #include <cstdio>
 #include <deque>
-#include <fstream>
 #include <future>
 #include <iostream>
 #include <map>
 #include <mutex>
-#include <sstream>
 #include <thread>
 #include <vector>
 
@@ -141,10 +139,7 @@ struct ViewServer::Impl {
     if (ec || time == watched_time) return;
     watched_time = time;
     try {
-      std::ifstream in(options.scene, std::ios::binary);
-      std::ostringstream text;
-      text << in.rdbuf();
-      live.reload(text.str());
+      live.reloadFile(options.scene);
       publishScene();
     } catch (const SceneError& e) {
       publishError(e.what(), e.file(), e.jsonPath());

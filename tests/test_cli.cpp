@@ -134,6 +134,20 @@ TEST_F(Cli, EventsAreLoggedAsJsonLinesAndStoredCableIsInTheCsv) {
   EXPECT_NE(header.find("string.link1.stored_m"), std::string::npos) << header;
 }
 
+TEST_F(Cli, ThreadsChangeNoDigitOfTheCsvAndAreChecked) {
+  // gym.json's machines: the CSV on 2 threads is the CSV on 1, every digit.
+  const std::string scene = std::string(REEVE_SCENES_DIR) + "/gym.json";
+  ASSERT_EQ(reeve("run " + scene + " --frames 30 --threads 1 --csv " + path("one.csv")).code, 0);
+  ASSERT_EQ(reeve("run " + scene + " --frames 30 --threads 2 --csv " + path("two.csv")).code, 0);
+  std::ifstream one(path("one.csv")), two(path("two.csv"));
+  const std::string a((std::istreambuf_iterator<char>(one)), {}), b((std::istreambuf_iterator<char>(two)), {});
+  EXPECT_FALSE(a.empty());
+  EXPECT_EQ(a, b);
+  const Result zero = reeve("run --frames 1 --threads 0");
+  EXPECT_EQ(zero.code, 64);
+  EXPECT_NE(zero.err.find("--threads"), std::string::npos) << zero.err;
+}
+
 TEST_F(Cli, ExistingOutputsAreNotOverwrittenWithoutForce) {
   const std::string csv = write("keep.csv", "my data\n");
   const Result r = reeve("run --frames 2 --csv " + csv);

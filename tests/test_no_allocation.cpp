@@ -20,6 +20,7 @@
 
 #include "batch.h"
 #include "reeve/engine/thread_pool.h"
+#include "reeve/machines/machines.h"
 #include "reeve/scene/scene.h"
 #include "scene_fixture.h"
 
@@ -146,6 +147,25 @@ TEST(NoAllocation, CopiesSteppedOnAThreadPoolAllocateNothing) {
   const long before = g_allocations.load();
   for (int f = 0; f < kFrames; ++f) pool.run(n, frame);
   EXPECT_EQ(g_allocations.load() - before, 0);
+}
+
+TEST(NoAllocation, IslandsSolvedOnTwoThreadsAllocateNothing) {
+  // 16 Atwood machines in one scene (16 islands) on 2 threads under both
+  // solvers: after the first frame (which starts the threads and sizes the
+  // islands' solvers), frames allocate nothing, the cables' updates side
+  // by side included.
+  for (const SolverKind solver : {SolverKind::Direct, SolverKind::GaussSeidel}) {
+    machines::ScalingSpec spec;
+    spec.count = 16;
+    spec.budget.solver = solver;
+    machines::StaticMachine m = machines::islands(spec);
+    World& world = *m.scene.world;
+    for (int k = 0; k < spec.count; ++k) world.setMass(*world.findBody("right" + std::to_string(k)), 1.0 + 0.5 * (k % 4));
+    world.setThreads(2);
+    ASSERT_EQ(world.islandCount(), 16);
+    int exempt = 0;
+    EXPECT_EQ(allocationsAfterFirstFrame(m.scene, exempt), 0) << (solver == SolverKind::Direct ? "direct" : "gauss-seidel");
+  }
 }
 
 TEST(NoAllocation, ABatchsFramesAllocateNothing) {

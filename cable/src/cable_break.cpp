@@ -59,7 +59,7 @@ void CableSystem::breakOverloaded(Cable& cable, int c, double time_s, double h) 
   }
   if (worst < 0) return;
   part(cable, worst, 0.5);
-  events_.push_back(
+  updates_[c].events.push_back(
       {CableEvent::Kind::Break, time_s - h, c, worst, cable.links[worst].orientation, cable.breaking_tension});
   releaseFreeEnds(cable, c, time_s);
   buildRuns(cable);  // the parted span leaves its run before anything reads it
@@ -102,7 +102,7 @@ void CableSystem::releaseFreeEnds(Cable& cable, int c, double time_s) {
         part(cable, other, before ? 1.0 : 0.0);
         link.slipping = link.mu == 0.0;
         link.slip_speed = link.slip_speed_before = 0.0;
-        events_.push_back({CableEvent::Kind::RunsOff, time_s, c, k, link.orientation});
+        updates_[c].events.push_back({CableEvent::Kind::RunsOff, time_s, c, k, link.orientation});
         released = true;
       }
     }

@@ -194,6 +194,11 @@ int CableSystem::addCable(const CableDef& def) {
     world_.addResolveCheck([this](World&, double h) { return recheckSlips(h); });
     rechecks_slips_ = true;
   }
+  // Its spans move from link to link and its jams join a wheel to a tie
+  // point: one island (World::coupleBodies) from the start.
+  std::vector<BodyId> bodies;
+  for (const Link& link : cable.links) bodies.push_back(link.body);
+  world_.coupleBodies(bodies);
   cables_.push_back(std::move(cable));
   return static_cast<int>(cables_.size() - 1);
 }

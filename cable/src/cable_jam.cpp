@@ -34,7 +34,7 @@ constexpr double kJamReach = 0.25;
 
 }  // namespace
 
-bool CableSystem::jam(Cable& cable, int j) {
+bool CableSystem::jam(Cable& cable, int c, int j) {
   CableJoint& span = cable.joints[j];
   const bool wheel_first = cable.links[j].rolls();
   const Link& wheel = wheel_first ? cable.links[j] : cable.links[span.to];
@@ -46,21 +46,30 @@ bool CableSystem::jam(Cable& cable, int j) {
   const double radius = wheel.section.perimeter() / (2.0 * std::numbers::pi);
   const bool inside = !tangentFromPoint(wheel.section, toPlane(world_.body(wheel.body), tie_point), 1, true);
   if (!inside && (tie_point - anchor).norm() > kJamReach * radius) return false;
-  const std::pair key{wheel.body, tie.body};
-  if (std::find(jams_.begin(), jams_.end(), key) == jams_.end()) {
-    SphericalDef ball;
-    ball.body = wheel.body;
-    ball.other = tie.body;
-    ball.anchor = tie_point;
-    try {
-      world_.addSpherical(ball);
-    } catch (const std::invalid_argument&) {  // both static: nothing to hold
-      return false;
-    }
-    jams_.push_back(key);
-  }
+  if (!span.jammed) updates_[c].jams.push_back({j, wheel.body, tie.body, tie_point});
   span.jammed = true;
   return true;
+}
+
+void CableSystem::addJamJoints() {
+  for (int c = 0; c < static_cast<int>(cables_.size()); ++c) {
+    for (const JamRequest& r : updates_[c].jams) {
+      const std::pair key{r.wheel, r.tie};
+      if (std::find(jams_.begin(), jams_.end(), key) != jams_.end()) continue;
+      SphericalDef ball;
+      ball.body = r.wheel;
+      ball.other = r.tie;
+      ball.anchor = r.tie_point;
+      try {
+        world_.addSpherical(ball);
+      } catch (const std::invalid_argument&) {  // nothing to hold (a tie point not finite)
+        cables_[c].joints[r.joint].jammed = false;
+        continue;
+      }
+      jams_.push_back(key);
+    }
+    updates_[c].jams.clear();
+  }
 }
 
 }  // namespace reeve

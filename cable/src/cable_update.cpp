@@ -50,21 +50,16 @@ void CableSystem::measureTurns(double h) {
 void CableSystem::update(double time_s, double h) {
   poses_predicted_ = h > 0.0;
   measureTurns(h);
-  for (int c = 0; c < static_cast<int>(cables_.size()); ++c) {
-    Cable& cable = cables_[c];
-    if (h > 0.0 && std::isfinite(cable.breaking_tension)) breakOverloaded(cable, c, time_s, h);
-    if (cable.winch && h > 0.0) reel(cable, time_s - h, h);
-    // Runs' rest lengths as the last solve left them, before this
-    // substep's turns pay cable in and out.
-    friction_loss_ += settleRuns(cable, h, h == 0.0, &cable);
-    for (int j = 0; j < static_cast<int>(cable.joints.size()); ++j) updateJoint(cable, c, j, time_s);
-    if (cable.broken) releaseFreeEnds(cable, c, time_s);
-    switchHybrids(cable, c, time_s);
-    mergeEmptyLinks(cable, c, time_s);
-    splitAtCrossedLinks(cable, c, time_s);
-    if (h > 0.0) switchSlips(cable, h);
-    buildRuns(cable);
+  const int n = static_cast<int>(cables_.size());
+  updates_.resize(n);
+  world_.parallelFor(n, [&](int c) { updateCable(c, time_s, h); });
+  for (CableUpdate& u : updates_) {
+    events_.insert(events_.end(), u.events.begin(), u.events.end());
+    u.events.clear();
+    friction_loss_ += u.friction_loss;
+    winch_work_ += u.winch_work;
   }
+  addJamJoints();
   poses_predicted_ = false;
   if (breach_) return;  // the first one says what went wrong
   if (auto b = findBreach()) {
@@ -90,6 +85,24 @@ void CableSystem::update(double time_s, double h) {
   }
 }
 
+void CableSystem::updateCable(int c, double time_s, double h) {
+  Cable& cable = cables_[c];
+  CableUpdate& out = updates_[c];
+  out.winch_work = 0.0;
+  if (h > 0.0 && std::isfinite(cable.breaking_tension)) breakOverloaded(cable, c, time_s, h);
+  if (cable.winch && h > 0.0) reel(cable, time_s - h, h);
+  // Runs' rest lengths as the last solve left them, before this
+  // substep's turns pay cable in and out.
+  out.friction_loss = settleRuns(cable, h, h == 0.0, &cable);
+  for (int j = 0; j < static_cast<int>(cable.joints.size()); ++j) updateJoint(cable, c, j, time_s);
+  if (cable.broken) releaseFreeEnds(cable, c, time_s);
+  switchHybrids(cable, c, time_s);
+  mergeEmptyLinks(cable, c, time_s);
+  splitAtCrossedLinks(cable, c, time_s);
+  if (h > 0.0) switchSlips(cable, h);
+  buildRuns(cable);
+}
+
 void CableSystem::updateJoint(Cable& cable, int c, int j, double time_s) {
   Link& from = cable.links[j];
   CableJoint& joint = cable.joints[j];
@@ -100,9 +113,9 @@ void CableSystem::updateJoint(Cable& cable, int c, int j, double time_s) {
     // A tie point drawn inside the wheel it is wound onto has run its span
     // out too (a load hauled up into its drum; item 9), and jams there.
     if (from.rolls() != to.rolls() && !joint.ran_out)
-      events_.push_back({CableEvent::Kind::SpanRunsOut, time_s, c, j, (from.rolls() ? from : to).orientation});
+      updates_[c].events.push_back({CableEvent::Kind::SpanRunsOut, time_s, c, j, (from.rolls() ? from : to).orientation});
     joint.ran_out |= from.rolls() != to.rolls();
-    if (joint.ran_out) jam(cable, j);
+    if (joint.ran_out) jam(cable, c, j);
     return;
   }
   // Alg. 1 l. 4-5 and Alg. 2 l. 8-9: the anchors turned with their bodies
@@ -126,14 +139,14 @@ void CableSystem::updateJoint(Cable& cable, int c, int j, double time_s) {
     to.takeRest(deficit * wound_b / (wound_a + wound_b));
     joint.rest_length += deficit;
     if (!joint.ran_out)
-      events_.push_back({CableEvent::Kind::SpanRunsOut, time_s, c, j, (wound_a >= wound_b ? from : to).orientation});
+      updates_[c].events.push_back({CableEvent::Kind::SpanRunsOut, time_s, c, j, (wound_a >= wound_b ? from : to).orientation});
     joint.ran_out = true;
   } else if (joint.rest_length > 0.0) {
     joint.ran_out = false;
   }
   joint.local_a = anchors->first;
   joint.local_b = anchors->second;
-  if (joint.ran_out) jam(cable, j);
+  if (joint.ran_out) jam(cable, c, j);
 }
 
 double CableSystem::restOfArc(const Cable& cable, int k, int j, double arc) const {
@@ -202,7 +215,7 @@ void CableSystem::switchHybrids(Cable& cable, int c, double time_s) {
       anchor = link.point;
       joint.rest_length += link.stored;  // the overdraft, so the total is kept
       link.unwindAll();
-      events_.push_back({CableEvent::Kind::HybridRunsOut, time_s, c, k, link.orientation});
+      updates_[c].events.push_back({CableEvent::Kind::HybridRunsOut, time_s, c, k, link.orientation});
       continue;
     }
     // Alg. 2 l. 14-20: the tie point is hidden from the span's other end
@@ -232,7 +245,7 @@ void CableSystem::switchHybrids(Cable& cable, int c, double time_s) {
     link.unwindAll();
     wind(cable, k, j, wrap[i]);
     anchor = fromPlane(link, tangent[i]);
-    events_.push_back({CableEvent::Kind::HybridRollsAgain, time_s, c, k, link.orientation});
+    updates_[c].events.push_back({CableEvent::Kind::HybridRollsAgain, time_s, c, k, link.orientation});
   }
 }
 
@@ -257,7 +270,7 @@ void CableSystem::mergeEmptyLinks(Cable& cable, int c, double time_s) {
     link.side = std::numeric_limits<double>::quiet_NaN();  // measured afresh from the next update
     link.slipping = link.mu == 0.0;  // a friction link starts sticking when it is split in again
     link.slip_speed = 0.0;
-    events_.push_back({CableEvent::Kind::Merge, time_s, c, k, link.orientation});
+    updates_[c].events.push_back({CableEvent::Kind::Merge, time_s, c, k, link.orientation});
   }
 }
 
@@ -331,7 +344,7 @@ void CableSystem::splitAtCrossedLinks(Cable& cable, int c, double time_s) {
       const double l_in = spanLength(cable, j), l_out = spanLength(cable, k);
       in.rest_length = l_in + l_out > 0.0 ? rest * l_in / (l_in + l_out) : 0.5 * rest;
       out.rest_length = rest - in.rest_length;
-      events_.push_back({CableEvent::Kind::Split, time_s, c, k, mid.orientation});
+      updates_[c].events.push_back({CableEvent::Kind::Split, time_s, c, k, mid.orientation});
       break;  // the new spans are checked again next substep
     }
   }

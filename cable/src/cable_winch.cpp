@@ -89,7 +89,7 @@ void CableSystem::reel(Cable& cable, double start_s, double h) {
   // Reeled against a run that solve could not pull (a span between static
   // bodies behind a stuck friction link), it is still to be paid for by
   // the solve that takes the stretch up.
-  winch_work_ += pull * cable.reeled * (1.0 + cable.compliance_per_m * std::max(0.0, pull));
+  updates_[&cable - cables_.data()].winch_work += pull * cable.reeled * (1.0 + cable.compliance_per_m * std::max(0.0, pull));
   if (pull > 0.0 || length <= path.rest_length) cable.reeled = 0.0;
   const bool stalled = std::isfinite(winch.max_pull) && -path.lambda >= winch.max_pull * h * h * (1.0 - 1e-9);
   if (stalled) {
@@ -115,7 +115,7 @@ void CableSystem::reel(Cable& cable, double start_s, double h) {
     span.rest_length += given;
     drum.stored -= given;
     cable.fed += given - slipped;
-    winch_work_ -= pull * given;
+    updates_[&cable - cables_.data()].winch_work -= pull * given;
   }
   // This substep's command: cable reeled in (> 0), within what the span
   // holds and what the drum stores.

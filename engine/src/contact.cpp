@@ -136,16 +136,21 @@ void solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, 
     }
     if (m.friction_impulse.norm() <= mu_s * lambda_n && std::abs(m.twist_impulse) <= mu_s * lambda_n * radius)
       return true;
-    a.x = xa;  // sliding or spinning
-    a.q = qa;
-    b.x = xb;
-    b.q = qb;
-    a.impulse = impulse_a;
-    b.impulse = impulse_b;
-    a.angular_impulse = angular_a;
-    b.angular_impulse = angular_b;
-    a.solve_turn = turn_a;
-    b.solve_turn = turn_b;
+    // Sliding or spinning: undone (on the bodies the solve writes to).
+    if (a.takesImpulses()) {
+      a.x = xa;
+      a.q = qa;
+      a.impulse = impulse_a;
+      a.angular_impulse = angular_a;
+      a.solve_turn = turn_a;
+    }
+    if (b.takesImpulses()) {
+      b.x = xb;
+      b.q = qb;
+      b.impulse = impulse_b;
+      b.angular_impulse = angular_b;
+      b.solve_turn = turn_b;
+    }
     m.friction_impulse = friction_before;
     m.twist_impulse = twist_before;
     return false;

@@ -18,16 +18,20 @@ double positionalDeltaLambda(const BodyState& a, const BodyState& b, const Vec3&
 void applyPositionalImpulse(BodyState& a, BodyState& b, const Vec3& r_a, const Vec3& r_b,
                             const Vec3& P) {
   const Vec3 turn_b = b.applyInvInertia(r_b.cross(P)), turn_a = -a.applyInvInertia(r_a.cross(P));
-  b.x += P * b.inv_mass;
-  rotateBy(b.q, turn_b);
-  a.x -= P * a.inv_mass;
-  rotateBy(a.q, turn_a);
-  b.impulse += P;
-  b.angular_impulse += r_b.cross(P);
-  b.solve_turn += turn_b;
-  a.impulse -= P;
-  a.angular_impulse -= r_a.cross(P);
-  a.solve_turn += turn_a;
+  if (b.takesImpulses()) {
+    b.x += P * b.inv_mass;
+    rotateBy(b.q, turn_b);
+    b.impulse += P;
+    b.angular_impulse += r_b.cross(P);
+    b.solve_turn += turn_b;
+  }
+  if (a.takesImpulses()) {
+    a.x -= P * a.inv_mass;
+    rotateBy(a.q, turn_a);
+    a.impulse -= P;
+    a.angular_impulse -= r_a.cross(P);
+    a.solve_turn += turn_a;
+  }
 }
 
 double angularDeltaLambda(const BodyState& a, const BodyState& b, const Vec3& n, double C,
@@ -39,12 +43,16 @@ double angularDeltaLambda(const BodyState& a, const BodyState& b, const Vec3& n,
 
 void applyAngularImpulse(BodyState& a, BodyState& b, const Vec3& P) {
   const Vec3 turn_b = b.applyInvInertia(P), turn_a = -a.applyInvInertia(P);
-  rotateBy(b.q, turn_b);
-  rotateBy(a.q, turn_a);
-  b.angular_impulse += P;
-  b.solve_turn += turn_b;
-  a.angular_impulse -= P;
-  a.solve_turn += turn_a;
+  if (b.takesImpulses()) {
+    rotateBy(b.q, turn_b);
+    b.angular_impulse += P;
+    b.solve_turn += turn_b;
+  }
+  if (a.takesImpulses()) {
+    rotateBy(a.q, turn_a);
+    a.angular_impulse -= P;
+    a.solve_turn += turn_a;
+  }
 }
 
 Eigen::Matrix3d inverseInertiaWorld(const BodyState& body) {

@@ -132,6 +132,7 @@ void solveSpan(PathConstraint& path, BodyState& b0, BodyState& b1, double alpha_
   dl = std::clamp(path.lambda + dl, -path.max_tension * h * h, 0.0) - path.lambda;
   path.lambda += dl;
   const auto move = [&](BodyState& b, const Vec3& g, const Vec3& t, const Vec3& turn) {
+    if (!b.takesImpulses()) return;
     const Vec3 f = weight * g, dphi = dl * turn;
     b.x += dl * b.inv_mass * f;
     rotateBy(b.q, dphi);
@@ -230,6 +231,7 @@ void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double a
   path.lambda += dl;
   for (size_t i = 0; i < n; ++i) {
     BodyState& b = bodies(path.points[i].body);
+    if (!b.takesImpulses()) continue;
     const Vec3 dphi = dl * turn[i];
     b.x += dl * b.inv_mass * force[i];
     rotateBy(b.q, dphi);

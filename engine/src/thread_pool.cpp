@@ -6,11 +6,28 @@
 #include <utility>
 
 namespace reeve {
+namespace {
+
+// Tells the core that this is a spin loop (eases the sibling hyperthread).
+inline void relax() {
+#if defined(__x86_64__) || defined(__i386__)
+  __builtin_ia32_pause();
+#else
+  std::this_thread::yield();
+#endif
+}
+
+// A ticket: the run's generation in the high half; in the low half, the
+// next index to take, or kEach for a runEach (each thread its own index).
+constexpr std::uint64_t kEach = 1u << 31;
+std::uint32_t generationOf(std::uint64_t ticket) { return static_cast<std::uint32_t>(ticket >> 32); }
+
+}  // namespace
 
 ThreadPool::ThreadPool(int threads) {
   if (threads < 1) throw std::invalid_argument("thread pool: expected at least 1 thread, got " + std::to_string(threads));
   workers_.reserve(threads - 1);
-  for (int t = 1; t < threads; ++t) workers_.emplace_back([this] { work(); });
+  for (int t = 1; t < threads; ++t) workers_.emplace_back([this, t] { work(t); });
 }
 
 ThreadPool::~ThreadPool() {
@@ -24,53 +41,90 @@ ThreadPool::~ThreadPool() {
 
 int ThreadPool::cores() { return std::max(1u, std::thread::hardware_concurrency()); }
 
-void ThreadPool::drain(std::unique_lock<std::mutex>& lock) {
-  while (next_ < n_) {
-    const int i = next_++;
-    lock.unlock();
-    std::exception_ptr failed;
-    try {
-      (*task_)(i);
-    } catch (...) {
-      failed = std::current_exception();
-    }
-    lock.lock();
-    if (failed && !error_) error_ = failed;
+template <class Busy>
+void ThreadPool::spinWhile(const Busy& busy) const {
+  if (spin_.count() == 0) return;
+  const auto until = std::chrono::steady_clock::now() + spin_;
+  for (int k = 1; busy(); ++k) {
+    if (k % 64 == 0 && std::chrono::steady_clock::now() >= until) return;
+    relax();
   }
 }
 
-void ThreadPool::work() {
-  std::uint64_t seen = 0;
-  std::unique_lock lock(mutex_);
+void ThreadPool::runOne(int i, int n) {
+  try {
+    call_.load(std::memory_order_relaxed)(task_.load(std::memory_order_relaxed), i);
+  } catch (...) {
+    std::lock_guard lock(mutex_);
+    if (!error_) error_ = std::current_exception();
+  }
+  if (done_.fetch_add(1, std::memory_order_acq_rel) + 1 == n) {
+    std::lock_guard lock(mutex_);  // the caller may be waiting on finished_
+    finished_.notify_all();
+  }
+}
+
+void ThreadPool::take(std::uint32_t generation) {
   while (true) {
-    wake_.wait(lock, [&] { return stop_ || generation_ != seen; });
-    if (stop_) return;
-    seen = generation_;
-    ++running_;
-    drain(lock);
-    if (--running_ == 0) done_.notify_all();
+    std::uint64_t ticket = ticket_.load(std::memory_order_acquire);
+    if (generationOf(ticket) != generation) return;
+    // n_ is this run's while the ticket is: a later run starts only once
+    // every index of this one is done, which moves the ticket on.
+    const int n = n_.load(std::memory_order_relaxed);
+    const int i = static_cast<int>(ticket & (kEach - 1));
+    if (i >= n) return;
+    if (ticket_.compare_exchange_weak(ticket, ticket + 1, std::memory_order_acq_rel)) runOne(i, n);
   }
 }
 
-void ThreadPool::run(int n, const std::function<void(int)>& task) {
-  if (n <= 0) return;
-  std::unique_lock lock(mutex_);
-  task_ = &task;
-  n_ = n;
-  next_ = 0;
-  error_ = nullptr;
-  ++generation_;
-  if (!workers_.empty() && n > 1) wake_.notify_all();
-  drain(lock);
-  // Every index is handed out; wait for the workers still inside one. A
-  // worker that wakes later finds nothing left and goes back to sleep.
-  done_.wait(lock, [&] { return running_ == 0; });
-  task_ = nullptr;
-  n_ = next_ = 0;
-  if (std::exception_ptr e = std::exchange(error_, nullptr)) {
-    lock.unlock();
-    std::rethrow_exception(e);
+void ThreadPool::work(int id) {
+  std::uint32_t seen = 0;
+  const auto idle = [&] {
+    return generationOf(ticket_.load(std::memory_order_acquire)) == seen && !stop_.load(std::memory_order_relaxed);
+  };
+  while (true) {
+    spinWhile(idle);
+    if (idle()) {
+      std::unique_lock lock(mutex_);
+      wake_.wait(lock, [&] { return !idle(); });
+    }
+    if (stop_) return;
+    const std::uint64_t ticket = ticket_.load(std::memory_order_acquire);
+    seen = generationOf(ticket);
+    // A runEach waits for every thread's index, so its n_ and task are
+    // still those of the run this ticket is.
+    if (ticket & kEach) runOne(id, n_.load(std::memory_order_relaxed));
+    else take(seen);
   }
+}
+
+void ThreadPool::runIndices(int n, Call call, const void* task, bool each) {
+  if (n <= 0) return;
+  call_.store(call, std::memory_order_relaxed);
+  task_.store(task, std::memory_order_relaxed);
+  n_.store(n, std::memory_order_relaxed);
+  done_.store(0, std::memory_order_relaxed);
+  ++generation_;
+  {
+    std::lock_guard lock(mutex_);  // a worker going to sleep checks the ticket under it
+    ticket_.store(static_cast<std::uint64_t>(generation_) << 32 | (each ? kEach : 0), std::memory_order_release);
+  }
+  if (!workers_.empty() && n > 1) wake_.notify_all();
+  if (each) runOne(0, n);
+  else take(generation_);
+  // Every index is taken; wait for those still running elsewhere.
+  const auto running = [&] { return done_.load(std::memory_order_acquire) < n; };
+  spinWhile(running);
+  if (running()) {
+    std::unique_lock lock(mutex_);
+    finished_.wait(lock, [&] { return !running(); });
+  }
+  std::exception_ptr error;
+  {
+    std::lock_guard lock(mutex_);
+    error = std::exchange(error_, nullptr);
+  }
+  if (error) std::rethrow_exception(error);
 }
 
 }  // namespace reeve

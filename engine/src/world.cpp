@@ -12,6 +12,8 @@
 #include <Eigen/LU>
 
 #include "direct/direct_solver.h"
+#include "island.h"
+#include "reeve/engine/thread_pool.h"
 
 namespace reeve {
 namespace {
@@ -102,7 +104,7 @@ Vec3 gyroscopicStep(const Mat3& inertia, const Vec3& w, double h) {
 
 }  // namespace
 
-World::World(SolverSettings settings) : settings_(settings), direct_(std::make_unique<DirectSolver>()) {}
+World::World(SolverSettings settings) : settings_(settings) {}
 World::~World() = default;
 World::World(World&&) noexcept = default;
 World& World::operator=(World&&) noexcept = default;
@@ -110,7 +112,7 @@ World& World::operator=(World&&) noexcept = default;
 BodyId World::addBody(const BodyDef& def) {
   bodies_.push_back(makeBodyState(def));
   mass_.push_back(bodies_.back().mass());
-  rotors_dirty_ = true;
+  rotors_dirty_ = islands_dirty_ = true;
   defs_.push_back(def);
   bound_radius_.push_back(boundingRadius(def.shape));
   const BodyId id = static_cast<BodyId>(bodies_.size() - 1);
@@ -282,7 +284,7 @@ HingeId World::addHinge(const HingeDef& def) {
   checkDrive("hinge", def.drive.target, def.drive.max_torque, def.drive.until, def.drive.schedule);
   checkSpring("hinge", def.drive.stiffness, def.drive.damping, def.drive.mode == HingeDrive::Mode::Angle,
               def.drive.integration == HingeDrive::Integration::Trapezoidal);
-  rotors_dirty_ = true;
+  rotors_dirty_ = islands_dirty_ = true;
   hinges_.push_back(makeHingeJoint(def, body(def.body), body(def.other)));
   return static_cast<HingeId>(hinges_.size() - 1);
 }
@@ -297,7 +299,7 @@ PrismaticId World::addPrismatic(const PrismaticDef& def) {
   checkSpring("prismatic joint", def.drive.stiffness, def.drive.damping,
               def.drive.mode == PrismaticDrive::Mode::Position,
               def.drive.integration == PrismaticDrive::Integration::Trapezoidal);
-  rotors_dirty_ = true;
+  rotors_dirty_ = islands_dirty_ = true;
   prismatics_.push_back(makePrismaticJoint(def, body(def.body), body(def.other)));
   return static_cast<PrismaticId>(prismatics_.size() - 1);
 }
@@ -313,7 +315,7 @@ SphericalId World::addSpherical(const SphericalDef& def) {
   if (def.twist_limit.enabled && !(def.swing_limit.enabled && def.swing_limit.max <= kMaxSwingWithTwist))
     reject("spherical joint", "a twist limit needs a swing limit of at most pi/2 rad (the twist is ill-defined "
                               "as the swing nears pi)");
-  rotors_dirty_ = true;
+  rotors_dirty_ = islands_dirty_ = true;
   sphericals_.push_back(makeSphericalJoint(def, body(def.body), body(def.other)));
   return static_cast<SphericalId>(sphericals_.size() - 1);
 }
@@ -322,7 +324,7 @@ FixedId World::addFixed(const FixedDef& def) {
   checkJointBodies("fixed joint", def.body, def.other);
   checkVector("fixed joint", "anchor", def.anchor, false);
   checkCompliance("fixed joint", def.compliance);
-  rotors_dirty_ = true;
+  rotors_dirty_ = islands_dirty_ = true;
   fixeds_.push_back(makeFixedJoint(def, body(def.body), body(def.other)));
   return static_cast<FixedId>(fixeds_.size() - 1);
 }
@@ -359,12 +361,14 @@ double World::twistAngle(SphericalId id) const {
 DistanceId World::addDistance(const DistanceConstraint& c) {
   assert(c.a >= kWorldBody && c.a < bodyCount() && c.b >= kWorldBody && c.b < bodyCount());
   distances_.push_back(c);
+  islands_dirty_ = true;
   return static_cast<DistanceId>(distances_.size() - 1);
 }
 
 PathId World::addPath(PathConstraint path) {
   assert(path.points.size() >= 2);
   paths_.push_back(std::move(path));
+  islands_dirty_ = true;
   return static_cast<PathId>(paths_.size() - 1);
 }
 
@@ -408,6 +412,7 @@ double World::tension(DistanceId id) const {
 void World::step(double dt) {
   assert(settings_.substeps > 0 && settings_.iterations > 0);
   if (rotors_dirty_ || hingeRigidityChanged()) refreshRotors();
+  refreshIslands();
   last_iterations_ = 0;
   interrupted_ = false;
   const double h = dt / settings_.substeps;
@@ -423,6 +428,7 @@ void World::step(double dt) {
     if (!non_finite_) checkFinite(time_ + h, false, h);  // born before any constraint spreads it
     for (auto& hook : hooks_) hook(*this, h);
     if (rotors_dirty_) refreshRotors();  // a hook added a joint (a cable's jam) to a rotor
+    if (!hooks_.empty()) refreshIslands();  // the joint, or a span moved on to a new body
     const bool contacts = hasContacts();
     if (contacts) findContacts();
     else if (!contacts_.empty()) {  // the ground was removed
@@ -430,6 +436,7 @@ void World::step(double dt) {
       manifolds_.clear();
       previous_manifolds_.clear();
     }
+    sortManifolds();
     solvePositionsChecked(h);
     updateVelocities(h);
     for (HingeJoint& j : hinges_) trackHingeAngle(j, body(j.a), body(j.b), h);
@@ -532,35 +539,103 @@ void World::integrate(double h) {
   }
 }
 
+void World::setThreads(int threads) {
+  if (threads < 1) throw std::invalid_argument("World::setThreads: expected at least 1 thread, got " + std::to_string(threads));
+  if (threads == threads_) return;
+  threads_ = threads;
+  pool_.reset();          // started again by buildIslands() if there are islands to share
+  islands_dirty_ = true;  // their runs (island_runs_) are cut for the threads
+}
+
 void World::solvePositions(double h, bool again) {
-  // The braking inverse inertia (mass) is a drive's: a joint without one
-  // does not read it.
-  for (int i = 0; i < static_cast<int>(hinges_.size()); ++i) {
-    HingeJoint& j = hinges_[i];
-    const bool driven = j.drive.mode != HingeDrive::Mode::None;
-    prepareHingeJoint(j, body(j.a), body(j.b), h, driven ? brakingInverseInertia(i) : 0.0);
-  }
-  for (int i = 0; i < static_cast<int>(prismatics_.size()); ++i) {
-    PrismaticJoint& j = prismatics_[i];
-    const bool driven = j.drive.mode != PrismaticDrive::Mode::None;
-    preparePrismaticJoint(j, body(j.a), body(j.b), h, driven ? brakingInverseMass(i) : 0.0);
-  }
-  for (SphericalJoint& j : sphericals_) prepareSphericalJoint(j);
-  for (FixedJoint& j : fixeds_) prepareFixedJoint(j);
-  for (DistanceConstraint& c : distances_) c.lambda = 0.0;
-  for (PathConstraint& p : paths_) p.lambda = 0.0;
   for (BodyState& b : bodies_) b.impulse = b.angular_impulse = b.solve_turn = Vec3::Zero();
   poses_solved_ = true;
+  // The braking inverse inertia (mass) is a drive's: a joint without one
+  // does not read it.
+  hinge_braking_.resize(hinges_.size());
+  for (int i = 0; i < static_cast<int>(hinges_.size()); ++i)
+    hinge_braking_[i] = hinges_[i].drive.mode != HingeDrive::Mode::None ? brakingInverseInertia(i) : 0.0;
+  prismatic_braking_.resize(prismatics_.size());
+  for (int i = 0; i < static_cast<int>(prismatics_.size()); ++i)
+    prismatic_braking_[i] = prismatics_[i].drive.mode != PrismaticDrive::Mode::None ? brakingInverseMass(i) : 0.0;
+  solveLooseRows(h);
+  const int n = static_cast<int>(islands_.size());
+  if (pool_ && n > 1) {
+    // Each thread its own run of islands of about equal work, the same
+    // every substep, so that an island's data stays in its core's cache
+    // (ThreadPool::runEach).
+    pool_->runEach([&](int t) {
+      for (int i = island_runs_[t]; i < island_runs_[t + 1]; ++i) solveIsland(*islands_[i], h, again);
+    });
+  } else {
+    for (int i = 0; i < n; ++i) solveIsland(*islands_[i], h, again);
+  }
+  int most = 0;
+  for (const auto& island : islands_) {
+    most = std::max(most, island->iterations);
+    interrupted_ |= island->interrupted;
+  }
+  last_iterations_ += most;
+}
+
+void World::solveIsland(Island& island, double h, bool again) {
+  for (const int i : island.hinges) {
+    HingeJoint& j = hinges_[i];
+    prepareHingeJoint(j, body(j.a), body(j.b), h, hinge_braking_[i]);
+  }
+  for (const int i : island.prismatics) {
+    PrismaticJoint& j = prismatics_[i];
+    preparePrismaticJoint(j, body(j.a), body(j.b), h, prismatic_braking_[i]);
+  }
+  for (const int i : island.sphericals) prepareSphericalJoint(sphericals_[i]);
+  for (const int i : island.fixeds) prepareFixedJoint(fixeds_[i]);
   const BodyTable table{bodies_.data(), &world_frame_};
   // The damping's dC is the length's change since the substep's start,
   // with the anchors the substep hook has just set.
-  for (DistanceConstraint& c : distances_)
+  for (const int i : island.distances) {
+    DistanceConstraint& c = distances_[i];
+    c.lambda = 0.0;
     if (c.damping > 0.0) c.start_length = startLength(c, body(c.a), body(c.b));
-  for (PathConstraint& p : paths_)
+  }
+  for (const int i : island.paths) {
+    PathConstraint& p = paths_[i];
+    p.lambda = 0.0;
     if (p.damping > 0.0) p.start_length = pathStartLength(p, table) + p.fed;
+  }
+  island.iterations = 0;
+  island.interrupted = false;
   // The solve itself: direct/direct_step.cpp, gauss_seidel/gauss_seidel.cpp.
-  if (settings_.solver == SolverKind::Direct) solveDirect(h, again);
-  else sweepGaussSeidel(h);
+  if (settings_.solver == SolverKind::Direct) solveDirect(island, h, again);
+  else sweepGaussSeidel(island, h);
+}
+
+void World::solveLooseRows(double h) {
+  const double inv_h2 = 1.0 / (h * h);
+  const BodyTable table{bodies_.data(), &world_frame_};
+  for (const int i : loose_distances_) {
+    DistanceConstraint& c = distances_[i];
+    c.lambda = 0.0;
+    if (c.damping > 0.0) c.start_length = startLength(c, body(c.a), body(c.b));
+  }
+  for (const int i : loose_paths_) {
+    PathConstraint& p = paths_[i];
+    p.lambda = 0.0;
+    if (p.damping > 0.0) p.start_length = pathStartLength(p, table) + p.fed;
+  }
+  // A rigid row with W = 0 does nothing; a compliant one is met in one
+  // visit (its lambda -C / alpha~), which later visits keep.
+  const bool direct = settings_.solver == SolverKind::Direct;
+  for (int visit = 0; visit < (direct ? 1 : settings_.iterations); ++visit) {
+    for (const int i : loose_distances_) {
+      DistanceConstraint& c = distances_[i];
+      if (!direct || (c.enabled && c.compliance > 0.0))
+        solveDistanceConstraint(c, body(c.a), body(c.b), c.compliance * inv_h2, h);
+    }
+    for (const int i : loose_paths_) {
+      PathConstraint& p = paths_[i];
+      if (!direct || (p.enabled && p.compliance > 0.0)) solvePathConstraint(p, table, p.compliance * inv_h2, h);
+    }
+  }
 }
 
 void World::solvePositionsChecked(double h) {

@@ -57,6 +57,7 @@ std::unique_ptr<PyBatch> makeBatch(const py::object& source, std::optional<int> 
       if (batch->scenes[j] == s)
         throw py::value_error("Batch: " + at(static_cast<int>(i)) + " is " + at(static_cast<int>(j)) +
                               " again (each scene is stepped by one thread)");
+    s->scene.world->setThreads(1);  // the batch's threads step the scenes side by side
     batch->scenes.push_back(s);
   }
   const int n = threads.value_or(ThreadPool::cores());

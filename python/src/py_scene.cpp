@@ -207,6 +207,16 @@ void bindScene(py::module_& m) {
           },
           "Solver iterations per substep, 1..100000 (int).")
       .def_property(
+          "threads", [](const SettingsView& v) { return v.world().threads(); },
+          [](SettingsView& v, int n) {
+            checkRange("threads", n, 1, 1024, false);
+            v.world().setThreads(n);
+          },
+          "Threads the scene's islands (machines that share no body but static ones) are solved on, 1..1024 "
+          "(int; default 1). The results are the same bits for any number; a scene of one island uses one. "
+          "Not yet faster on a 2-core VM (README, \"Islands on threads\"). A Batch steps its scenes on one "
+          "thread each.")
+      .def_property(
           "frame_rate_hz", [](const SettingsView& v) { return v.scene().frame_rate_hz; },
           [](SettingsView& v, double hz) {
             checkRange("frame_rate_hz", hz, 0.0, 1e6, true);

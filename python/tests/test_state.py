@@ -110,9 +110,12 @@ def test_settings_are_writable_within_the_schema_ranges(scenes):
     assert s.projection == "end"
     s.projection = "start"
     assert scene.settings.projection == "start"
+    assert s.threads == 1
+    s.threads = 2
+    assert scene.settings.threads == 2
     for name, bad in [("substeps", 0), ("substeps", 100001), ("iterations", 0), ("iterations", 100001),
                       ("frame_rate_hz", 0.0), ("frame_rate_hz", 2e6), ("method", "jacobi"),
-                      ("projection", "middle")]:
+                      ("projection", "middle"), ("threads", 0), ("threads", 1025)]:
         with pytest.raises(ValueError, match=name):
             setattr(scene.settings, name, bad)
 

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "bench_batch.h"
+#include "bench_islands.h"
 #include "commands.h"
 #include "reeve/bench/bench.h"
 #include "reeve/scene/scene.h"
@@ -171,6 +172,22 @@ std::function<int()> addBenchCommand(CLI::App& app, CLI::App*& bench_cmd) {
   ba->add_option("--repeats", batch->repeats, "Timed runs per row; the median is reported (default 3)")
       ->check(CLI::PositiveNumber);
 
+  auto islands = std::make_shared<IslandsBenchOptions>();
+  CLI::App* is = bench_cmd->add_subcommand(
+      "islands", "One scene of separate Atwood machines, its islands solved on 1 to N threads: ms a frame, speed-up.");
+  addOutput(is, islands->output, false);
+  is->add_option("--machines", islands->machines, "Atwood machines in the scene (default 64)")->check(CLI::PositiveNumber);
+  is->add_option("--threads", islands->threads, "Thread counts (default 1, 2 and the cores)")
+      ->delimiter(',')
+      ->check(CLI::PositiveNumber);
+  is->add_option("--solver", islands->solvers, "Solvers to run (default: direct gauss-seidel)")
+      ->check(CLI::IsMember({"direct", "gauss-seidel"}));
+  is->add_option("--substeps", islands->substeps, "Substeps a frame (default 10)")->check(CLI::PositiveNumber);
+  is->add_option("--iterations", islands->iterations, "Iterations a substep (default 2)")->check(CLI::PositiveNumber);
+  is->add_option("--frames", islands->frames, "Timed frames per run (default 60)")->check(CLI::PositiveNumber);
+  is->add_option("--repeats", islands->repeats, "Timed runs per row; the median is reported (default 5)")
+      ->check(CLI::PositiveNumber);
+
   return [=]() {
     // Zero rope segments means none.
     std::erase(trade->rope_segments, 0);
@@ -179,6 +196,7 @@ std::function<int()> addBenchCommand(CLI::App& app, CLI::App*& bench_cmd) {
     if (*exc) return guarded([&] { return bench::extremes(*ex); });
     if (*scc) return guarded([&] { return bench::scaling(*sc); });
     if (*ba) return guarded([&] { return benchBatch(*batch); });
+    if (*is) return guarded([&] { return benchIslands(*islands); });
     return guarded([&] { return bench::peers(*peers); });
   };
 }

@@ -46,6 +46,7 @@ int simulate(const RunOptions& o) {
                                 : loadScene(o.scene);
   if (o.substeps) scene.world->settings().substeps = *o.substeps;
   if (o.iterations) scene.world->settings().iterations = *o.iterations;
+  if (o.threads) scene.world->setThreads(*o.threads);
   if (!o.solver.empty()) scene.world->settings().solver = *solverMethodFromName(o.solver);
   if (!o.projection.empty()) scene.world->settings().projection = o.projection == "start" ? Projection::Start : Projection::End;
   if (scene.world->settings().solver == SolverKind::GaussSeidel && scene.world->settings().projection == Projection::Start) {

@@ -36,6 +36,10 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 100000));
   run_cmd->add_option("--iterations", run.iterations, "Solver iterations per substep, 1..100000 (default: the scene's)")
       ->check(CLI::Range(1, 100000));
+  run_cmd->add_option("--threads", run.threads,
+                      "Threads to solve the scene's islands on, 1..1024 (default 1); the results are the same for any "
+                      "number")
+      ->check(CLI::Range(1, 1024));
   run_cmd->add_option("--solver", run.solver,
                       "direct (joints and cables solved together) or gauss-seidel (the paper's); overrides the scene")
       ->check(CLI::IsMember({"direct", "gauss-seidel"}));

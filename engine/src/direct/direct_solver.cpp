@@ -11,6 +11,7 @@
 #include <Eigen/SparseCore>
 
 #include "reeve/engine/correction.h"
+#include "../island.h"
 #include "reeve/engine/world.h"
 
 namespace reeve {
@@ -55,38 +56,38 @@ bool listed(const World& world, BodyId id) { return direct::listed(world.body(id
 
 }  // namespace
 
-void DirectSolver::describe(World& world, std::vector<int>& sig) const {
+void DirectSolver::describe(World& world, const Island& island, std::vector<int>& sig) const {
   sig.clear();
   const auto joint = [&](Source source, int index, BodyId a, BodyId b, int rows) {
     if (!moves(world, a) && !moves(world, b)) return;
     sig.insert(sig.end(), {static_cast<int>(source), index, rows, listed(world, a) ? a : kWorldBody,
                            listed(world, b) ? b : kWorldBody});
   };
-  for (int i = 0; i < static_cast<int>(world.hinges().size()); ++i) {
+  for (const int i : island.hinges) {
     const HingeJoint& j = world.hinges()[i];
     const bool rotor = world.body(j.a).isRotor() || world.body(j.b).isRotor();
     joint(Source::Hinge, i, j.a, j.b,
           jointRowCount(rotor ? 0 : 5, j.drive.mode != HingeDrive::Mode::None, j.limit.enabled));
   }
-  for (int i = 0; i < static_cast<int>(world.prismatics().size()); ++i) {
+  for (const int i : island.prismatics) {
     const PrismaticJoint& j = world.prismatics()[i];
     joint(Source::Prismatic, i, j.a, j.b,
           jointRowCount(5, j.drive.mode != PrismaticDrive::Mode::None, j.limit.enabled));
   }
-  for (int i = 0; i < static_cast<int>(world.sphericals().size()); ++i) {
+  for (const int i : island.sphericals) {
     const SphericalJoint& j = world.sphericals()[i];
     joint(Source::Spherical, i, j.a, j.b,
           jointRowCount(3, false, j.twist_limit.enabled) + (j.swing_limit.enabled ? 1 : 0));
   }
-  for (int i = 0; i < static_cast<int>(world.fixedJoints().size()); ++i) {
+  for (const int i : island.fixeds) {
     const FixedJoint& j = world.fixedJoints()[i];
     joint(Source::Fixed, i, j.a, j.b, 6);
   }
-  for (int i = 0; i < world.distanceCount(); ++i) {
+  for (const int i : island.distances) {
     const DistanceConstraint& c = world.distance(i);
     if (c.enabled) joint(Source::Distance, i, c.a, c.b, 1);
   }
-  for (int i = 0; i < world.pathCount(); ++i) {
+  for (const int i : island.paths) {
     const PathConstraint& p = world.path(i);
     if (!p.enabled || !p.weights.empty()) continue;  // weighted paths: World::solvePositions
     const std::size_t head = sig.size();
@@ -299,8 +300,8 @@ void DirectSolver::build(World& world) {
   reweigh_.assign(m, 0);
 }
 
-void DirectSolver::prepare(World& world, double h, bool again) {
-  describe(world, scratch_);
+void DirectSolver::prepare(World& world, const Island& island, double h, bool again) {
+  describe(world, island, scratch_);
   if (scratch_ != signature_) {
     signature_ = scratch_;  // a copy: scratch_ keeps its capacity for the next substeps
     build(world);

@@ -63,6 +63,7 @@
 namespace reeve {
 
 class World;
+struct Island;
 
 namespace direct {
 /// A row lists the bodies it moves and the kinematic ones it pushes on: a
@@ -73,13 +74,13 @@ inline bool listed(const BodyState& body) { return body.moves() || body.kinemati
 
 class DirectSolver {
  public:
-  /// Starts a substep of `h` s (after the joints' prepare functions):
-  /// rebuilds the row layout if the world's joints, paths or distance
-  /// constraints changed since the last substep, clears the lambdas, sets
+  /// Starts a substep of `h` s on the rows of `island`'s constraints (after
+  /// the joints' prepare functions): rebuilds the row layout if they
+  /// changed since the last substep, clears the lambdas, sets
   /// what stays put over the substep. `again`: the substep's solve done
   /// again (World::ResolveCheck), which starts from the first one's active
   /// set, not from what the first one ended with.
-  void prepare(World& world, double h, bool again);
+  void prepare(World& world, const Island& island, double h, bool again);
   /// One iteration: linearize, solve, move the bodies. Returns false, and
   /// moves nothing, when every row is already met to the settings'
   /// tolerance: the iterations left would do nothing either, unless
@@ -114,10 +115,10 @@ class DirectSolver {
     int value, other_row;
   };
 
-  /// Appends the layout of the world's rows to `signature`: for each row
+  /// Writes the layout of the island's rows to `signature`: for each row
   /// its source, index and moving bodies. Unchanged signature, unchanged
   /// layout.
-  void describe(World& world, std::vector<int>& signature) const;
+  void describe(World& world, const Island& island, std::vector<int>& signature) const;
   void build(World& world);
   /// Fills C, bounds, activity and the entries' gradients of every row.
   void evaluate(World& world, double h);

@@ -438,9 +438,16 @@ class CableSystem {
   /// do not roll); nullopt without tangents.
   std::optional<std::pair<double, double>> pendingPayOut(const Cable& cable, int j) const;
   void updateJoint(Cable& cable, int c, int j, double time_s);
-  /// Span j ran out: a tie point drawn into its wheel jams there
-  /// (cable_jam.cpp). Returns whether it jammed.
-  bool jam(Cable& cable, int j);
+  /// Span j of cable c ran out: a tie point drawn into its wheel jams
+  /// there (cable_jam.cpp). Returns whether it jammed; its ball joint is
+  /// added after the cables' updates (addJamJoints).
+  bool jam(Cable& cable, int c, int j);
+  /// The ball joints of this update's jams, in cable order; a span whose
+  /// joint the World refuses does not jam.
+  void addJamJoints();
+  /// One cable's part of update(): what it gives the whole goes to
+  /// updates_[c], as cables update side by side (World::parallelFor).
+  void updateCable(int c, double time_s, double h);
   /// The winch's substep (WinchDef) of `h` (s) starting at `start_s`: what
   /// it paid out stalled in the last solve, then what it reels in this one.
   void reel(Cable& cable, double start_s, double h);
@@ -508,6 +515,21 @@ class CableSystem {
   World& world_;
   std::vector<Cable> cables_;
   std::vector<CableEvent> events_;
+  // What one cable's update gives the whole, kept apart while the cables
+  // update on the World's threads and added in cable order after them:
+  // the same bits on any number of threads.
+  struct JamRequest {
+    int joint;            // the span that ran out
+    BodyId wheel, tie;    // the ball joint's bodies
+    Vec3 tie_point;       // m, world: its anchor
+  };
+  struct CableUpdate {
+    std::vector<CableEvent> events;
+    double friction_loss = 0.0;  // J
+    double winch_work = 0.0;     // J
+    std::vector<JamRequest> jams;
+  };
+  std::vector<CableUpdate> updates_;  // per cable
   std::vector<std::pair<BodyId, BodyId>> jams_;  // (wheel, tie point's body) held by a ball joint
   std::vector<BodyId> rolling_bodies_;  // bodies with a rolling or hybrid link
   std::vector<Quat> last_q_;            // per body: orientation at the last update

@@ -123,6 +123,10 @@ struct BodyState {
   bool isRotor() const { return rotor_axis.squaredNorm() > 0.0; }
   /// False for static and kinematic bodies: whether constraints move it.
   bool moves() const { return inv_mass > 0.0 || isRotor(); }
+  /// Whether a solve writes what it did to the body (impulse, turn): not
+  /// to a static body, whose motion is nothing, and which islands solved
+  /// side by side share (World::setThreads).
+  bool takesImpulses() const { return kinematic || moves(); }
 };
 
 /// A kinematic body's velocities at time `t` (s) under `motion` (non-empty,

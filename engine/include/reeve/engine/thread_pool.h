@@ -1,9 +1,11 @@
 // A small fixed pool of threads that runs the indices of one task at a time
-// (issue 30: scenes stepped side by side; later, islands). Work is handed
-// out index by index, so a slow item does not hold up a thread's share;
-// what each index computes must not depend on which thread runs it.
+// (issue 30: scenes stepped side by side, and a World's islands). Work is
+// handed out index by index, so a slow item does not hold up a thread's
+// share; what each index computes must not depend on which thread runs it.
 #pragma once
 
+#include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <exception>
@@ -25,28 +27,65 @@ class ThreadPool {
 
   int threads() const { return static_cast<int>(workers_.size()) + 1; }
 
+  /// How long a worker that finished a run keeps looking for the next one
+  /// before it sleeps, and the caller of run() for the workers to finish
+  /// before it sleeps. A wake through the condition variable costs 20 to
+  /// 30 us on a 2-core VM (DESIGN.md), more than a World's island solve of
+  /// a substep may take; a spinning thread starts within a microsecond.
+  /// 0 (the default) sleeps at once: right for runs far apart, as a
+  /// batch's frames are.
+  void setSpin(std::chrono::microseconds spin) { spin_ = spin; }
+
   /// Runs task(i) once for each i in [0, n), on the pool's threads and the
   /// caller's, and returns when all have returned. An exception a task
   /// throws is rethrown here (the first one; the other indices still run).
-  /// Not reentrant: one run() at a time per pool.
-  void run(int n, const std::function<void(int)>& task);
+  /// Not reentrant: one run() at a time per pool. Allocates nothing.
+  template <class Task>
+  void run(int n, const Task& task) {
+    runIndices(n, [](const void* t, int i) { (*static_cast<const Task*>(t))(i); }, &task, false);
+  }
+
+  /// Runs task(t) once for each thread t in [0, threads()): 0 on the
+  /// caller's, t on worker t, every time. For work that should stay where
+  /// its data is (a World's islands, substep after substep): handed out
+  /// index by index, an island's bodies and solver moved between the cores'
+  /// caches every substep, and two threads were slower than one.
+  template <class Task>
+  void runEach(const Task& task) {
+    runIndices(threads(), [](const void* t, int i) { (*static_cast<const Task*>(t))(i); }, &task, true);
+  }
 
   /// The cores this machine offers (std::thread::hardware_concurrency),
   /// at least 1.
   static int cores();
 
  private:
-  void work();  // a worker's loop
-  /// Runs indices of the current task until none is left to hand out;
-  /// `lock` holds mutex_ on entry and exit, not while a task runs.
-  void drain(std::unique_lock<std::mutex>& lock);
+  using Call = void (*)(const void* task, int i);
+  /// `each`: index t runs on thread t (runEach), else where it is taken.
+  void runIndices(int n, Call call, const void* task, bool each);
+  void work(int id);  // worker id's loop (1 .. threads() - 1)
+  /// Runs indices of run `generation` until none is left to take. Indices
+  /// are taken by compare-and-swap on ticket_, with no lock: a thread that
+  /// sleeps on a contended mutex wakes 20 to 30 us later, longer than a
+  /// run of islands takes.
+  void take(std::uint32_t generation);
+  /// Runs index i of a run of n, and counts it done.
+  void runOne(int i, int n);
+  /// Spins for up to spin_ while `busy()`.
+  template <class Busy>
+  void spinWhile(const Busy& busy) const;
+
   std::vector<std::thread> workers_;
-  std::mutex mutex_;
-  std::condition_variable wake_, done_;
-  const std::function<void(int)>* task_ = nullptr;
-  int n_ = 0, next_ = 0, running_ = 0;  // indices, the next to hand out, workers inside drain()
-  std::uint64_t generation_ = 0;        // one per run(): wakes the workers
-  bool stop_ = false;
+  std::mutex mutex_;  // for the sleepers and error_
+  std::condition_variable wake_, finished_;
+  std::atomic<std::uint64_t> ticket_{0};  // the run's generation << 32 | the next index to take (or runEach's mark)
+  std::atomic<Call> call_{nullptr};
+  std::atomic<const void*> task_{nullptr};
+  std::atomic<int> n_{0};     // indices of the run
+  std::atomic<int> done_{0};  // indices of the run finished
+  std::uint32_t generation_ = 0;  // the caller's count of runs
+  std::atomic<bool> stop_{false};
+  std::chrono::microseconds spin_{0};
   std::exception_ptr error_;
 };
 

@@ -2,6 +2,7 @@
 // step of Müller et al. 2020, Alg. 2.
 #pragma once
 
+#include <algorithm>
 #include <atomic>
 #include <cassert>
 #include <functional>
@@ -21,6 +22,7 @@
 #include "reeve/engine/path_constraint.h"
 #include "reeve/engine/prismatic_joint.h"
 #include "reeve/engine/spherical_joint.h"
+#include "reeve/engine/thread_pool.h"
 
 namespace reeve {
 
@@ -87,7 +89,7 @@ using FixedId = int;
 using DistanceId = int;
 using PathId = int;
 
-class DirectSolver;
+struct Island;
 
 /// The first non-finite value a World produced (World::firstNonFinite).
 struct NonFiniteState {
@@ -151,6 +153,20 @@ class World {
   PathId addPath(PathConstraint path);
   void addSubstepHook(SubstepHook hook);
   void addResolveCheck(ResolveCheck check);
+  /// Declares that a substep hook may join `bodies` by constraints it
+  /// makes or moves during a step (cable/: a cable's links, as its spans
+  /// move from link to link and a jam adds a ball joint), so that they are
+  /// always solved in one island. Throws std::invalid_argument for an
+  /// unknown body (kWorldBody allowed).
+  void coupleBodies(const std::vector<BodyId>& bodies);
+  /// The islands the next step solves one by one (island.h): sets of
+  /// moving and kinematic bodies that joints, distance constraints, paths,
+  /// coupled bodies and contacts between colliders join, static bodies
+  /// joining none. Each island's solve is its own: the direct solver
+  /// stops iterating an island once its rows are met. Lowest body first.
+  int islandCount();
+  /// The bodies of island `i` (0 <= i < islandCount()), increasing.
+  const std::vector<BodyId>& islandBodies(int i);
 
   /// Sets the ground plane {p : n . p = height_m} (n = ground.normal,
   /// normalized here), which touches every dynamic body (SCA 2020, sec.
@@ -190,6 +206,33 @@ class World {
   /// substeps it has (a progress bar inside a long frame); empty: none.
   void setSubstepProgress(std::function<void(int done, int substeps)> progress) {
     progress_ = std::move(progress);
+  }
+
+  /// Solves the islands (islandCount) on `threads` threads, the caller's
+  /// included, while waiting threads spin between a step's solves; 1 (the
+  /// default) solves them one after another. The threads start with the
+  /// first step that has two islands or more. The results are the same
+  /// bits for any number. The islands' solves and the substep hooks' work
+  /// (parallelFor: the cables' updates) run side by side; integration,
+  /// contacts, velocities and the ledger on the caller's thread. Throws
+  /// std::invalid_argument below 1.
+  void setThreads(int threads);
+  int threads() const { return threads_; }
+  /// Runs fn(i) for each i in [0, n) on the World's threads (setThreads),
+  /// or in order on the caller's: for a substep hook's work item by item
+  /// (cable/: each cable's update). fn(i) must touch nothing another i
+  /// touches, and compute the same whichever thread runs it.
+  template <class Fn>
+  void parallelFor(int n, const Fn& fn) {
+    if (!pool_ || n < 2) {
+      for (int i = 0; i < n; ++i) fn(i);
+      return;
+    }
+    // Thread t takes the t-th share of the items, the same one every time,
+    // as with the islands (ThreadPool::runEach).
+    pool_->runEach([&](int t) {
+      for (int i = n * t / threads_; i < n * (t + 1) / threads_; ++i) fn(i);
+    });
   }
 
   SolverSettings& settings() { return settings_; }
@@ -348,8 +391,27 @@ class World {
   /// `again`: the substep's solve done again (ResolveCheck). Prepares
   /// the rows, then one of the two methods' solves of the substep:
   void solvePositions(double h, bool again);
-  void solveDirect(double h, bool again);  // direct/direct_step.cpp
-  void sweepGaussSeidel(double h);         // gauss_seidel/gauss_seidel.cpp
+  /// One island's part of solvePositions, on the rows of its constraints
+  /// alone; then one of the two methods' solves of it:
+  void solveIsland(Island& island, double h, bool again);
+  void solveDirect(Island& island, double h, bool again);  // direct/direct_step.cpp
+  void sweepGaussSeidel(Island& island, double h);         // gauss_seidel/gauss_seidel.cpp
+  /// The distance constraints and paths on no island (nothing in them
+  /// moves: a cable between two static anchors). A compliant one still
+  /// pulls: with W = 0 a visit sets its tension to stretch / compliance
+  /// (issue 28, item 8). Gauss-Seidel visits them each iteration, the
+  /// direct method once.
+  void solveLooseRows(double h);
+  /// Rebuilds islands_ (islands.cpp) if a constraint was added or one's
+  /// bodies changed since the last build.
+  void refreshIslands();
+  void buildIslands();
+  /// Cuts the islands into island_runs_, one run a thread.
+  void cutIslandRuns();
+  /// Hands this substep's contact manifolds to their islands.
+  void sortManifolds();
+  /// The island of body a, or else of b; -1 when neither is on one.
+  int islandOf(BodyId a, BodyId b) const;
   /// solvePositions, again while a ResolveCheck asks (kMaxResolves).
   void solvePositionsChecked(double h);
   /// The interrupt flag is raised (setInterruptFlag); read, not cleared.
@@ -424,7 +486,19 @@ class World {
   // integration): under the start projection a flow's power is read at the
   // substep's start, with (v_n-1/2 + v_n+1/2) / 2 (addWork).
   std::vector<Vec3> pre_v_, pre_omega_;
-  std::unique_ptr<DirectSolver> direct_;
+  std::vector<std::unique_ptr<Island>> islands_;  // island.h; kept with their solvers between builds
+  bool islands_dirty_ = true;                      // a body or constraint added since buildIslands()
+  std::vector<int> island_of_;                     // per body: its island, -1 for none (static)
+  std::vector<std::vector<BodyId>> couplings_;     // coupleBodies
+  std::vector<int> loose_distances_, loose_paths_;  // on no island (solveLooseRows)
+  std::vector<int> distance_island_, path_island_;  // per constraint: its island at the build, -1 for none
+  int threads_ = 1;                                 // setThreads
+  std::unique_ptr<ThreadPool> pool_;                // threads_ of them, once there are two islands
+  std::vector<int> island_runs_;  // thread t's islands: [island_runs_[t], island_runs_[t + 1])
+  // Per hinge and prismatic joint with a drive: brakingInverseInertia
+  // (Mass) for this substep, taken before the islands' solves (its
+  // scratch is the World's).
+  std::vector<double> hinge_braking_, prismatic_braking_;
   bool rotors_dirty_ = true;  // bodies or joints added since refreshRotors()
   std::vector<char> hinge_rigid_;  // per hinge: its compliance was 0 at refreshRotors()
   // Per body, its joints' other bodies and edge numbers (hinges, then

@@ -1,0 +1,34 @@
+// Islands (issue 30): the moving bodies that constraints join, each solved
+// on its own, and on its own thread when the World has several
+// (World::setThreads). The solve of one island reads and writes only its
+// own bodies, its own constraints and the static bodies it hangs from
+// (which no kernel writes: BodyState::takesImpulses), so islands solved
+// side by side end on the same bits as solved one after another.
+#pragma once
+
+#include <vector>
+
+#include "direct/direct_solver.h"
+#include "reeve/engine/body.h"
+
+namespace reeve {
+
+/// One island: the bodies joined, directly or through others, by joints,
+/// distance constraints, paths, the couplings substep hooks declare
+/// (World::coupleBodies: every link of a cable, as its spans move from
+/// link to link) and contacts between colliders (every moving collider is
+/// in one island: which pairs touch changes within a step). Static bodies
+/// join nothing, so machines hung from one anchor are islands of their
+/// own. A kinematic body joins the islands it touches: their constraints
+/// write its impulses (the work it does).
+struct Island {
+  std::vector<BodyId> bodies;  // moving and kinematic, increasing
+  // The constraints on them, by type, each increasing.
+  std::vector<int> hinges, prismatics, sphericals, fixeds, distances, paths;
+  std::vector<int> manifolds;  // this substep's contact manifolds on them (World::contactManifolds)
+  DirectSolver direct;
+  int iterations = 0;        // the last solve's
+  bool interrupted = false;  // the last solve stopped for the interrupt flag
+};
+
+}  // namespace reeve

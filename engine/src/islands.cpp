@@ -1,0 +1,201 @@
+// Islands (island.h): which moving bodies the constraints join. Built by
+// union-find over the joints, distance constraints, paths, coupled bodies
+// and colliders; rebuilt when one is added, or when a distance
+// constraint's or path's bodies were changed in place (a cable's span
+// moving to the next link).
+#include <algorithm>
+#include <chrono>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
+#include "island.h"
+#include "reeve/engine/world.h"
+
+namespace reeve {
+namespace {
+
+// Disjoint sets with path halving; a set's root is its lowest body, so
+// islands come out in the order of their lowest bodies.
+struct Sets {
+  std::vector<int> parent;
+  int find(int i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  }
+  void unite(int a, int b) {
+    a = find(a);
+    b = find(b);
+    if (a < b) parent[b] = a;
+    else if (b < a) parent[a] = b;
+  }
+};
+
+}  // namespace
+
+void World::coupleBodies(const std::vector<BodyId>& bodies) {
+  for (const BodyId id : bodies)
+    if (id < kWorldBody || id >= bodyCount())
+      throw std::invalid_argument("coupleBodies: no body " + std::to_string(id) + " (the world has " +
+                                  std::to_string(bodyCount()) + ")");
+  couplings_.push_back(bodies);
+  islands_dirty_ = true;
+}
+
+int World::islandCount() {
+  refreshIslands();
+  return static_cast<int>(islands_.size());
+}
+
+const std::vector<BodyId>& World::islandBodies(int i) {
+  refreshIslands();
+  return islands_.at(i)->bodies;
+}
+
+int World::islandOf(BodyId a, BodyId b) const {
+  const int of_a = a == kWorldBody ? -1 : island_of_[a];
+  return of_a >= 0 || b == kWorldBody ? of_a : island_of_[b];
+}
+
+void World::refreshIslands() {
+  // The constraints' bodies may have changed in place (distance(), path():
+  // the cable system moves a span from link to link): each must still be
+  // where it was filed, its moving bodies all on that island.
+  const auto filed = [&](BodyId id, int island) {
+    return id == kWorldBody || island_of_[id] < 0 || island_of_[id] == island;
+  };
+  for (std::size_t i = 0; i < distances_.size() && !islands_dirty_; ++i) {
+    const DistanceConstraint& c = distances_[i];
+    const int island = distance_island_[i];
+    islands_dirty_ = islandOf(c.a, c.b) != island || !filed(c.a, island) || !filed(c.b, island);
+  }
+  for (std::size_t i = 0; i < paths_.size() && !islands_dirty_; ++i) {
+    int island = -1;
+    for (const PathPoint& p : paths_[i].points)
+      if (p.body != kWorldBody && island_of_[p.body] >= 0) {
+        island = island_of_[p.body];
+        break;
+      }
+    islands_dirty_ = island != path_island_[i];
+    for (const PathPoint& p : paths_[i].points) islands_dirty_ |= !filed(p.body, island);
+  }
+  if (islands_dirty_) buildIslands();
+}
+
+void World::buildIslands() {
+  islands_dirty_ = false;
+  const int n = bodyCount();
+  // Moving and kinematic bodies are the nodes; static bodies and the world
+  // join nothing.
+  const auto node = [&](BodyId id) { return id != kWorldBody && (mass_[id] > 0.0 || bodies_[id].kinematic); };
+  Sets sets;
+  sets.parent.resize(n);
+  std::iota(sets.parent.begin(), sets.parent.end(), 0);
+  const auto unite = [&](BodyId a, BodyId b) {
+    if (node(a) && node(b)) sets.unite(a, b);
+  };
+  const auto uniteAll = [&](const auto& ids, auto body_of) {
+    BodyId first = kWorldBody;
+    for (const auto& item : ids) {
+      const BodyId id = body_of(item);
+      if (!node(id)) continue;
+      if (first == kWorldBody) first = id;
+      else sets.unite(first, id);
+    }
+  };
+  for (const HingeJoint& j : hinges_) unite(j.a, j.b);
+  for (const PrismaticJoint& j : prismatics_) unite(j.a, j.b);
+  for (const SphericalJoint& j : sphericals_) unite(j.a, j.b);
+  for (const FixedJoint& j : fixeds_) unite(j.a, j.b);
+  for (const DistanceConstraint& c : distances_) unite(c.a, c.b);
+  for (const PathConstraint& p : paths_) uniteAll(p.points, [](const PathPoint& q) { return q.body; });
+  for (const auto& group : couplings_) uniteAll(group, [](BodyId id) { return id; });
+  // Any two colliders may touch within a step.
+  uniteAll(colliders_, [](BodyId id) { return id; });
+
+  // The islands in the order of their lowest bodies, each keeping the
+  // solver of the island that had its place (its warm start, its layout
+  // when nothing changed).
+  std::vector<int> island_of_root(n, -1);
+  island_of_.assign(n, -1);
+  int count = 0;
+  for (BodyId id = 0; id < n; ++id) {
+    if (!node(id)) continue;
+    int& island = island_of_root[sets.find(id)];
+    if (island < 0) {
+      island = count++;
+      if (static_cast<int>(islands_.size()) < count) islands_.push_back(std::make_unique<Island>());
+      Island& fresh = *islands_[island];
+      for (auto* list : {&fresh.bodies, &fresh.hinges, &fresh.prismatics, &fresh.sphericals, &fresh.fixeds,
+                         &fresh.distances, &fresh.paths, &fresh.manifolds})
+        list->clear();
+    }
+    island_of_[id] = island;
+    islands_[island]->bodies.push_back(id);
+  }
+  islands_.resize(count);
+  // Room for 2 touching pairs a body, as findContacts has.
+  for (auto& island : islands_) island->manifolds.reserve(2 * island->bodies.size());
+  cutIslandRuns();
+  if (!pool_ && threads_ > 1 && islands_.size() > 1) {
+    pool_ = std::make_unique<ThreadPool>(threads_);
+    pool_->setSpin(std::chrono::microseconds(200));
+  }
+  // A joint between two static bodies has nothing to solve, and is on no
+  // island.
+  const auto file = [&](auto& joints, std::vector<int> Island::*list) {
+    for (int i = 0; i < static_cast<int>(joints.size()); ++i)
+      if (const int island = islandOf(joints[i].a, joints[i].b); island >= 0)
+        (islands_[island].get()->*list).push_back(i);
+  };
+  file(hinges_, &Island::hinges);
+  file(prismatics_, &Island::prismatics);
+  file(sphericals_, &Island::sphericals);
+  file(fixeds_, &Island::fixeds);
+  loose_distances_.clear();
+  distance_island_.assign(distances_.size(), -1);
+  for (int i = 0; i < distanceCount(); ++i) {
+    const int island = distance_island_[i] = islandOf(distances_[i].a, distances_[i].b);
+    (island < 0 ? loose_distances_ : islands_[island]->distances).push_back(i);
+  }
+  loose_paths_.clear();
+  path_island_.assign(paths_.size(), -1);
+  for (int i = 0; i < pathCount(); ++i) {
+    int& island = path_island_[i];
+    for (const PathPoint& p : paths_[i].points)
+      if (node(p.body)) {
+        island = island_of_[p.body];
+        break;
+      }
+    (island < 0 ? loose_paths_ : islands_[island]->paths).push_back(i);
+  }
+}
+
+void World::cutIslandRuns() {
+  // Work estimated by the bodies and constraints: one run a thread, some
+  // empty when there are fewer islands.
+  island_runs_.assign(1, 0);
+  const int n = static_cast<int>(islands_.size());
+  const auto work = [](const Island& i) {
+    return i.bodies.size() + i.hinges.size() + i.prismatics.size() + i.sphericals.size() + i.fixeds.size() +
+           i.distances.size() + i.paths.size();
+  };
+  std::size_t total = 0;
+  for (const auto& island : islands_) total += work(*island);
+  const std::size_t runs = threads_;
+  std::size_t done = 0;
+  for (int i = 0; i < n; ++i) {
+    done += work(*islands_[i]);
+    // Run k ends once the work done reaches k / runs of the total.
+    while (island_runs_.size() < runs && done * runs >= island_runs_.size() * total) island_runs_.push_back(i + 1);
+  }
+  island_runs_.resize(runs + 1, n);
+}
+
+void World::sortManifolds() {
+  for (auto& island : islands_) island->manifolds.clear();
+  for (int m = 0; m < static_cast<int>(manifolds_.size()); ++m)
+    islands_[islandOf(manifolds_[m].a, manifolds_[m].b)]->manifolds.push_back(m);
+}
+
+}  // namespace reeve

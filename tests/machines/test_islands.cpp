@@ -1,0 +1,185 @@
+// Islands (issue 30): which bodies the constraints join into one, each
+// island moving as mechanics says when solved on its own, and the same
+// bits on any number of threads (World::setThreads).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "reeve/machines/machines.h"
+#include "reeve/scene/scene.h"
+
+namespace reeve {
+namespace {
+
+using machines::ScalingSpec;
+using machines::StaticMachine;
+
+constexpr double kG = 10.0;
+
+// Machine k's right box (kg): 1 to 2.5, so that the islands differ.
+double rightMass(int k) { return 1.0 + 0.5 * (k % 4); }
+
+// K Atwood machines side by side (machines::islands): 1 kg on the left,
+// rightMass(k) on the right of a 2 kg solid wheel of 0.3 m on a hinge.
+StaticMachine atwoods(int count, SolverKind solver, int iterations, int threads) {
+  ScalingSpec spec;
+  spec.count = count;
+  spec.load_kg = 1.0;
+  spec.gravity = kG;
+  spec.budget = {10, iterations, solver};
+  StaticMachine m = machines::islands(spec);
+  World& world = *m.scene.world;
+  for (int k = 0; k < count; ++k) world.setMass(*world.findBody("right" + std::to_string(k)), rightMass(k));
+  world.setThreads(threads);
+  return m;
+}
+
+// Everything a step leaves behind, as bytes: poses, velocities, tensions,
+// hinge wrenches, and the iterations run.
+std::vector<unsigned char> stateBytes(const Scene& scene) {
+  std::vector<unsigned char> bytes;
+  const auto put = [&](const auto& value) {
+    const auto* p = reinterpret_cast<const unsigned char*>(&value);
+    bytes.insert(bytes.end(), p, p + sizeof value);
+  };
+  const World& world = *scene.world;
+  for (BodyId id = 0; id < world.bodyCount(); ++id) {
+    const BodyState& b = world.body(id);
+    put(b.x), put(b.q.coeffs()), put(b.v), put(b.omega);
+  }
+  for (const auto& cable : scene.cables->cables())
+    for (const auto& joint : cable.joints) put(world.pathTension(joint.path));
+  for (int h = 0; h < static_cast<int>(world.hinges().size()); ++h) put(world.hingeWrench(h).force);
+  put(world.lastStepIterations());
+  put(world.energy().kinetic);
+  return bytes;
+}
+
+TEST(Islands, MachinesHungFromOneAnchorAreIslandsOfTheirOwn) {
+  StaticMachine m = atwoods(64, SolverKind::Direct, 2, 1);
+  World& world = *m.scene.world;
+  ASSERT_EQ(world.islandCount(), 64);
+  for (int k = 0; k < 64; ++k) {
+    // Each island: its wheel and its two boxes (the static world joins none).
+    const std::vector<BodyId> expected{*world.findBody("wheel" + std::to_string(k)),
+                                       *world.findBody("left" + std::to_string(k)),
+                                       *world.findBody("right" + std::to_string(k))};
+    std::vector<BodyId> sorted = expected;
+    std::sort(sorted.begin(), sorted.end());
+    EXPECT_EQ(world.islandBodies(k), sorted) << "machine " << k;
+  }
+}
+
+TEST(Islands, JointsCablesContactsAndKinematicBodiesJoinIslandsStaticOnesDoNot) {
+  World world;
+  BodyDef box;
+  box.shape = Shape::box(Vec3::Constant(0.1));
+  box.mass = 1.0;
+  std::vector<BodyId> ids;
+  for (int i = 0; i < 8; ++i) {
+    box.position = Vec3(2.0 * i, 0.0, 0.0);
+    box.collides = i == 4 || i == 6;  // far apart, but they may meet within a step
+    ids.push_back(world.addBody(box));
+  }
+  BodyDef anchor = box;
+  anchor.is_static = true;
+  anchor.collides = false;
+  const BodyId fixed = world.addBody(anchor);
+  const auto distance = [&](BodyId a, BodyId b) {
+    DistanceConstraint c;
+    c.a = a, c.b = b, c.rest_length = 2.0;
+    world.addDistance(c);
+  };
+  distance(ids[0], ids[1]);
+  distance(fixed, ids[2]);  // a static anchor joins nothing
+  distance(fixed, ids[3]);
+  world.addHinge({ids[5], kWorldBody, Vec3(10.0, 0.0, 0.0), Vec3::UnitZ()});
+  world.coupleBodies({ids[2], kWorldBody, ids[7]});
+  EXPECT_EQ(world.islandCount(), 5);  // {0 1} {2 7} {3} {4 6} {5}
+  EXPECT_EQ(world.islandBodies(0), (std::vector<BodyId>{0, 1}));
+  EXPECT_EQ(world.islandBodies(1), (std::vector<BodyId>{2, 7}));
+  EXPECT_EQ(world.islandBodies(3), (std::vector<BodyId>{4, 6}));
+  // A kinematic body joins what it touches: the constraints write its
+  // impulses (the work it does).
+  BodyDef carrier = box;
+  carrier.collides = false;
+  carrier.motion = {MotionKeyframe{0.0, Vec3(1.0, 0.0, 0.0), Vec3::Zero()}};
+  const BodyId moved = world.addBody(carrier);
+  distance(moved, ids[3]);
+  distance(moved, ids[5]);
+  EXPECT_EQ(world.islandCount(), 4);
+  EXPECT_EQ(world.islandBodies(2), (std::vector<BodyId>{3, 5, moved}));
+  // A span moved in place onto another body (as a cable's does) is found.
+  world.distance(0).b = ids[4];
+  EXPECT_EQ(world.islandCount(), 4);
+  EXPECT_EQ(world.islandBodies(0), (std::vector<BodyId>{0, 4, 6}));
+  EXPECT_EQ(world.islandBodies(1), (std::vector<BodyId>{1}));
+  EXPECT_THROW(world.coupleBodies({ids[0], 99}), std::invalid_argument);
+  EXPECT_THROW(world.setThreads(0), std::invalid_argument);
+}
+
+// Each island solved on its own still moves as the closed form says: a =
+// (m2 - m1) g / (m1 + m2 + M / 2), and semi-implicit Euler gives v = a t
+// exactly under constant acceleration.
+TEST(Islands, EachAtwoodMachineMeetsItsClosedFormOnTwoThreads) {
+  for (const SolverKind solver : {SolverKind::Direct, SolverKind::GaussSeidel}) {
+    StaticMachine m = atwoods(16, solver, solver == SolverKind::Direct ? 2 : 40, 2);
+    World& world = *m.scene.world;
+    const int frames = 30;
+    for (int f = 0; f < frames; ++f) world.step(1.0 / 60.0);
+    const double t = frames / 60.0;
+    for (int k = 0; k < 16; ++k) {
+      const double m1 = 1.0, m2 = rightMass(k), a = (m2 - m1) * kG / (m1 + m2 + 1.0);
+      const double v = world.body(*world.findBody("right" + std::to_string(k))).v.y();
+      const double tolerance = solver == SolverKind::Direct ? 1e-9 : 1e-4;
+      EXPECT_NEAR(v, -a * t, tolerance * (1.0 + a * t)) << (solver == SolverKind::Direct ? "direct" : "gauss-seidel")
+                                                        << ", machine " << k;
+    }
+  }
+}
+
+TEST(Islands, AnyNumberOfThreadsGivesTheSameBits) {
+  for (const SolverKind solver : {SolverKind::Direct, SolverKind::GaussSeidel}) {
+    std::vector<std::vector<unsigned char>> runs;
+    for (const int threads : {1, 2, 3, 1}) {
+      StaticMachine m = atwoods(24, solver, 4, threads);
+      std::vector<unsigned char> all;
+      for (int f = 0; f < 40; ++f) {
+        m.scene.world->step(1.0 / 60.0);
+        const std::vector<unsigned char> now = stateBytes(m.scene);
+        all.insert(all.end(), now.begin(), now.end());
+      }
+      runs.push_back(std::move(all));
+    }
+    for (std::size_t r = 1; r < runs.size(); ++r)
+      EXPECT_TRUE(runs[r] == runs[0]) << (solver == SolverKind::Direct ? "direct" : "gauss-seidel") << ", run " << r;
+  }
+}
+
+// Scenes with events in their islands: a spool that runs out and jams (a
+// joint added within a step), cables that merge and split, friction that
+// asks for a solve again, contacts.
+TEST(Islands, ShippedScenesGiveTheSameBitsOnOneAndTwoThreads) {
+  for (const char* name : {"merge_split", "capstan", "contacts", "crane", "gym", "hand", "spool"}) {
+    std::vector<std::vector<unsigned char>> runs;
+    for (const int threads : {1, 2}) {
+      Scene scene = loadScene(std::string(REEVE_SCENES_DIR) + "/" + name + ".json");
+      scene.world->setThreads(threads);
+      std::vector<unsigned char> all;
+      for (int f = 0; f < 60; ++f) {
+        scene.world->step(1.0 / scene.frame_rate_hz);
+        const std::vector<unsigned char> now = stateBytes(scene);
+        all.insert(all.end(), now.begin(), now.end());
+      }
+      runs.push_back(std::move(all));
+    }
+    EXPECT_TRUE(runs[1] == runs[0]) << name;
+  }
+}
+
+}  // namespace
+}  // namespace reeve

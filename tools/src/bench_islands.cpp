@@ -1,0 +1,100 @@
+#include "bench_islands.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <stdexcept>
+
+#include "reeve/engine/thread_pool.h"
+#include "reeve/machines/machines.h"
+
+namespace reeve {
+namespace {
+
+std::string fixed(double v, const char* format) {
+  char text[32];
+  std::snprintf(text, sizeof text, format, v);
+  return text;
+}
+
+// K Atwood machines (machines::islands), 1 kg against 1 to 2.5 kg: each
+// moves, and no two alike.
+machines::StaticMachine atwoods(const IslandsBenchOptions& o, SolverKind solver, int threads) {
+  machines::ScalingSpec spec;
+  spec.count = o.machines;
+  spec.budget = {o.substeps, o.iterations, solver};
+  machines::StaticMachine m = machines::islands(spec);
+  World& world = *m.scene.world;
+  for (int k = 0; k < o.machines; ++k)
+    world.setMass(*world.findBody("right" + std::to_string(k)), 1.0 + 0.5 * (k % 4));
+  world.setThreads(threads);
+  return m;
+}
+
+struct Measured {
+  double ms = 0.0;                  // median ms a frame
+  std::vector<unsigned char> bits;  // the bodies' state after the last run
+};
+
+Measured measure(const IslandsBenchOptions& o, SolverKind solver, int threads) {
+  Measured out;
+  std::vector<double> runs;
+  for (int r = 0; r < o.repeats; ++r) {
+    machines::StaticMachine m = atwoods(o, solver, threads);
+    World& world = *m.scene.world;
+    world.step(1.0 / 60.0);  // untimed: builds the islands and solvers
+    const auto start = std::chrono::steady_clock::now();
+    for (int f = 0; f < o.frames; ++f) world.step(1.0 / 60.0);
+    runs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() /
+                   o.frames);
+    out.bits.clear();
+    for (BodyId id = 0; id < world.bodyCount(); ++id) {
+      const BodyState& b = world.body(id);
+      for (const double v : {b.x.x(), b.x.y(), b.x.z(), b.q.w(), b.q.x(), b.q.y(), b.q.z(), b.v.x(), b.v.y(),
+                             b.v.z(), b.omega.x(), b.omega.y(), b.omega.z()}) {
+        unsigned char bytes[sizeof v];
+        std::memcpy(bytes, &v, sizeof v);
+        out.bits.insert(out.bits.end(), bytes, bytes + sizeof v);
+      }
+    }
+  }
+  std::sort(runs.begin(), runs.end());
+  out.ms = runs[runs.size() / 2];
+  return out;
+}
+
+}  // namespace
+
+int benchIslands(const IslandsBenchOptions& o) {
+  if (o.machines < 1 || o.frames < 1 || o.repeats < 1 || o.substeps < 1 || o.iterations < 1)
+    throw std::invalid_argument("--machines, --frames, --repeats and the budget: expected at least 1");
+  std::vector<int> threads = o.threads;
+  if (threads.empty()) threads = {1, 2, ThreadPool::cores()};
+  std::sort(threads.begin(), threads.end());
+  threads.erase(std::unique(threads.begin(), threads.end()), threads.end());
+  if (threads.front() < 1) throw std::invalid_argument("--threads: expected counts of at least 1");
+  if (threads.front() != 1) threads.insert(threads.begin(), 1);  // the speed-up's baseline
+  bench::checkOutput(o.output);
+  bench::Environment env = bench::environment();
+  env.threads_used = threads.back();
+  bench::printEnvironment(stdout, env);
+  std::printf("# one scene of %d Atwood machines (islands), %d x %d, %d timed frames, median of %d runs\n",
+              o.machines, o.substeps, o.iterations, o.frames, o.repeats);
+  bench::Table table({"machines", "solver", "threads", "frames", "ms_per_frame", "speedup", "same_bits"});
+  for (const std::string& name : o.solvers) {
+    const SolverKind solver = name == "direct" ? SolverKind::Direct : SolverKind::GaussSeidel;
+    Measured one;
+    for (const int t : threads) {
+      const Measured now = measure(o, solver, t);
+      if (t == 1) one = now;
+      table.add({std::to_string(o.machines), name, std::to_string(t), std::to_string(o.frames), fixed(now.ms, "%.4g"),
+                 fixed(one.ms / now.ms, "%.2f"), now.bits == one.bits ? "yes" : "NO"});
+    }
+  }
+  table.print(stdout);
+  bench::writeOutputs(o.output, table, env, "islands");
+  return 0;
+}
+
+}  // namespace reeve

@@ -20,6 +20,7 @@ inline void relax() {
 // A ticket: the run's generation in the high half; in the low half, the
 // next index to take, or kEach for a runEach (each thread its own index).
 constexpr std::uint64_t kEach = 1u << 31;
+constexpr std::uint64_t kClosed = kEach - 1;  // an index past any run's
 std::uint32_t generationOf(std::uint64_t ticket) { return static_cast<std::uint32_t>(ticket >> 32); }
 
 }  // namespace
@@ -68,9 +69,10 @@ void ThreadPool::take(std::uint32_t generation) {
   while (true) {
     std::uint64_t ticket = ticket_.load(std::memory_order_acquire);
     if (generationOf(ticket) != generation) return;
-    // n_ is this run's while the ticket is: a later run starts only once
-    // every index of this one is done, which moves the ticket on.
-    const int n = n_.load(std::memory_order_relaxed);
+    // n_ is this run's while the ticket is: the next run closes the ticket
+    // before it writes n_ (runIndices), so a CAS on a ticket read before
+    // that fails.
+    const int n = n_.load(std::memory_order_acquire);
     const int i = static_cast<int>(ticket & (kEach - 1));
     if (i >= n) return;
     if (ticket_.compare_exchange_weak(ticket, ticket + 1, std::memory_order_acq_rel)) runOne(i, n);
@@ -100,9 +102,13 @@ void ThreadPool::work(int id) {
 
 void ThreadPool::runIndices(int n, Call call, const void* task, bool each) {
   if (n <= 0) return;
+  // The last run's ticket closed first: a thread that read it before its
+  // last index was taken would otherwise take that index again, of this
+  // run's n and task (take()).
+  ticket_.store(static_cast<std::uint64_t>(generation_) << 32 | kClosed, std::memory_order_relaxed);
   call_.store(call, std::memory_order_relaxed);
   task_.store(task, std::memory_order_relaxed);
-  n_.store(n, std::memory_order_relaxed);
+  n_.store(n, std::memory_order_release);
   done_.store(0, std::memory_order_relaxed);
   ++generation_;
   {

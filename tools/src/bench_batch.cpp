@@ -6,15 +6,10 @@
 #include <stdexcept>
 
 #include "batch.h"
+#include "bench_format.h"
 
 namespace reeve {
 namespace {
-
-std::string fixed(double v, const char* format) {
-  char text[32];
-  std::snprintf(text, sizeof text, format, v);
-  return text;
-}
 
 // ms per scene-frame of `copies` fresh copies of `file` stepped `frames`
 // frames on `threads`, the median of `repeats` runs (each after a frame

@@ -6,17 +6,12 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "bench_format.h"
 #include "reeve/engine/thread_pool.h"
 #include "reeve/machines/machines.h"
 
 namespace reeve {
 namespace {
-
-std::string fixed(double v, const char* format) {
-  char text[32];
-  std::snprintf(text, sizeof text, format, v);
-  return text;
-}
 
 // K Atwood machines (machines::islands), 1 kg against 1 to 2.5 kg: each
 // moves, and no two alike.

@@ -55,7 +55,10 @@ const char* eventName(CableEvent::Kind kind) {
 }
 
 CableSystem::CableSystem(World& world) : world_(world) {
-  world_.addSubstepHook([this](World& w, double h) { update(w.time() + h, h); });
+  world_.addSubstepHook(World::IslandHook{
+      [this](World&, double h) { beginUpdate(h); },
+      [this](World& w, double h, int island) { updateIsland(island, w.time() + h, h); },
+      [this](World& w, double h) { endUpdate(w.time() + h); }});
 }
 
 int CableSystem::addCable(const CableDef& def) {

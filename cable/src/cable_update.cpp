@@ -30,29 +30,78 @@ double CableSystem::turnSinceUpdate(BodyId b, double spin) const {
   return spin + std::remainder(twist - spin, 2.0 * std::numbers::pi);
 }
 
-void CableSystem::measureTurns(double h) {
+void CableSystem::measureTurns(int island, double h) {
   // Whole turns from the last solve's own turn (BodyState::solve_turn, as
   // far as the direct solver turned it) and this substep's integration
   // (h omega).
-  for (const BodyId b : rolling_bodies_) {
+  for (int k = rolling_begin_[island + 1]; k < rolling_begin_[island + 2]; ++k) {
+    const BodyId b = rolling_by_island_[k];
     const BodyState& body = world_.body(b);
-    const Vec3 solved = solve_turn_counted_ ? Vec3::Zero() : body.solve_turn;
+    const Vec3 solved = measure_solve_turn_ ? body.solve_turn : Vec3::Zero();
     turn_[b] = turnSinceUpdate(b, (h * body.omega + solved).dot(body.q * Vec3::UnitZ()));
     last_q_[b] = body.q;
     move_[b] = (body.x - last_x_[b]).norm();
     last_x_[b] = body.x;
   }
-  // An update by hand between steps (h = 0) has counted the last solve's
-  // turn; the next substep's must not count it again.
+}
+
+namespace {
+
+// Items 0..n-1 sorted by island (-1 first) into `order`, island i's from
+// begin[i + 1] to begin[i + 2]; a counting sort, stable, into storage kept.
+template <class IslandOf>
+void groupByIsland(int n, IslandOf island_of, std::vector<int>& order, std::vector<int>& begin) {
+  int islands = 0;
+  for (int k = 0; k < n; ++k) islands = std::max(islands, island_of(k) + 1);
+  begin.assign(islands + 2, 0);
+  for (int k = 0; k < n; ++k) ++begin[island_of(k) + 2];
+  for (int i = 1; i < islands + 2; ++i) begin[i] += begin[i - 1];  // begin[i + 1]: where island i starts
+  order.resize(n);
+  for (int k = 0; k < n; ++k) order[begin[island_of(k) + 1]++] = k;
+  // Each start has moved on to its island's end: one place up, they start.
+  for (int i = islands + 1; i > 0; --i) begin[i] = begin[i - 1];
+  begin[0] = 0;
+}
+
+}  // namespace
+
+void CableSystem::beginUpdate(double h) {
+  poses_predicted_ = h > 0.0;
+  // An update by hand between steps (h = 0) counts the last solve's turn;
+  // the next substep's must not count it again.
+  measure_solve_turn_ = !solve_turn_counted_;
   solve_turn_counted_ = h == 0.0;
+  // A cable's links are one island (World::coupleBodies), or on none.
+  const auto cable_island = [&](int c) {
+    for (const Link& link : cables_[c].links)
+      if (const int island = world_.islandOfBody(link.body); island >= 0) return island;
+    return -1;
+  };
+  groupByIsland(static_cast<int>(cables_.size()), cable_island, cables_by_island_, cable_begin_);
+  groupByIsland(
+      static_cast<int>(rolling_bodies_.size()), [&](int k) { return world_.islandOfBody(rolling_bodies_[k]); },
+      rolling_by_island_, rolling_begin_);
+  for (int& k : rolling_by_island_) k = rolling_bodies_[k];
+  updates_.resize(cables_.size());
+}
+
+void CableSystem::updateIsland(int island, double time_s, double h) {
+  if (island + 2 >= static_cast<int>(rolling_begin_.size()) && island + 2 >= static_cast<int>(cable_begin_.size()))
+    return;  // no cable on it
+  if (island + 2 < static_cast<int>(rolling_begin_.size())) measureTurns(island, h);
+  if (island + 2 < static_cast<int>(cable_begin_.size()))
+    for (int k = cable_begin_[island + 1]; k < cable_begin_[island + 2]; ++k)
+      updateCable(cables_by_island_[k], time_s, h);
 }
 
 void CableSystem::update(double time_s, double h) {
-  poses_predicted_ = h > 0.0;
-  measureTurns(h);
-  const int n = static_cast<int>(cables_.size());
-  updates_.resize(n);
-  world_.parallelFor(n, [&](int c) { updateCable(c, time_s, h); });
+  const int islands = world_.islandCount();
+  beginUpdate(h);
+  for (int i = -1; i < islands; ++i) updateIsland(i, time_s, h);
+  endUpdate(time_s);
+}
+
+void CableSystem::endUpdate(double time_s) {
   for (CableUpdate& u : updates_) {
     events_.insert(events_.end(), u.events.begin(), u.events.end());
     u.events.clear();

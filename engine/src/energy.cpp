@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "island.h"
 #include "reeve/engine/world.h"
 
 namespace reeve {
@@ -109,14 +110,13 @@ double World::kinematicWork(BodyId id, double h) const {
   return -(b.impulse.dot(b.v) + b.angular_impulse.dot(b.omega)) / h;
 }
 
-void World::addWork(double h) {
+void World::addWork(const Island& island, double h, bool start, WorldEnergy& flows) {
   const double inv_h2 = 1.0 / (h * h);
   // Under the start projection a force acts at the substep's start (SHAKE's
   // kick at x_n), where the velocity is (v_n-1/2 + v_n+1/2) / 2: its work
   // over the substep is F . that h, the pairing the potential read at
   // x - v h / 2 gives gravity (a constant load then balances exactly). The
   // end projection books F over the substep's motion, v_n+1/2 h.
-  const bool start = pairsAtStart();
   const auto omega = [&](BodyId id) -> Vec3 {
     if (id == kWorldBody) return Vec3::Zero();
     return start ? 0.5 * (bodies_[id].omega + pre_omega_[id]) : bodies_[id].omega;
@@ -124,12 +124,13 @@ void World::addWork(double h) {
   // A motor drive's torque (lambda_drive / h^2, on a about the axis) times
   // the turn of a relative to b over the substep, (w_a - w_b) . u h: the
   // velocities are those the positions gave, whole turns and all.
-  for (const HingeJoint& j : hinges_) {
+  for (const int i : island.hinges) {
+    const HingeJoint& j = hinges_[i];
     if (j.drive.mode == HingeDrive::Mode::None || j.drive.stiffness > 0.0 || j.angle.lambda_drive == 0.0) continue;
     const Vec3 u = (body(j.a).q * j.frame.axis_a).normalized();
-    flows_.drive_work += j.angle.lambda_drive * inv_h2 * (omega(j.a) - omega(j.b)).dot(u) * h;
+    flows.drive_work += j.angle.lambda_drive * inv_h2 * (omega(j.a) - omega(j.b)).dot(u) * h;
   }
-  for (PrismaticId id = 0; id < static_cast<PrismaticId>(prismatics_.size()); ++id) {
+  for (const PrismaticId id : island.prismatics) {
     const PrismaticJoint& j = prismatics_[id];
     if (j.drive.mode == PrismaticDrive::Mode::None || j.drive.stiffness > 0.0 || j.slide.lambda_drive == 0.0) continue;
     double slid = prismaticSlide(id) - j.slide.start;
@@ -149,29 +150,31 @@ void World::addWork(double h) {
       back(j.b, x_b, q_b);
       slid = 0.5 * (slid + j.slide.start - reeve::prismaticSlide(j, x_a, q_a, x_b, q_b));
     }
-    flows_.drive_work += j.slide.lambda_drive * inv_h2 * slid;
+    flows.drive_work += j.slide.lambda_drive * inv_h2 * slid;
   }
-  for (BodyId id = 0; id < bodyCount(); ++id) {
+  for (const BodyId id : island.bodies) {
     const BodyState& b = bodies_[id];
     if (!b.moves()) continue;
     const Vec3 moved = start ? 0.5 * h * (b.v + pre_v_[id]) : Vec3(b.x - b.x_prev);
-    if (b.applied_force.squaredNorm() > 0.0) flows_.load_work += b.applied_force.dot(moved);
-    if (b.applied_torque.squaredNorm() > 0.0) flows_.load_work += b.applied_torque.dot(omega(id)) * h;
+    if (b.applied_force.squaredNorm() > 0.0) flows.load_work += b.applied_force.dot(moved);
+    if (b.applied_torque.squaredNorm() > 0.0) flows.load_work += b.applied_torque.dot(omega(id)) * h;
   }
 }
 
-void World::addConstraintDampingLoss(double h) {
-  for (const DistanceConstraint& c : distances_) {
+void World::addConstraintDampingLoss(const std::vector<int>& distances, const std::vector<int>& paths, double h,
+                                     WorldEnergy& flows) {
+  for (const int i : distances) {
+    const DistanceConstraint& c = distances_[i];
     if (!c.enabled || c.damping == 0.0 || c.compliance == 0.0) continue;
     const double length = currentLength(c, body(c.a), body(c.b));
-    flows_.cable_damping_loss +=
+    flows.cable_damping_loss +=
         dampingLoss(c.compliance, c.lambda, length - c.rest_length, c.unilateral, length - c.start_length, h);
   }
-  for (PathId id = 0; id < pathCount(); ++id) {
-    const PathConstraint& p = paths_[id];
+  for (const int i : paths) {
+    const PathConstraint& p = paths_[i];
     if (!p.enabled || p.damping == 0.0 || p.compliance == 0.0) continue;
-    const double length = pathLength(id);
-    flows_.cable_damping_loss +=
+    const double length = pathLength(i);
+    flows.cable_damping_loss +=
         dampingLoss(p.compliance, p.lambda, length - p.rest_length, true, length - p.start_length, h);
   }
 }

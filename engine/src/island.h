@@ -3,13 +3,16 @@
 // (World::setThreads). The solve of one island reads and writes only its
 // own bodies, its own constraints and the static bodies it hangs from
 // (which no kernel writes: BodyState::takesImpulses), so islands solved
-// side by side end on the same bits as solved one after another.
+// side by side end on the same bits as solved one after another. So do
+// the other passes of a substep (World::step): each island's
+// integration, velocities and ledger flows are its own.
 #pragma once
 
 #include <vector>
 
 #include "direct/direct_solver.h"
 #include "reeve/engine/body.h"
+#include "reeve/engine/energy.h"
 
 namespace reeve {
 
@@ -29,6 +32,10 @@ struct Island {
   DirectSolver direct;
   int iterations = 0;        // the last solve's
   bool interrupted = false;  // the last solve stopped for the interrupt flag
+  bool non_finite = false;   // a body state (or tension) not finite after the last pass
+  // This substep's work and losses (the flows of WorldEnergy), added to
+  // the World's in island order: the same sums on any number of threads.
+  WorldEnergy flows;
 };
 
 }  // namespace reeve

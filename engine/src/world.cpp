@@ -69,6 +69,16 @@ void checkSpring(const char* kind, double stiffness, double damping, bool positi
 }
 
 constexpr double kPi = std::numbers::pi;
+
+// The flows a substep's passes add (the rest of WorldEnergy is state).
+void addFlows(WorldEnergy& to, const WorldEnergy& from) {
+  to.drive_work += from.drive_work;
+  to.load_work += from.load_work;
+  to.kinematic_work += from.kinematic_work;
+  to.damping_loss += from.damping_loss;
+  to.contact_loss += from.contact_loss;
+  to.cable_damping_loss += from.cable_damping_loss;
+}
 constexpr double kAny = std::numeric_limits<double>::infinity();
 
 // [v]x: the matrix of v x (.).
@@ -395,7 +405,8 @@ double World::pathLength(PathId id) const {
   return length;
 }
 
-void World::addSubstepHook(SubstepHook hook) { hooks_.push_back(std::move(hook)); }
+void World::addSubstepHook(SubstepHook hook) { hooks_.push_back({nullptr, nullptr, std::move(hook)}); }
+void World::addSubstepHook(IslandHook hook) { hooks_.push_back(std::move(hook)); }
 
 void World::addResolveCheck(ResolveCheck check) { resolve_checks_.push_back(std::move(check)); }
 
@@ -418,15 +429,26 @@ void World::step(double dt) {
   const double h = dt / settings_.substeps;
   const bool start_pairing = pairsAtStart();  // the ledger's (energy.cpp)
   for (int s = 0; s < settings_.substeps && !interrupted_; ++s) {
+    // Each island's passes run together, on its thread (forEachIsland);
+    // what joins islands or is on none runs between, on this one.
     if (start_pairing) {
-      pre_v_.resize(bodies_.size());
-      pre_omega_.resize(bodies_.size());
-      for (std::size_t i = 0; i < bodies_.size(); ++i) pre_v_[i] = bodies_[i].v, pre_omega_[i] = bodies_[i].omega;
+      if (pre_v_.size() != bodies_.size()) pre_v_.resize(bodies_.size()), pre_omega_.resize(bodies_.size());
+      for (BodyId id = 0; id < bodyCount(); ++id)
+        if (island_of_[id] < 0) pre_v_[id] = bodies_[id].v, pre_omega_[id] = bodies_[id].omega;
     }
     updateDrives(h);
-    integrate(h);
-    if (!non_finite_) checkFinite(time_ + h, false, h);  // born before any constraint spreads it
-    for (auto& hook : hooks_) hook(*this, h);
+    poses_solved_ = false;
+    for (auto& hook : hooks_)
+      if (hook.before) hook.before(*this, h);
+    for (auto& hook : hooks_)
+      if (hook.island) hook.island(*this, h, -1);
+    forEachIsland([&](int i) { startIsland(i, h, start_pairing); });
+    // Found after the hooks' island parts, which move no body: the same
+    // first body as checked before them.
+    if (!non_finite_ && std::any_of(islands_.begin(), islands_.end(), [](const auto& i) { return i->non_finite; }))
+      checkFinite(time_ + h, false, h);
+    for (auto& hook : hooks_)
+      if (hook.after) hook.after(*this, h);
     if (rotors_dirty_) refreshRotors();  // a hook added a joint (a cable's jam) to a rotor
     if (!hooks_.empty()) refreshIslands();  // the joint, or a span moved on to a new body
     const bool contacts = hasContacts();
@@ -437,47 +459,100 @@ void World::step(double dt) {
       previous_manifolds_.clear();
     }
     sortManifolds();
-    solvePositionsChecked(h);
-    updateVelocities(h);
-    for (HingeJoint& j : hinges_) trackHingeAngle(j, body(j.a), body(j.b), h);
-    addWork(h);
-    addConstraintDampingLoss(h);
-    if (contacts) {
-      // SCA 2020, Alg. 2 line 24: the velocity pass of the contacts, with
-      // restitution off below 2 |g| h.
-      const double rest_speed = 2.0 * settings_.gravity.norm() * h;
-      for (const ContactManifold& m : manifolds_) {
-        const Contact& c = contacts_[m.first];
-        const double before = kineticEnergy(c.a) + kineticEnergy(c.b);
-        const double driven = kinematicWork(c.a, h) + kinematicWork(c.b, h);
-        solveContactVelocities(m, contacts_.data(), body(c.a), body(c.b), h, rest_speed);
-        // What a kinematic body put in (a conveyor dragging a box) is work,
-        // not a loss. Only a loss is credited: a pass that added energy
-        // shows in the balance.
-        const double put_in = kinematicWork(c.a, h) + kinematicWork(c.b, h) - driven;
-        flows_.contact_loss += std::max(0.0, before + put_in - kineticEnergy(c.a) - kineticEnergy(c.b));
-      }
-    }
-    for (BodyId id = 0; id < bodyCount(); ++id) {
-      if (!start_pairing || !bodies_[id].kinematic) {
-        flows_.kinematic_work += kinematicWork(id, h);
-        continue;
-      }
-      // Under the start projection with its motion's velocity at the
-      // substep's start, where addWork books a force (the middle's, which
-      // integrate() moves it by, differs on a ramp or a swing).
-      const MotionKeyframe m = motionAt(defs_[id].motion, time_);
-      const BodyState& b = bodies_[id];
-      flows_.kinematic_work -= (b.impulse.dot(m.velocity) + b.angular_impulse.dot(m.angular_velocity)) / h;
-    }
-    rotorWrenches(h);
-    limitSpeeds();  // last, so no later pass can push past the guard
-    if (!non_finite_) checkFinite(time_ + h, true, h);
+    // A ResolveCheck reads every island's solve: the solves run first, on
+    // their own.
+    const bool checked = !resolve_checks_.empty();
+    if (checked) solvePositionsChecked(h);
+    else beginSolve(h);
+    forEachIsland([&](int i) { finishIsland(i, h, !checked, start_pairing); });
+    if (!checked) endSolve();
+    // One island's flows are the World's own; several are summed in order.
+    if (islands_.size() > 1)
+      for (const auto& island : islands_) addFlows(flows_, island->flows);
+    addConstraintDampingLoss(loose_distances_, loose_paths_, h, flows_);
+    bool finite = std::none_of(islands_.begin(), islands_.end(), [](const auto& i) { return i->non_finite; });
+    for (const int i : loose_distances_) finite &= std::isfinite(distances_[i].lambda / (h * h));
+    if (!non_finite_ && !finite) checkFinite(time_ + h, true, h);
     time_ += h;
     if (progress_) progress_(s + 1, settings_.substeps);
     if (!interrupted_ && s + 1 < settings_.substeps) interrupted_ = interruptRequested();
   }
   last_h_ = h;
+}
+
+template <class Fn>
+void World::forEachIsland(const Fn& fn) {
+  const int n = static_cast<int>(islands_.size());
+  if (!pool_ || n < 2) {
+    for (int i = 0; i < n; ++i) fn(i);
+    return;
+  }
+  // Each thread its own run of islands of about equal work, the same every
+  // substep, so that an island's data stays in its core's cache
+  // (ThreadPool::runEach).
+  pool_->runEach([&](int t) {
+    for (int i = island_runs_[t]; i < island_runs_[t + 1]; ++i) fn(i);
+  });
+}
+
+void World::startIsland(int i, double h, bool start_pairing) {
+  Island& island = *islands_[i];
+  if (start_pairing)
+    for (const BodyId id : island.bodies) pre_v_[id] = bodies_[id].v, pre_omega_[id] = bodies_[id].omega;
+  integrate(island, h);
+  // Born before any constraint spreads it (checkFinite).
+  island.non_finite = !non_finite_ && !finite(island, false, h);
+  for (auto& hook : hooks_)
+    if (hook.island) hook.island(*this, h, i);
+}
+
+void World::finishIsland(int i, double h, bool solve, bool start_pairing) {
+  Island& island = *islands_[i];
+  WorldEnergy& flows = islands_.size() > 1 ? island.flows : flows_;
+  if (islands_.size() > 1) island.flows = WorldEnergy{};
+  if (solve) solveIsland(island, h, false);
+  updateVelocities(island, h, flows);
+  for (const int j : island.hinges) trackHingeAngle(hinges_[j], body(hinges_[j].a), body(hinges_[j].b), h);
+  addWork(island, h, start_pairing, flows);
+  addConstraintDampingLoss(island.distances, island.paths, h, flows);
+  contactVelocityPass(island, h, flows);
+  addKinematicWork(island, h, start_pairing, flows);
+  rotorWrenches(island, h);
+  limitSpeeds(island);  // last, so no later pass can push past the guard
+  island.non_finite = !non_finite_ && !finite(island, true, h);
+}
+
+void World::contactVelocityPass(const Island& island, double h, WorldEnergy& flows) {
+  // SCA 2020, Alg. 2 line 24: the velocity pass of the contacts, with
+  // restitution off below 2 |g| h.
+  const double rest_speed = 2.0 * settings_.gravity.norm() * h;
+  for (const int i : island.manifolds) {
+    const ContactManifold& m = manifolds_[i];
+    const Contact& c = contacts_[m.first];
+    const double before = kineticEnergy(c.a) + kineticEnergy(c.b);
+    const double driven = kinematicWork(c.a, h) + kinematicWork(c.b, h);
+    solveContactVelocities(m, contacts_.data(), body(c.a), body(c.b), h, rest_speed);
+    // What a kinematic body put in (a conveyor dragging a box) is work,
+    // not a loss. Only a loss is credited: a pass that added energy shows
+    // in the balance.
+    const double put_in = kinematicWork(c.a, h) + kinematicWork(c.b, h) - driven;
+    flows.contact_loss += std::max(0.0, before + put_in - kineticEnergy(c.a) - kineticEnergy(c.b));
+  }
+}
+
+void World::addKinematicWork(const Island& island, double h, bool start_pairing, WorldEnergy& flows) {
+  for (const BodyId id : island.bodies) {
+    if (!start_pairing || !bodies_[id].kinematic) {
+      flows.kinematic_work += kinematicWork(id, h);
+      continue;
+    }
+    // Under the start projection with its motion's velocity at the
+    // substep's start, where addWork books a force (the middle's, which
+    // integrate() moves it by, differs on a ramp or a swing).
+    const MotionKeyframe m = motionAt(defs_[id].motion, time_);
+    const BodyState& b = bodies_[id];
+    flows.kinematic_work -= (b.impulse.dot(m.velocity) + b.angular_impulse.dot(m.angular_velocity)) / h;
+  }
 }
 
 void World::updateDrives(double h) {
@@ -500,10 +575,9 @@ void World::updateDrives(double h) {
   }
 }
 
-void World::integrate(double h) {
-  poses_solved_ = false;
+void World::integrate(const Island& island, double h) {
   const Vec3 g = settings_.gravity;
-  for (BodyId id = 0; id < bodyCount(); ++id) {
+  for (const BodyId id : island.bodies) {
     BodyState& b = bodies_[id];
     if (b.kinematic) {
       // Its motion's velocities at the substep's middle, so that a ramp
@@ -548,7 +622,12 @@ void World::setThreads(int threads) {
 }
 
 void World::solvePositions(double h, bool again) {
-  for (BodyState& b : bodies_) b.impulse = b.angular_impulse = b.solve_turn = Vec3::Zero();
+  beginSolve(h);
+  forEachIsland([&](int i) { solveIsland(*islands_[i], h, again); });
+  endSolve();
+}
+
+void World::beginSolve(double h) {
   poses_solved_ = true;
   // The braking inverse inertia (mass) is a drive's: a joint without one
   // does not read it.
@@ -559,17 +638,9 @@ void World::solvePositions(double h, bool again) {
   for (int i = 0; i < static_cast<int>(prismatics_.size()); ++i)
     prismatic_braking_[i] = prismatics_[i].drive.mode != PrismaticDrive::Mode::None ? brakingInverseMass(i) : 0.0;
   solveLooseRows(h);
-  const int n = static_cast<int>(islands_.size());
-  if (pool_ && n > 1) {
-    // Each thread its own run of islands of about equal work, the same
-    // every substep, so that an island's data stays in its core's cache
-    // (ThreadPool::runEach).
-    pool_->runEach([&](int t) {
-      for (int i = island_runs_[t]; i < island_runs_[t + 1]; ++i) solveIsland(*islands_[i], h, again);
-    });
-  } else {
-    for (int i = 0; i < n; ++i) solveIsland(*islands_[i], h, again);
-  }
+}
+
+void World::endSolve() {
   int most = 0;
   for (const auto& island : islands_) {
     most = std::max(most, island->iterations);
@@ -579,6 +650,11 @@ void World::solvePositions(double h, bool again) {
 }
 
 void World::solveIsland(Island& island, double h, bool again) {
+  // Static bodies take no impulses (BodyState::takesImpulses): theirs stay 0.
+  for (const BodyId id : island.bodies) {
+    BodyState& b = bodies_[id];
+    b.impulse = b.angular_impulse = b.solve_turn = Vec3::Zero();
+  }
   for (const int i : island.hinges) {
     HingeJoint& j = hinges_[i];
     prepareHingeJoint(j, body(j.a), body(j.b), h, hinge_braking_[i]);
@@ -670,14 +746,15 @@ void World::solvePositionsChecked(double h) {
   }
 }
 
-void World::rotorWrenches(double h) {
+void World::rotorWrenches(const Island& island, double h) {
   // A rotor's centre stays put and it turns only about its axle, so the
   // axle took the rest of what the constraints gave it, and its weight:
   // the impulse F = -(impulse + m g h^2) at the anchor (arm rho from the
   // centre) and the angular impulse off the axle -(angular_impulse +
   // rho x F); along the axle the hinge's drive and limit rows act, whose
   // part the solve has added already.
-  for (HingeJoint& j : hinges_) {
+  for (const int i : island.hinges) {
+    HingeJoint& j = hinges_[i];
     const bool on_a = body(j.a).isRotor();
     if (!on_a && !body(j.b).isRotor()) continue;
     const BodyId id = on_a ? j.a : j.b;
@@ -692,8 +769,8 @@ void World::rotorWrenches(double h) {
   }
 }
 
-void World::updateVelocities(double h) {
-  for (BodyId id = 0; id < bodyCount(); ++id) {
+void World::updateVelocities(const Island& island, double h, WorldEnergy& flows) {
+  for (const BodyId id : island.bodies) {
     BodyState& b = bodies_[id];
     if (!b.moves()) continue;
     b.v = (b.x - b.x_prev) / h;
@@ -711,12 +788,13 @@ void World::updateVelocities(double h) {
     const double before = kineticEnergy(id);
     b.v *= std::exp(-b.linear_damping * h);
     b.omega *= std::exp(-b.angular_damping * h);
-    flows_.damping_loss += std::max(0.0, before - kineticEnergy(id));
+    flows.damping_loss += std::max(0.0, before - kineticEnergy(id));
   }
 }
 
-void World::limitSpeeds() {
-  for (BodyState& b : bodies_) {
+void World::limitSpeeds(const Island& island) {
+  for (const BodyId id : island.bodies) {
+    BodyState& b = bodies_[id];
     if (const double v = b.v.norm(); v > settings_.max_linear_speed) b.v *= settings_.max_linear_speed / v;
     if (const double w = b.omega.norm(); w > settings_.max_angular_speed) b.omega *= settings_.max_angular_speed / w;
   }
@@ -749,6 +827,17 @@ void World::checkFinite(double end_s, bool tensions, double h) {
       non_finite_ = NonFiniteState{d.a, d.b, Q::Tension, end_s};
       return;
     }
+}
+
+bool World::finite(const Island& island, bool tensions, double h) const {
+  for (const BodyId id : island.bodies) {
+    const BodyState& b = bodies_[id];
+    if (!b.x.allFinite() || !b.q.coeffs().allFinite() || !b.v.allFinite() || !b.omega.allFinite()) return false;
+  }
+  if (tensions)
+    for (const int i : island.distances)
+      if (!std::isfinite(distances_[i].lambda / (h * h))) return false;
+  return true;
 }
 
 std::optional<BodyId> World::firstNonFiniteBody() const {

@@ -340,7 +340,10 @@ class CableSystem {
   /// turns that is, and the cable it pays out counts them all. With h = 0
   /// (an update between steps) only the last solve's turn is counted; a
   /// body turned by hand must have turned less than half a turn about its
-  /// cable plane's normal since the last update.
+  /// cable plane's normal since the last update. Within a step the World
+  /// runs it in parts (World::IslandHook): beginUpdate, updateIsland for
+  /// what is on no island and then for each island (side by side on the
+  /// World's threads), endUpdate.
   void update(double time_s = 0.0, double h = 0.0);
 
   const std::vector<Cable>& cables() const { return cables_; }
@@ -427,9 +430,18 @@ class CableSystem {
   double storedElasticEnergy() const;
 
  private:
-  /// turn_[b]: how far (rad, unwrapped) body b turned about its cable
-  /// plane's normal (local z) since the last update.
-  void measureTurns(double h);
+  /// update()'s parts. beginUpdate: the cables and rolling bodies sorted
+  /// by the World's islands. updateIsland: the turns of island `island`'s
+  /// rolling bodies and its cables' updates (-1: those on no island).
+  /// endUpdate: what the cables' updates give the whole, in cable order
+  /// (events, friction, winch work, jams), and the invariants' check.
+  void beginUpdate(double h);
+  void updateIsland(int island, double time_s, double h);
+  void endUpdate(double time_s);
+  /// turn_[b]: how far (rad, unwrapped) each rolling body b of island
+  /// `island` turned about its cable plane's normal (local z) since the
+  /// last update.
+  void measureTurns(int island, double h);
   /// Body b's turn (rad, unwrapped) about its cable plane's normal since
   /// the last update, counting `spin` (rad) as known whole turns.
   double turnSinceUpdate(BodyId b, double spin) const;
@@ -446,7 +458,7 @@ class CableSystem {
   /// joint the World refuses does not jam.
   void addJamJoints();
   /// One cable's part of update(): what it gives the whole goes to
-  /// updates_[c], as cables update side by side (World::parallelFor).
+  /// updates_[c], as islands' cables update side by side (updateIsland).
   void updateCable(int c, double time_s, double h);
   /// The winch's substep (WinchDef) of `h` (s) starting at `start_s`: what
   /// it paid out stalled in the last solve, then what it reels in this one.
@@ -537,6 +549,12 @@ class CableSystem {
   std::vector<Vec3> last_x_;            // per body: position at the last update
   std::vector<double> move_;            // per body, m since the last update (measureTurns)
   bool solve_turn_counted_ = false;     // the last update was by hand, after the solve
+  bool measure_solve_turn_ = true;      // this update counts the last solve's turn (beginUpdate)
+  // beginUpdate's sort: cable indices and rolling bodies by island (-1
+  // first), island i's from *_begin_[i + 1] to *_begin_[i + 2].
+  std::vector<int> cables_by_island_, cable_begin_;
+  std::vector<BodyId> rolling_by_island_;
+  std::vector<int> rolling_begin_;
   std::optional<CableBreach> breach_;   // firstBreach()
   double winch_work_ = 0.0;             // J, winchWork() but the last substep's
   double friction_loss_ = 0.0;          // J, frictionLoss()

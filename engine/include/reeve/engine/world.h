@@ -109,6 +109,21 @@ class World {
   /// solve, with the substep h (s). The seam through which cable/ moves the
   /// anchors and rest lengths of its distance constraints (DESIGN.md).
   using SubstepHook = std::function<void(World&, double h)>;
+  /// A substep hook whose work splits by island (cable/: each cable's
+  /// update), at the same point of the substep. `before` runs on the
+  /// caller's thread; then `island(w, h, i)` once with i = -1 (what is on
+  /// no island: cables between static anchors) on the caller's thread,
+  /// and once for each island i (0 <= i < islandCount()), side by side on
+  /// the World's threads, right after that island's integration: it may
+  /// touch only island i's bodies and constraints and its own records for
+  /// island i, read static bodies, and must compute the same whichever
+  /// thread runs it; then `after` on the caller's thread. Any part may be
+  /// empty.
+  struct IslandHook {
+    SubstepHook before;
+    std::function<void(World&, double h, int island)> island;
+    SubstepHook after;
+  };
   /// Called after each substep's position solve, with h (s). Returns true
   /// when it changed the constraints of this substep because the solve
   /// broke an assumption they were built on (cable/: a sticking friction
@@ -151,7 +166,8 @@ class World {
   void setMass(BodyId id, double mass);
   DistanceId addDistance(const DistanceConstraint& c);
   PathId addPath(PathConstraint path);
-  void addSubstepHook(SubstepHook hook);
+  void addSubstepHook(SubstepHook hook);  // runs as an IslandHook's `after`
+  void addSubstepHook(IslandHook hook);
   void addResolveCheck(ResolveCheck check);
   /// Declares that a substep hook may join `bodies` by constraints it
   /// makes or moves during a step (cable/: a cable's links, as its spans
@@ -167,6 +183,11 @@ class World {
   int islandCount();
   /// The bodies of island `i` (0 <= i < islandCount()), increasing.
   const std::vector<BodyId>& islandBodies(int i);
+  /// The island of body `id` as islandCount() or the step now running
+  /// built them; -1 for a static body, the world, or a body added since.
+  int islandOfBody(BodyId id) const {
+    return id >= 0 && id < static_cast<BodyId>(island_of_.size()) ? island_of_[id] : -1;
+  }
 
   /// Sets the ground plane {p : n . p = height_m} (n = ground.normal,
   /// normalized here), which touches every dynamic body (SCA 2020, sec.
@@ -208,32 +229,19 @@ class World {
     progress_ = std::move(progress);
   }
 
-  /// Solves the islands (islandCount) on `threads` threads, the caller's
-  /// included, while waiting threads spin between a step's solves; 1 (the
-  /// default) solves them one after another. The threads start with the
-  /// first step that has two islands or more. The results are the same
-  /// bits for any number. The islands' solves and the substep hooks' work
-  /// (parallelFor: the cables' updates) run side by side; integration,
-  /// contacts, velocities and the ledger on the caller's thread. Throws
-  /// std::invalid_argument below 1.
+  /// Steps the islands (islandCount) on `threads` threads, the caller's
+  /// included, while waiting threads spin between a substep's two runs; 1
+  /// (the default) steps them one after another. Each thread takes the
+  /// same islands every substep, and in each run does every pass on them:
+  /// integration, the hooks' island parts and the finite checks, then the
+  /// solve, velocities, the contacts' velocity pass and the ledger's
+  /// flows (summed by island, in island order). What joins islands runs
+  /// between on the caller's thread: the hooks' other parts, contact
+  /// detection, the re-solves a ResolveCheck asks for. The threads start
+  /// with the first step that has two islands or more. The results are
+  /// the same bits for any number. Throws std::invalid_argument below 1.
   void setThreads(int threads);
   int threads() const { return threads_; }
-  /// Runs fn(i) for each i in [0, n) on the World's threads (setThreads),
-  /// or in order on the caller's: for a substep hook's work item by item
-  /// (cable/: each cable's update). fn(i) must touch nothing another i
-  /// touches, and compute the same whichever thread runs it.
-  template <class Fn>
-  void parallelFor(int n, const Fn& fn) {
-    if (!pool_ || n < 2) {
-      for (int i = 0; i < n; ++i) fn(i);
-      return;
-    }
-    // Thread t takes the t-th share of the items, the same one every time,
-    // as with the islands (ThreadPool::runEach).
-    pool_->runEach([&](int t) {
-      for (int i = n * t / threads_; i < n * (t + 1) / threads_; ++i) fn(i);
-    });
-  }
 
   SolverSettings& settings() { return settings_; }
   const SolverSettings& settings() const { return settings_; }
@@ -382,15 +390,36 @@ class World {
   /// hinge made compliant frees the wheel, a wheel's made rigid may make
   /// it a rotor.
   bool hingeRigidityChanged() const;
-  /// The hinge wrenches of rotors, which have no point or axis rows.
-  void rotorWrenches(double h);
+  /// The hinge wrenches of an island's rotors, which have no point or axis
+  /// rows.
+  void rotorWrenches(const Island& island, double h);
   /// At the start of a substep of h s: removes the drives whose `until`
   /// has come (HingeDrive::until) and sets scheduled drives' targets.
   void updateDrives(double h);
-  void integrate(double h);
+  void integrate(const Island& island, double h);
+  /// Runs fn(i) for every island i, on the World's threads when it has
+  /// them, each thread its run of islands (island_runs_).
+  template <class Fn>
+  void forEachIsland(const Fn& fn);
+  /// The first of a substep's two passes over island i: its bodies'
+  /// velocities kept for the ledger (`start_pairing`), its integration,
+  /// its finite check and the hooks' island parts.
+  void startIsland(int i, double h, bool start_pairing);
+  /// The second: its position solve (when `solve`; else it was solved
+  /// already, solvePositionsChecked), velocities, hinge angles, contacts'
+  /// velocity pass, ledger flows, rotor wrenches, speed guard and finite
+  /// check.
+  void finishIsland(int i, double h, bool solve, bool start_pairing);
   /// `again`: the substep's solve done again (ResolveCheck). Prepares
   /// the rows, then one of the two methods' solves of the substep:
+  /// beginSolve, each island's solveIsland, endSolve.
   void solvePositions(double h, bool again);
+  /// What the islands' solves share, before them: the drives' braking
+  /// inertias and the rows on no island.
+  void beginSolve(double h);
+  /// After them: the iterations run (the most of any island) and the
+  /// interrupt.
+  void endSolve();
   /// One island's part of solvePositions, on the rows of its constraints
   /// alone; then one of the two methods' solves of it:
   void solveIsland(Island& island, double h, bool again);
@@ -416,13 +445,19 @@ class World {
   void solvePositionsChecked(double h);
   /// The interrupt flag is raised (setInterruptFlag); read, not cleared.
   bool interruptRequested() const { return interrupt_ && interrupt_->load(std::memory_order_relaxed) != 0; }
-  void updateVelocities(double h);
+  void updateVelocities(const Island& island, double h, WorldEnergy& flows);
   /// Adds this substep's work of the motor drives and applied loads
-  /// (energy.h), once velocities are known.
-  void addWork(double h);
-  /// Credits what the damped distance constraints and paths took out over
-  /// the substep (WorldEnergy::cable_damping_loss).
-  void addConstraintDampingLoss(double h);
+  /// (energy.h) on an island to `flows`, once velocities are known.
+  void addWork(const Island& island, double h, bool start_pairing, WorldEnergy& flows);
+  /// Credits what these damped distance constraints and paths took out
+  /// over the substep (WorldEnergy::cable_damping_loss).
+  void addConstraintDampingLoss(const std::vector<int>& distances, const std::vector<int>& paths, double h,
+                                WorldEnergy& flows);
+  /// The contacts' velocity pass on an island (SCA 2020, Alg. 2 line 24),
+  /// crediting its loss.
+  void contactVelocityPass(const Island& island, double h, WorldEnergy& flows);
+  /// The work of an island's kinematic bodies over the substep.
+  void addKinematicWork(const Island& island, double h, bool start_pairing, WorldEnergy& flows);
   /// Kinetic energy (J) of body `id` now.
   double kineticEnergy(BodyId id) const;
   /// Work (J) kinematic body `id` has done on the rest over the substep of
@@ -430,7 +465,10 @@ class World {
   /// impulses the constraints and contacts gave it (BodyState); 0 for any
   /// other body.
   double kinematicWork(BodyId id, double h) const;
-  void limitSpeeds();
+  void limitSpeeds(const Island& island);
+  /// Whether an island's body states (and, with `tensions`, its distance
+  /// constraints' tensions) are all finite.
+  bool finite(const Island& island, bool tensions, double h) const;
   // Records the first non-finite body state (and, with `tensions`, distance
   // constraint tension) at the end of the substep ending at `end_s`.
   void checkFinite(double end_s, bool tensions, double h);
@@ -448,7 +486,7 @@ class World {
   std::vector<FixedJoint> fixeds_;
   std::vector<DistanceConstraint> distances_;
   std::vector<PathConstraint> paths_;
-  std::vector<SubstepHook> hooks_;
+  std::vector<IslandHook> hooks_;
   std::vector<ResolveCheck> resolve_checks_;
   /// What a position solve changes, kept from before it while a
   /// ResolveCheck may ask for it again: the poses, the contacts and the

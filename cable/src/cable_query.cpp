@@ -144,33 +144,37 @@ void CableSystem::setRestLength(int c, int j, double rest_length_m) {
 }
 
 std::optional<CableBreach> CableSystem::findBreach() const {
-  for (int c = 0; c < static_cast<int>(cables_.size()); ++c) {
-    const Cable& cable = cables_[c];
-    const double slack = 1e-9 * cable.total_length;
-    // Messages are built only on a failure: this runs every substep.
-    const auto broken = [&](std::string what, bool spool_ran_out = false) {
-      CableBreach b;
-      b.what = "cable '" + cable.name + "': " + std::move(what);
-      b.cable = c;
-      b.spool_ran_out = spool_ran_out;
-      return b;
-    };
-    for (int j = 0; j < static_cast<int>(cable.joints.size()); ++j)
-      if (cable.links[j].active && !cable.joints[j].parted && cable.joints[j].rest_length < -slack)
-        return broken("joint " + std::to_string(j) + " has a negative rest length (" +
-                      std::to_string(cable.joints[j].rest_length) + " m)");
-    for (int k = 0; k < static_cast<int>(cable.links.size()); ++k) {
-      const Link& link = cable.links[k];
-      if (link.active && link.rolls() && link.stored < -slack)
-        return broken("link " + std::to_string(k) + " stores a negative length of cable (" +
-                          std::to_string(link.stored) + " m)",
-                      link.type == LinkType::Rolling && isEnd(cable, k));
-    }
-    const double total = totalLength(c);
-    if (std::abs(total - cable.total_length) > slack)
-      return broken("the total length changed from " + std::to_string(cable.total_length) + " m to " +
-                    std::to_string(total) + " m");
+  for (int c = 0; c < static_cast<int>(cables_.size()); ++c)
+    if (auto b = cableBreach(c)) return b;
+  return std::nullopt;
+}
+
+std::optional<CableBreach> CableSystem::cableBreach(int c) const {
+  const Cable& cable = cables_[c];
+  const double slack = 1e-9 * cable.total_length;
+  // Messages are built only on a failure: this runs every substep.
+  const auto broken = [&](std::string what, bool spool_ran_out = false) {
+    CableBreach b;
+    b.what = "cable '" + cable.name + "': " + std::move(what);
+    b.cable = c;
+    b.spool_ran_out = spool_ran_out;
+    return b;
+  };
+  for (int j = 0; j < static_cast<int>(cable.joints.size()); ++j)
+    if (cable.links[j].active && !cable.joints[j].parted && cable.joints[j].rest_length < -slack)
+      return broken("joint " + std::to_string(j) + " has a negative rest length (" +
+                    std::to_string(cable.joints[j].rest_length) + " m)");
+  for (int k = 0; k < static_cast<int>(cable.links.size()); ++k) {
+    const Link& link = cable.links[k];
+    if (link.active && link.rolls() && link.stored < -slack)
+      return broken("link " + std::to_string(k) + " stores a negative length of cable (" +
+                        std::to_string(link.stored) + " m)",
+                    link.type == LinkType::Rolling && isEnd(cable, k));
   }
+  const double total = totalLength(c);
+  if (std::abs(total - cable.total_length) > slack)
+    return broken("the total length changed from " + std::to_string(cable.total_length) + " m to " +
+                  std::to_string(total) + " m");
   return std::nullopt;
 }
 

@@ -71,6 +71,11 @@ void CableSystem::beginUpdate(double h) {
   // the next substep's must not count it again.
   measure_solve_turn_ = !solve_turn_counted_;
   solve_turn_counted_ = h == 0.0;
+  updates_.resize(cables_.size());
+  // Sorted again only when the islands were built again (a cable added
+  // couples its links, which builds them).
+  if (grouped_for_ == world_.islandsBuilt()) return;
+  grouped_for_ = world_.islandsBuilt();
   // A cable's links are one island (World::coupleBodies), or on none.
   const auto cable_island = [&](int c) {
     for (const Link& link : cables_[c].links)
@@ -82,7 +87,6 @@ void CableSystem::beginUpdate(double h) {
       static_cast<int>(rolling_bodies_.size()), [&](int k) { return world_.islandOfBody(rolling_bodies_[k]); },
       rolling_by_island_, rolling_begin_);
   for (int& k : rolling_by_island_) k = rolling_bodies_[k];
-  updates_.resize(cables_.size());
 }
 
 void CableSystem::updateIsland(int island, double time_s, double h) {
@@ -111,6 +115,9 @@ void CableSystem::endUpdate(double time_s) {
   addJamJoints();
   poses_predicted_ = false;
   if (breach_) return;  // the first one says what went wrong
+  // Each cable checked its own (updateCable); the first in cable order is
+  // the one found.
+  if (std::none_of(updates_.begin(), updates_.end(), [](const CableUpdate& u) { return u.breached; })) return;
   if (auto b = findBreach()) {
     b->time_s = time_s;
     for (const BodyId body : rolling_bodies_) {
@@ -150,6 +157,7 @@ void CableSystem::updateCable(int c, double time_s, double h) {
   splitAtCrossedLinks(cable, c, time_s);
   if (h > 0.0) switchSlips(cable, h);
   buildRuns(cable);
+  out.breached = cableBreach(c).has_value();
 }
 
 void CableSystem::updateJoint(Cable& cable, int c, int j, double time_s) {

@@ -33,6 +33,10 @@ struct Island {
   int iterations = 0;        // the last solve's
   bool interrupted = false;  // the last solve stopped for the interrupt flag
   bool non_finite = false;   // a body state (or tension) not finite after the last pass
+  bool moved = false;        // the hooks moved a row of it onto other bodies' island (World::rowsMoved)
+  // What stepping it costs (ns a step, smoothed), as its thread's measured
+  // time over the islands it ran (World::balanceIslandRuns); 0 until then.
+  double cost = 0.0;
   // This substep's work and losses (the flows of WorldEnergy), added to
   // the World's in island order: the same sums on any number of threads.
   WorldEnergy flows;

@@ -57,33 +57,43 @@ int World::islandOf(BodyId a, BodyId b) const {
   return of_a >= 0 || b == kWorldBody ? of_a : island_of_[b];
 }
 
+// The constraints' bodies may have changed in place (distance(), path():
+// the cable system moves a span from link to link): each must still be
+// where it was filed, its moving bodies all on that island.
+bool World::distanceMoved(int i) const {
+  const DistanceConstraint& c = distances_[i];
+  const int island = distance_island_[i];
+  const auto filed = [&](BodyId id) { return id == kWorldBody || island_of_[id] < 0 || island_of_[id] == island; };
+  return islandOf(c.a, c.b) != island || !filed(c.a) || !filed(c.b);
+}
+
+bool World::pathMoved(int i) const {
+  int island = -1;
+  for (const PathPoint& p : paths_[i].points)
+    if (p.body != kWorldBody && island_of_[p.body] >= 0) {
+      island = island_of_[p.body];
+      break;
+    }
+  if (island != path_island_[i]) return true;
+  for (const PathPoint& p : paths_[i].points)
+    if (p.body != kWorldBody && island_of_[p.body] >= 0 && island_of_[p.body] != island) return true;
+  return false;
+}
+
+bool World::rowsMoved(const std::vector<int>& distances, const std::vector<int>& paths) const {
+  return std::any_of(distances.begin(), distances.end(), [&](int i) { return distanceMoved(i); }) ||
+         std::any_of(paths.begin(), paths.end(), [&](int i) { return pathMoved(i); });
+}
+
 void World::refreshIslands() {
-  // The constraints' bodies may have changed in place (distance(), path():
-  // the cable system moves a span from link to link): each must still be
-  // where it was filed, its moving bodies all on that island.
-  const auto filed = [&](BodyId id, int island) {
-    return id == kWorldBody || island_of_[id] < 0 || island_of_[id] == island;
-  };
-  for (std::size_t i = 0; i < distances_.size() && !islands_dirty_; ++i) {
-    const DistanceConstraint& c = distances_[i];
-    const int island = distance_island_[i];
-    islands_dirty_ = islandOf(c.a, c.b) != island || !filed(c.a, island) || !filed(c.b, island);
-  }
-  for (std::size_t i = 0; i < paths_.size() && !islands_dirty_; ++i) {
-    int island = -1;
-    for (const PathPoint& p : paths_[i].points)
-      if (p.body != kWorldBody && island_of_[p.body] >= 0) {
-        island = island_of_[p.body];
-        break;
-      }
-    islands_dirty_ = island != path_island_[i];
-    for (const PathPoint& p : paths_[i].points) islands_dirty_ |= !filed(p.body, island);
-  }
+  for (int i = 0; i < distanceCount() && !islands_dirty_; ++i) islands_dirty_ = distanceMoved(i);
+  for (int i = 0; i < pathCount() && !islands_dirty_; ++i) islands_dirty_ = pathMoved(i);
   if (islands_dirty_) buildIslands();
 }
 
 void World::buildIslands() {
   islands_dirty_ = false;
+  ++islands_built_;
   const int n = bodyCount();
   // Moving and kinematic bodies are the nodes; static bodies and the world
   // join nothing.
@@ -126,6 +136,7 @@ void World::buildIslands() {
       island = count++;
       if (static_cast<int>(islands_.size()) < count) islands_.push_back(std::make_unique<Island>());
       Island& fresh = *islands_[island];
+      fresh.cost = 0.0;  // its bodies may be others now
       for (auto* list : {&fresh.bodies, &fresh.hinges, &fresh.prismatics, &fresh.sphericals, &fresh.fixeds,
                          &fresh.distances, &fresh.paths, &fresh.manifolds})
         list->clear();
@@ -172,24 +183,40 @@ void World::buildIslands() {
 }
 
 void World::cutIslandRuns() {
-  // Work estimated by the bodies and constraints: one run a thread, some
-  // empty when there are fewer islands.
+  // One run a thread, some empty when there are fewer islands. Work as
+  // measured, or else estimated by the bodies and constraints.
   island_runs_.assign(1, 0);
+  run_ns_.assign(threads_, 0.0);
   const int n = static_cast<int>(islands_.size());
-  const auto work = [](const Island& i) {
-    return i.bodies.size() + i.hinges.size() + i.prismatics.size() + i.sphericals.size() + i.fixeds.size() +
-           i.distances.size() + i.paths.size();
+  const bool measured = std::all_of(islands_.begin(), islands_.end(), [](const auto& i) { return i->cost > 0.0; });
+  const auto work = [&](const Island& i) {
+    if (measured) return i.cost;
+    return static_cast<double>(i.bodies.size() + i.hinges.size() + i.prismatics.size() + i.sphericals.size() +
+                               i.fixeds.size() + i.distances.size() + i.paths.size());
   };
-  std::size_t total = 0;
+  double total = 0.0;
   for (const auto& island : islands_) total += work(*island);
   const std::size_t runs = threads_;
-  std::size_t done = 0;
+  double done = 0.0;
   for (int i = 0; i < n; ++i) {
     done += work(*islands_[i]);
     // Run k ends once the work done reaches k / runs of the total.
     while (island_runs_.size() < runs && done * runs >= island_runs_.size() * total) island_runs_.push_back(i + 1);
   }
   island_runs_.resize(runs + 1, n);
+}
+
+void World::balanceIslandRuns() {
+  if (std::all_of(run_ns_.begin(), run_ns_.end(), [](double ns) { return ns == 0.0; })) return;
+  for (int t = 0; t < threads_; ++t) {
+    const int first = island_runs_[t], count = island_runs_[t + 1] - first;
+    for (int i = first; i < first + count; ++i) {
+      double& cost = islands_[i]->cost;
+      const double share = run_ns_[t] / count;
+      cost = cost > 0.0 ? 0.5 * (cost + share) : share;
+    }
+  }
+  cutIslandRuns();
 }
 
 void World::sortManifolds() {

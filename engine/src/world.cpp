@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -424,6 +425,7 @@ void World::step(double dt) {
   assert(settings_.substeps > 0 && settings_.iterations > 0);
   if (rotors_dirty_ || hingeRigidityChanged()) refreshRotors();
   refreshIslands();
+  if (pool_ && islands_.size() > 1) balanceIslandRuns();
   last_iterations_ = 0;
   interrupted_ = false;
   const double h = dt / settings_.substeps;
@@ -450,7 +452,13 @@ void World::step(double dt) {
     for (auto& hook : hooks_)
       if (hook.after) hook.after(*this, h);
     if (rotors_dirty_) refreshRotors();  // a hook added a joint (a cable's jam) to a rotor
-    if (!hooks_.empty()) refreshIslands();  // the joint, or a span moved on to a new body
+    // The joint, or a span moved on to a new body (each island checked its
+    // own rows).
+    if (!hooks_.empty()) {
+      islands_dirty_ = islands_dirty_ || rowsMoved(loose_distances_, loose_paths_) ||
+                       std::any_of(islands_.begin(), islands_.end(), [](const auto& i) { return i->moved; });
+      if (islands_dirty_) buildIslands();
+    }
     const bool contacts = hasContacts();
     if (contacts) findContacts();
     else if (!contacts_.empty()) {  // the ground was removed
@@ -491,7 +499,9 @@ void World::forEachIsland(const Fn& fn) {
   // substep, so that an island's data stays in its core's cache
   // (ThreadPool::runEach).
   pool_->runEach([&](int t) {
+    const auto start = std::chrono::steady_clock::now();
     for (int i = island_runs_[t]; i < island_runs_[t + 1]; ++i) fn(i);
+    run_ns_[t] += std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start).count();
   });
 }
 
@@ -502,8 +512,10 @@ void World::startIsland(int i, double h, bool start_pairing) {
   integrate(island, h);
   // Born before any constraint spreads it (checkFinite).
   island.non_finite = !non_finite_ && !finite(island, false, h);
+  island.moved = false;
   for (auto& hook : hooks_)
     if (hook.island) hook.island(*this, h, i);
+  if (!hooks_.empty()) island.moved = rowsMoved(island.distances, island.paths);
 }
 
 void World::finishIsland(int i, double h, bool solve, bool start_pairing) {

@@ -517,8 +517,9 @@ class CableSystem {
   /// link's section, through a pinhole.
   double wrapAngle(const Cable& cable, int k) const;
   /// invariantViolation() with the cable and whether a spool ran out; time
-  /// and turns are left to update().
+  /// and turns are left to update(). cableBreach: cable c's alone.
   std::optional<CableBreach> findBreach() const;
+  std::optional<CableBreach> cableBreach(int c) const;
   /// Current length (m) and world end points of joint j's straight span.
   double spanLength(const Cable& cable, int j) const;
   Vec3 startPointOf(const Cable& cable, int j) const;
@@ -540,6 +541,7 @@ class CableSystem {
     double friction_loss = 0.0;  // J
     double winch_work = 0.0;     // J
     std::vector<JamRequest> jams;
+    bool breached = false;  // its invariants broken after it (cableBreach)
   };
   std::vector<CableUpdate> updates_;  // per cable
   std::vector<std::pair<BodyId, BodyId>> jams_;  // (wheel, tie point's body) held by a ball joint
@@ -555,6 +557,7 @@ class CableSystem {
   std::vector<int> cables_by_island_, cable_begin_;
   std::vector<BodyId> rolling_by_island_;
   std::vector<int> rolling_begin_;
+  int grouped_for_ = -1;  // World::islandsBuilt() when sorted
   std::optional<CableBreach> breach_;   // firstBreach()
   double winch_work_ = 0.0;             // J, winchWork() but the last substep's
   double friction_loss_ = 0.0;          // J, frictionLoss()

@@ -188,6 +188,9 @@ class World {
   int islandOfBody(BodyId id) const {
     return id >= 0 && id < static_cast<BodyId>(island_of_.size()) ? island_of_[id] : -1;
   }
+  /// How many times the islands have been built: when it is unchanged, so
+  /// is every islandOfBody.
+  int islandsBuilt() const { return islands_built_; }
 
   /// Sets the ground plane {p : n . p = height_m} (n = ground.normal,
   /// normalized here), which touches every dynamic body (SCA 2020, sec.
@@ -403,7 +406,8 @@ class World {
   void forEachIsland(const Fn& fn);
   /// The first of a substep's two passes over island i: its bodies'
   /// velocities kept for the ledger (`start_pairing`), its integration,
-  /// its finite check and the hooks' island parts.
+  /// its finite check, the hooks' island parts and whether they moved a
+  /// row to another island (Island::moved).
   void startIsland(int i, double h, bool start_pairing);
   /// The second: its position solve (when `solve`; else it was solved
   /// already, solvePositionsChecked), velocities, hinge angles, contacts'
@@ -434,9 +438,19 @@ class World {
   /// Rebuilds islands_ (islands.cpp) if a constraint was added or one's
   /// bodies changed since the last build.
   void refreshIslands();
+  /// Whether distance constraint (path) i, or any of these, has bodies
+  /// now on another island than the one it was filed on.
+  bool distanceMoved(int i) const;
+  bool pathMoved(int i) const;
+  bool rowsMoved(const std::vector<int>& distances, const std::vector<int>& paths) const;
   void buildIslands();
-  /// Cuts the islands into island_runs_, one run a thread.
+  /// Cuts the islands into island_runs_, one run a thread, of about equal
+  /// cost (Island::cost; counted bodies and constraints until measured).
   void cutIslandRuns();
+  /// Shares each thread's measured time (run_ns_) out over the islands it
+  /// ran, and cuts the runs again by those costs: which thread steps an
+  /// island changes no result.
+  void balanceIslandRuns();
   /// Hands this substep's contact manifolds to their islands.
   void sortManifolds();
   /// The island of body a, or else of b; -1 when neither is on one.
@@ -526,6 +540,7 @@ class World {
   std::vector<Vec3> pre_v_, pre_omega_;
   std::vector<std::unique_ptr<Island>> islands_;  // island.h; kept with their solvers between builds
   bool islands_dirty_ = true;                      // a body or constraint added since buildIslands()
+  int islands_built_ = 0;                          // islandsBuilt()
   std::vector<int> island_of_;                     // per body: its island, -1 for none (static)
   std::vector<std::vector<BodyId>> couplings_;     // coupleBodies
   std::vector<int> loose_distances_, loose_paths_;  // on no island (solveLooseRows)
@@ -533,6 +548,7 @@ class World {
   int threads_ = 1;                                 // setThreads
   std::unique_ptr<ThreadPool> pool_;                // threads_ of them, once there are two islands
   std::vector<int> island_runs_;  // thread t's islands: [island_runs_[t], island_runs_[t + 1])
+  std::vector<double> run_ns_;    // per thread: ns spent on its islands since the last balanceIslandRuns
   // Per hinge and prismatic joint with a drive: brakingInverseInertia
   // (Mass) for this substep, taken before the islands' solves (its
   // scratch is the World's).

@@ -33,6 +33,7 @@ struct Island {
   int iterations = 0;        // the last solve's
   bool interrupted = false;  // the last solve stopped for the interrupt flag
   bool non_finite = false;   // a body state (or tension) not finite after the last pass
+  bool driven = false;       // a joint of it has a drive this substep (World::beginSolve)
   bool moved = false;        // the hooks moved a row of it onto other bodies' island (World::rowsMoved)
   // What stepping it costs (ns a step, smoothed), as its thread's measured
   // time over the islands it ran (World::balanceIslandRuns); 0 until then.

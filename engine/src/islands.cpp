@@ -154,15 +154,18 @@ void World::buildIslands() {
   }
   // A joint between two static bodies has nothing to solve, and is on no
   // island.
-  const auto file = [&](auto& joints, std::vector<int> Island::*list) {
+  const auto file = [&](auto& joints, std::vector<int> Island::*list, std::vector<int>* loose) {
+    if (loose) loose->clear();
     for (int i = 0; i < static_cast<int>(joints.size()); ++i)
       if (const int island = islandOf(joints[i].a, joints[i].b); island >= 0)
         (islands_[island].get()->*list).push_back(i);
+      else if (loose)
+        loose->push_back(i);
   };
-  file(hinges_, &Island::hinges);
-  file(prismatics_, &Island::prismatics);
-  file(sphericals_, &Island::sphericals);
-  file(fixeds_, &Island::fixeds);
+  file(hinges_, &Island::hinges, &loose_hinges_);
+  file(prismatics_, &Island::prismatics, &loose_prismatics_);
+  file(sphericals_, &Island::sphericals, nullptr);
+  file(fixeds_, &Island::fixeds, nullptr);
   loose_distances_.clear();
   distance_island_.assign(distances_.size(), -1);
   for (int i = 0; i < distanceCount(); ++i) {

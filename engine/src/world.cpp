@@ -438,7 +438,7 @@ void World::step(double dt) {
       for (BodyId id = 0; id < bodyCount(); ++id)
         if (island_of_[id] < 0) pre_v_[id] = bodies_[id].v, pre_omega_[id] = bodies_[id].omega;
     }
-    updateDrives(h);
+    updateDrives(loose_hinges_, loose_prismatics_, h);
     poses_solved_ = false;
     for (auto& hook : hooks_)
       if (hook.before) hook.before(*this, h);
@@ -509,6 +509,11 @@ void World::startIsland(int i, double h, bool start_pairing) {
   Island& island = *islands_[i];
   if (start_pairing)
     for (const BodyId id : island.bodies) pre_v_[id] = bodies_[id].v, pre_omega_[id] = bodies_[id].omega;
+  updateDrives(island.hinges, island.prismatics, h);
+  island.driven = std::any_of(island.hinges.begin(), island.hinges.end(),
+                              [&](int j) { return hinges_[j].drive.mode != HingeDrive::Mode::None; }) ||
+                  std::any_of(island.prismatics.begin(), island.prismatics.end(),
+                              [&](int j) { return prismatics_[j].drive.mode != PrismaticDrive::Mode::None; });
   integrate(island, h);
   // Born before any constraint spreads it (checkFinite).
   island.non_finite = !non_finite_ && !finite(island, false, h);
@@ -567,20 +572,20 @@ void World::addKinematicWork(const Island& island, double h, bool start_pairing,
   }
 }
 
-void World::updateDrives(double h) {
+void World::updateDrives(const std::vector<int>& hinges, const std::vector<int>& prismatics, double h) {
   // Released half a substep early, so that rounding in time_ cannot keep a
   // drive one substep too long. A scheduled velocity is the ramp's value at
   // the substep's middle (its mean over the substep), a scheduled position
   // the value at its end (where the solve puts the joint): a ramp is then
   // followed exactly.
   const double middle = time_ + 0.5 * h, end = time_ + h;
-  for (HingeJoint& j : hinges_) {
-    HingeDrive& d = j.drive;
+  for (const int i : hinges) {
+    HingeDrive& d = hinges_[i].drive;
     if (d.mode != HingeDrive::Mode::None && middle >= d.until) d = HingeDrive{};
     if (!d.schedule.empty()) d.target = scheduledTarget(d.schedule, d.mode == HingeDrive::Mode::Velocity ? middle : end);
   }
-  for (PrismaticJoint& j : prismatics_) {
-    PrismaticDrive& d = j.drive;
+  for (const int i : prismatics) {
+    PrismaticDrive& d = prismatics_[i].drive;
     if (d.mode != PrismaticDrive::Mode::None && middle >= d.until) d = PrismaticDrive{};
     if (!d.schedule.empty())
       d.target = scheduledTarget(d.schedule, d.mode == PrismaticDrive::Mode::Velocity ? middle : end);
@@ -643,12 +648,17 @@ void World::beginSolve(double h) {
   poses_solved_ = true;
   // The braking inverse inertia (mass) is a drive's: a joint without one
   // does not read it.
+  // Only islands with a drive are read (Island::driven): the others'
+  // joints stay in their threads' caches.
   hinge_braking_.resize(hinges_.size());
-  for (int i = 0; i < static_cast<int>(hinges_.size()); ++i)
-    hinge_braking_[i] = hinges_[i].drive.mode != HingeDrive::Mode::None ? brakingInverseInertia(i) : 0.0;
   prismatic_braking_.resize(prismatics_.size());
-  for (int i = 0; i < static_cast<int>(prismatics_.size()); ++i)
-    prismatic_braking_[i] = prismatics_[i].drive.mode != PrismaticDrive::Mode::None ? brakingInverseMass(i) : 0.0;
+  for (const auto& island : islands_) {
+    if (!island->driven) continue;
+    for (const int i : island->hinges)
+      if (hinges_[i].drive.mode != HingeDrive::Mode::None) hinge_braking_[i] = brakingInverseInertia(i);
+    for (const int i : island->prismatics)
+      if (prismatics_[i].drive.mode != PrismaticDrive::Mode::None) prismatic_braking_[i] = brakingInverseMass(i);
+  }
   solveLooseRows(h);
 }
 

@@ -396,9 +396,10 @@ class World {
   /// The hinge wrenches of an island's rotors, which have no point or axis
   /// rows.
   void rotorWrenches(const Island& island, double h);
-  /// At the start of a substep of h s: removes the drives whose `until`
-  /// has come (HingeDrive::until) and sets scheduled drives' targets.
-  void updateDrives(double h);
+  /// At the start of a substep of h s: removes these joints' drives whose
+  /// `until` has come (HingeDrive::until) and sets scheduled drives'
+  /// targets.
+  void updateDrives(const std::vector<int>& hinges, const std::vector<int>& prismatics, double h);
   void integrate(const Island& island, double h);
   /// Runs fn(i) for every island i, on the World's threads when it has
   /// them, each thread its run of islands (island_runs_).
@@ -544,6 +545,7 @@ class World {
   std::vector<int> island_of_;                     // per body: its island, -1 for none (static)
   std::vector<std::vector<BodyId>> couplings_;     // coupleBodies
   std::vector<int> loose_distances_, loose_paths_;  // on no island (solveLooseRows)
+  std::vector<int> loose_hinges_, loose_prismatics_;  // between static bodies: only their drives are kept
   std::vector<int> distance_island_, path_island_;  // per constraint: its island at the build, -1 for none
   int threads_ = 1;                                 // setThreads
   std::unique_ptr<ThreadPool> pool_;                // threads_ of them, once there are two islands

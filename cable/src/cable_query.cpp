@@ -45,7 +45,9 @@ double CableSystem::frictionLoss() const {
   // of the last two substeps' slides. At a slipping wrap the tension gained
   // across the link is T_slip's throughout, so that is the last substep's
   // loss halved (exactly, from rest).
-  return friction_loss_ + (world_.ledgerLag() > 0.0 ? 0.5 : 1.0) * pending;
+  double booked = 0.0;
+  for (const CableUpdate& u : updates_) booked += u.friction_loss;
+  return booked + (world_.ledgerLag() > 0.0 ? 0.5 : 1.0) * pending;
 }
 
 double CableSystem::storedElasticEnergy() const {

@@ -106,14 +106,16 @@ void CableSystem::update(double time_s, double h) {
 }
 
 void CableSystem::endUpdate(double time_s) {
+  poses_predicted_ = false;
+  // Only a cable's event, jam or broken invariant is news: without any,
+  // this thread reads no cable's record (each stays in the cache of the
+  // thread that updates it).
+  if (!news_.exchange(false, std::memory_order_relaxed)) return;
   for (CableUpdate& u : updates_) {
     events_.insert(events_.end(), u.events.begin(), u.events.end());
     u.events.clear();
-    friction_loss_ += u.friction_loss;
-    winch_work_ += u.winch_work;
   }
   addJamJoints();
-  poses_predicted_ = false;
   if (breach_) return;  // the first one says what went wrong
   // Each cable checked its own (updateCable); the first in cable order is
   // the one found.
@@ -144,12 +146,12 @@ void CableSystem::endUpdate(double time_s) {
 void CableSystem::updateCable(int c, double time_s, double h) {
   Cable& cable = cables_[c];
   CableUpdate& out = updates_[c];
-  out.winch_work = 0.0;
+  out.winch_work = 0.0;  // this substep's, added to winch_total below
   if (h > 0.0 && std::isfinite(cable.breaking_tension)) breakOverloaded(cable, c, time_s, h);
   if (cable.winch && h > 0.0) reel(cable, time_s - h, h);
   // Runs' rest lengths as the last solve left them, before this
   // substep's turns pay cable in and out.
-  out.friction_loss = settleRuns(cable, h, h == 0.0, &cable);
+  out.friction_loss += settleRuns(cable, h, h == 0.0, &cable);
   for (int j = 0; j < static_cast<int>(cable.joints.size()); ++j) updateJoint(cable, c, j, time_s);
   if (cable.broken) releaseFreeEnds(cable, c, time_s);
   switchHybrids(cable, c, time_s);
@@ -157,7 +159,9 @@ void CableSystem::updateCable(int c, double time_s, double h) {
   splitAtCrossedLinks(cable, c, time_s);
   if (h > 0.0) switchSlips(cable, h);
   buildRuns(cable);
+  out.winch_total += out.winch_work;
   out.breached = cableBreach(c).has_value();
+  if (out.breached || !out.events.empty() || !out.jams.empty()) news_.store(true, std::memory_order_relaxed);
 }
 
 void CableSystem::updateJoint(Cable& cable, int c, int j, double time_s) {

@@ -48,7 +48,8 @@ void CableSystem::setWinch(int c, const WinchDef& winch) {
 }
 
 double CableSystem::winchWork() const {
-  double work = winch_work_;
+  double work = 0.0;
+  for (const CableUpdate& u : updates_) work += u.winch_total;
   for (int c = 0; c < static_cast<int>(cables_.size()); ++c) {
     const double pull = winchPull(c);
     work += cables_[c].reeled * pull * (1.0 + cables_[c].compliance_per_m * std::max(0.0, pull));

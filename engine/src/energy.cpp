@@ -39,6 +39,15 @@ double dampingLoss(double compliance, double lambda, double stretch, bool unilat
 
 }  // namespace
 
+void addFlows(WorldEnergy& to, const WorldEnergy& from) {
+  to.drive_work += from.drive_work;
+  to.load_work += from.load_work;
+  to.kinematic_work += from.kinematic_work;
+  to.damping_loss += from.damping_loss;
+  to.contact_loss += from.contact_loss;
+  to.cable_damping_loss += from.cable_damping_loss;
+}
+
 double World::kineticEnergy(BodyId id) const {
   if (id == kWorldBody) return 0.0;
   const BodyState& b = bodies_[id];
@@ -62,6 +71,7 @@ WorldEnergy World::energy() const {
   // are derived.
   const double back = ledgerLag();
   WorldEnergy e = flows_;
+  for (const auto& island : islands_) addFlows(e, island->flows);  // in island order
   const double h = last_h_;
   for (BodyId id = 0; id < bodyCount(); ++id) {
     if (mass_[id] == 0.0) continue;

@@ -38,9 +38,15 @@ struct Island {
   // What stepping it costs (ns a step, smoothed), as its thread's measured
   // time over the islands it ran (World::balanceIslandRuns); 0 until then.
   double cost = 0.0;
-  // This substep's work and losses (the flows of WorldEnergy), added to
-  // the World's in island order: the same sums on any number of threads.
+  // Its work and losses since the islands were built (the flows of
+  // WorldEnergy): World::energy adds them to the World's in island order,
+  // and buildIslands folds them in, so the sums are the same on any number
+  // of threads, and read by the caller's thread only when asked for.
   WorldEnergy flows;
 };
+
+/// Adds the flows of `from` (the work and losses; the rest of WorldEnergy
+/// is state) to `to`.
+void addFlows(WorldEnergy& to, const WorldEnergy& from);
 
 }  // namespace reeve

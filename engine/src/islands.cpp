@@ -94,6 +94,10 @@ void World::refreshIslands() {
 void World::buildIslands() {
   islands_dirty_ = false;
   ++islands_built_;
+  for (auto& island : islands_) {  // their bodies may be others' now
+    addFlows(flows_, island->flows);
+    island->flows = WorldEnergy{};
+  }
   const int n = bodyCount();
   // Moving and kinematic bodies are the nodes; static bodies and the world
   // join nothing.
@@ -137,6 +141,7 @@ void World::buildIslands() {
       if (static_cast<int>(islands_.size()) < count) islands_.push_back(std::make_unique<Island>());
       Island& fresh = *islands_[island];
       fresh.cost = 0.0;  // its bodies may be others now
+      fresh.driven = true;  // until its drives are looked at (World::startIsland)
       for (auto* list : {&fresh.bodies, &fresh.hinges, &fresh.prismatics, &fresh.sphericals, &fresh.fixeds,
                          &fresh.distances, &fresh.paths, &fresh.manifolds})
         list->clear();
@@ -190,6 +195,9 @@ void World::cutIslandRuns() {
   // measured, or else estimated by the bodies and constraints.
   island_runs_.assign(1, 0);
   run_ns_.assign(threads_, 0.0);
+  // The islands' news is not known until they run (driven: a drive may be
+  // among them).
+  news_.assign(threads_, RunNews{.driven = true});
   const int n = static_cast<int>(islands_.size());
   const bool measured = std::all_of(islands_.begin(), islands_.end(), [](const auto& i) { return i->cost > 0.0; });
   const auto work = [&](const Island& i) {

@@ -71,15 +71,6 @@ void checkSpring(const char* kind, double stiffness, double damping, bool positi
 
 constexpr double kPi = std::numbers::pi;
 
-// The flows a substep's passes add (the rest of WorldEnergy is state).
-void addFlows(WorldEnergy& to, const WorldEnergy& from) {
-  to.drive_work += from.drive_work;
-  to.load_work += from.load_work;
-  to.kinematic_work += from.kinematic_work;
-  to.damping_loss += from.damping_loss;
-  to.contact_loss += from.contact_loss;
-  to.cable_damping_loss += from.cable_damping_loss;
-}
 constexpr double kAny = std::numeric_limits<double>::infinity();
 
 // [v]x: the matrix of v x (.).
@@ -447,16 +438,14 @@ void World::step(double dt) {
     forEachIsland([&](int i) { startIsland(i, h, start_pairing); });
     // Found after the hooks' island parts, which move no body: the same
     // first body as checked before them.
-    if (!non_finite_ && std::any_of(islands_.begin(), islands_.end(), [](const auto& i) { return i->non_finite; }))
-      checkFinite(time_ + h, false, h);
+    if (!non_finite_ && gatherNews().non_finite) checkFinite(time_ + h, false, h);
     for (auto& hook : hooks_)
       if (hook.after) hook.after(*this, h);
     if (rotors_dirty_) refreshRotors();  // a hook added a joint (a cable's jam) to a rotor
     // The joint, or a span moved on to a new body (each island checked its
     // own rows).
     if (!hooks_.empty()) {
-      islands_dirty_ = islands_dirty_ || rowsMoved(loose_distances_, loose_paths_) ||
-                       std::any_of(islands_.begin(), islands_.end(), [](const auto& i) { return i->moved; });
+      islands_dirty_ = islands_dirty_ || gatherNews().moved || rowsMoved(loose_distances_, loose_paths_);
       if (islands_dirty_) buildIslands();
     }
     const bool contacts = hasContacts();
@@ -474,11 +463,8 @@ void World::step(double dt) {
     else beginSolve(h);
     forEachIsland([&](int i) { finishIsland(i, h, !checked, start_pairing); });
     if (!checked) endSolve();
-    // One island's flows are the World's own; several are summed in order.
-    if (islands_.size() > 1)
-      for (const auto& island : islands_) addFlows(flows_, island->flows);
     addConstraintDampingLoss(loose_distances_, loose_paths_, h, flows_);
-    bool finite = std::none_of(islands_.begin(), islands_.end(), [](const auto& i) { return i->non_finite; });
+    bool finite = !gatherNews().non_finite;
     for (const int i : loose_distances_) finite &= std::isfinite(distances_[i].lambda / (h * h));
     if (!non_finite_ && !finite) checkFinite(time_ + h, true, h);
     time_ += h;
@@ -491,8 +477,23 @@ void World::step(double dt) {
 template <class Fn>
 void World::forEachIsland(const Fn& fn) {
   const int n = static_cast<int>(islands_.size());
+  // What the islands report, gathered by the thread that ran them: the
+  // caller then reads one line a thread, not each island's.
+  const auto run = [&](RunNews& news, int first, int last) {
+    news = RunNews{};
+    for (int i = first; i < last; ++i) {
+      fn(i);
+      const Island& island = *islands_[i];
+      news.non_finite |= island.non_finite;
+      news.moved |= island.moved;
+      news.driven |= island.driven;
+      news.interrupted |= island.interrupted;
+      news.iterations = std::max(news.iterations, island.iterations);
+    }
+  };
   if (!pool_ || n < 2) {
-    for (int i = 0; i < n; ++i) fn(i);
+    std::fill(news_.begin(), news_.end(), RunNews{});
+    run(news_[0], 0, n);
     return;
   }
   // Each thread its own run of islands of about equal work, the same every
@@ -500,9 +501,21 @@ void World::forEachIsland(const Fn& fn) {
   // (ThreadPool::runEach).
   pool_->runEach([&](int t) {
     const auto start = std::chrono::steady_clock::now();
-    for (int i = island_runs_[t]; i < island_runs_[t + 1]; ++i) fn(i);
+    run(news_[t], island_runs_[t], island_runs_[t + 1]);
     run_ns_[t] += std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start).count();
   });
+}
+
+World::RunNews World::gatherNews() const {
+  RunNews all;
+  for (const RunNews& news : news_) {
+    all.non_finite |= news.non_finite;
+    all.moved |= news.moved;
+    all.driven |= news.driven;
+    all.interrupted |= news.interrupted;
+    all.iterations = std::max(all.iterations, news.iterations);
+  }
+  return all;
 }
 
 void World::startIsland(int i, double h, bool start_pairing) {
@@ -525,8 +538,7 @@ void World::startIsland(int i, double h, bool start_pairing) {
 
 void World::finishIsland(int i, double h, bool solve, bool start_pairing) {
   Island& island = *islands_[i];
-  WorldEnergy& flows = islands_.size() > 1 ? island.flows : flows_;
-  if (islands_.size() > 1) island.flows = WorldEnergy{};
+  WorldEnergy& flows = island.flows;
   if (solve) solveIsland(island, h, false);
   updateVelocities(island, h, flows);
   for (const int j : island.hinges) trackHingeAngle(hinges_[j], body(hinges_[j].a), body(hinges_[j].b), h);
@@ -652,6 +664,7 @@ void World::beginSolve(double h) {
   // joints stay in their threads' caches.
   hinge_braking_.resize(hinges_.size());
   prismatic_braking_.resize(prismatics_.size());
+  if (!gatherNews().driven) return solveLooseRows(h);
   for (const auto& island : islands_) {
     if (!island->driven) continue;
     for (const int i : island->hinges)
@@ -663,12 +676,9 @@ void World::beginSolve(double h) {
 }
 
 void World::endSolve() {
-  int most = 0;
-  for (const auto& island : islands_) {
-    most = std::max(most, island->iterations);
-    interrupted_ |= island->interrupted;
-  }
-  last_iterations_ += most;
+  const RunNews news = gatherNews();
+  last_iterations_ += news.iterations;
+  interrupted_ |= news.interrupted;
 }
 
 void World::solveIsland(Island& island, double h, bool again) {

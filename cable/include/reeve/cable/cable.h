@@ -4,6 +4,7 @@
 // open cables and closed ones (belts).
 #pragma once
 
+#include <atomic>
 #include <limits>
 #include <optional>
 #include <string>
@@ -529,8 +530,9 @@ class CableSystem {
   std::vector<Cable> cables_;
   std::vector<CableEvent> events_;
   // What one cable's update gives the whole, kept apart while the cables
-  // update on the World's threads and added in cable order after them:
-  // the same bits on any number of threads.
+  // update on the World's threads: its events and jams added in cable
+  // order after them, its work and losses summed per cable and then in
+  // cable order when asked for. The same bits on any number of threads.
   struct JamRequest {
     int joint;            // the span that ran out
     BodyId wheel, tie;    // the ball joint's bodies
@@ -538,8 +540,9 @@ class CableSystem {
   };
   struct CableUpdate {
     std::vector<CableEvent> events;
-    double friction_loss = 0.0;  // J
-    double winch_work = 0.0;     // J
+    double friction_loss = 0.0;  // J, since the system was made: its part of frictionLoss()
+    double winch_work = 0.0;     // J, this substep's
+    double winch_total = 0.0;    // J, since the system was made: its part of winchWork()
     std::vector<JamRequest> jams;
     bool breached = false;  // its invariants broken after it (cableBreach)
   };
@@ -559,8 +562,7 @@ class CableSystem {
   std::vector<int> rolling_begin_;
   int grouped_for_ = -1;  // World::islandsBuilt() when sorted
   std::optional<CableBreach> breach_;   // firstBreach()
-  double winch_work_ = 0.0;             // J, winchWork() but the last substep's
-  double friction_loss_ = 0.0;          // J, frictionLoss()
+  std::atomic<bool> news_{false};       // a cable's update has an event, a jam or a breach for endUpdate
   bool poses_predicted_ = false;        // within a substep's update: the last solve's poses are x_prev, q_prev
   bool rechecks_slips_ = false;         // recheckSlips is the World's ResolveCheck
   Cable settled_;                       // recheckSlips' copy, kept for its storage

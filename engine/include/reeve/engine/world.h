@@ -531,7 +531,7 @@ class World {
   bool interrupted_ = false;
   std::function<void(int, int)> progress_;
   std::vector<double> mass_;  // kg per body, 0 when static
-  WorldEnergy flows_;         // the summed work and losses (energy.h); its state fields unused
+  WorldEnergy flows_;         // work and losses (energy.h) of islands since rebuilt and of loose rows; not its state fields
   // The ledger's start pairing (ledgerLag): the direct solver projecting at
   // the start.
   bool pairsAtStart() const;
@@ -551,6 +551,18 @@ class World {
   std::unique_ptr<ThreadPool> pool_;                // threads_ of them, once there are two islands
   std::vector<int> island_runs_;  // thread t's islands: [island_runs_[t], island_runs_[t + 1])
   std::vector<double> run_ns_;    // per thread: ns spent on its islands since the last balanceIslandRuns
+  /// What a thread's islands reported in its last run (forEachIsland),
+  /// each on a cache line of its own.
+  struct alignas(64) RunNews {
+    bool non_finite = false;   // Island::non_finite
+    bool moved = false;        // Island::moved
+    bool driven = false;       // Island::driven
+    bool interrupted = false;  // Island::interrupted
+    int iterations = 0;        // the most of Island::iterations
+  };
+  std::vector<RunNews> news_;  // per thread
+  /// All threads' news together.
+  RunNews gatherNews() const;
   // Per hinge and prismatic joint with a drive: brakingInverseInertia
   // (Mass) for this substep, taken before the islands' solves (its
   // scratch is the World's).

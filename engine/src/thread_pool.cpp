@@ -44,8 +44,9 @@ int ThreadPool::cores() { return std::max(1u, std::thread::hardware_concurrency(
 
 template <class Busy>
 void ThreadPool::spinWhile(const Busy& busy) const {
-  if (spin_.count() == 0) return;
-  const auto until = std::chrono::steady_clock::now() + spin_;
+  const std::chrono::microseconds spin(spin_us_.load(std::memory_order_relaxed));
+  if (spin.count() == 0) return;
+  const auto until = std::chrono::steady_clock::now() + spin;
   for (int k = 1; busy(); ++k) {
     if (k % 64 == 0 && std::chrono::steady_clock::now() >= until) return;
     relax();

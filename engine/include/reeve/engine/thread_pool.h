@@ -33,8 +33,8 @@ class ThreadPool {
   /// 30 us on a 2-core VM (DESIGN.md), more than a World's island solve of
   /// a substep may take; a spinning thread starts within a microsecond.
   /// 0 (the default) sleeps at once: right for runs far apart, as a
-  /// batch's frames are.
-  void setSpin(std::chrono::microseconds spin) { spin_ = spin; }
+  /// batch's frames are. May be called while the workers run or wait.
+  void setSpin(std::chrono::microseconds spin) { spin_us_.store(spin.count(), std::memory_order_relaxed); }
 
   /// Runs task(i) once for each i in [0, n), on the pool's threads and the
   /// caller's, and returns when all have returned. An exception a task
@@ -71,7 +71,7 @@ class ThreadPool {
   void take(std::uint32_t generation);
   /// Runs index i of a run of n, and counts it done.
   void runOne(int i, int n);
-  /// Spins for up to spin_ while `busy()`.
+  /// Spins for up to spin_us_ while `busy()`.
   template <class Busy>
   void spinWhile(const Busy& busy) const;
 
@@ -85,7 +85,7 @@ class ThreadPool {
   std::atomic<int> done_{0};  // indices of the run finished
   std::uint32_t generation_ = 0;  // the caller's count of runs
   std::atomic<bool> stop_{false};
-  std::chrono::microseconds spin_{0};
+  std::atomic<std::chrono::microseconds::rep> spin_us_{0};  // setSpin: read by the workers as they run
   std::exception_ptr error_;
 };
 

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cmath>
+#include <limits>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/OrderingMethods>
@@ -16,6 +18,15 @@
 
 namespace reeve {
 namespace {
+
+// A lower bound on the least eigenvalue of a symmetric 3 x 3 matrix
+// (Gershgorin's discs; exact for a body's diagonal inertia): kg m^2.
+double leastMomentBound(const Mat3& inertia) {
+  double least = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < 3; ++i)
+    least = std::min(least, inertia(i, i) - std::abs(inertia(i, (i + 1) % 3)) - std::abs(inertia(i, (i + 2) % 3)));
+  return least;
+}
 
 // A body turned further than this (rad) within one solve takes XPBD's
 // steps (newtonShift).
@@ -477,7 +488,14 @@ void DirectSolver::newtonShift() {
     } else {
       const Mat3 inertia = f.R * b.inertia * f.R.transpose();
       g_phi += inertia * moved_phi_[i];
-      if (hub_of_[i] < 0 && f.inv_mass > 0.0 && !stiffness_[i].isZero()) {
+      if (hub_of_[i] < 0 && f.inv_mass > 0.0 && !stiffness_[i].isZero() && warm &&
+          stiffness_[i].norm() < 0.5 * leastMomentBound(b.inertia)) {
+        // Warm, every |eigenvalue| of K (at most its Frobenius norm) is below
+        // v . I v, so the loop below would keep none: the same inverse,
+        // without the eigenvectors (a tenth of a step of 64 Atwood machines).
+        f.inv_inertia = inertia.inverse();
+        reweigh_[i] = 1;
+      } else if (hub_of_[i] < 0 && f.inv_mass > 0.0 && !stiffness_[i].isZero()) {
         Eigen::SelfAdjointEigenSolver<Mat3> eig;
         eig.computeDirect(stiffness_[i]);
         Vec3 k = eig.eigenvalues().cwiseAbs();

@@ -161,7 +161,7 @@ TEST(NoAllocation, IslandsSolvedOnTwoThreadsAllocateNothing) {
     machines::StaticMachine m = machines::islands(spec);
     World& world = *m.scene.world;
     for (int k = 0; k < spec.count; ++k) world.setMass(*world.findBody("right" + std::to_string(k)), 1.0 + 0.5 * (k % 4));
-    world.setThreads(2);
+    world.setThreads(2, 0.0);  // shared however short the runs
     ASSERT_EQ(world.islandCount(), 16);
     int exempt = 0;
     EXPECT_EQ(allocationsAfterFirstFrame(m.scene, exempt), 0) << (solver == SolverKind::Direct ? "direct" : "gauss-seidel");

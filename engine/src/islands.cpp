@@ -195,6 +195,8 @@ void World::cutIslandRuns() {
   // measured, or else estimated by the bodies and constraints.
   island_runs_.assign(1, 0);
   run_ns_.assign(threads_, 0.0);
+  serial_ns_ = 0.0;
+  timed_runs_ = 0;
   // The islands' news is not known until they run (driven: a drive may be
   // among them).
   news_.assign(threads_, RunNews{.driven = true});
@@ -218,7 +220,17 @@ void World::cutIslandRuns() {
 }
 
 void World::balanceIslandRuns() {
-  if (std::all_of(run_ns_.begin(), run_ns_.end(), [](double ns) { return ns == 0.0; })) return;
+  if (timed_runs_ == 0) return;
+  // The islands' work a run (ns), and whether it pays to share it: a run
+  // on threads costs 1 to 2 us more than its work (its join), and every
+  // line the threads share crosses between cores.
+  const double work =
+      (share_runs_ ? std::accumulate(run_ns_.begin(), run_ns_.end(), 0.0) : serial_ns_) / timed_runs_;
+  const bool shared = share_runs_;
+  share_runs_ = work >= (share_runs_ ? 0.5 : 1.0) * min_shared_run_ns_;
+  serial_ns_ = 0.0;
+  timed_runs_ = 0;
+  if (!shared) return;
   for (int t = 0; t < threads_; ++t) {
     const int first = island_runs_[t], count = island_runs_[t + 1] - first;
     for (int i = first; i < first + count; ++i) {

@@ -491,9 +491,15 @@ void World::forEachIsland(const Fn& fn) {
       news.iterations = std::max(news.iterations, island.iterations);
     }
   };
-  if (!pool_ || n < 2) {
+  if (!pool_ || n < 2 || !share_runs_) {
     std::fill(news_.begin(), news_.end(), RunNews{});
+    const bool timed = pool_ && n > 1;  // to see whether the threads would pay (balanceIslandRuns)
+    const auto start = timed ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
     run(news_[0], 0, n);
+    if (timed) {
+      serial_ns_ += std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start).count();
+      ++timed_runs_;
+    }
     return;
   }
   // Each thread its own run of islands of about equal work, the same every
@@ -504,6 +510,7 @@ void World::forEachIsland(const Fn& fn) {
     run(news_[t], island_runs_[t], island_runs_[t + 1]);
     run_ns_[t] += std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start).count();
   });
+  ++timed_runs_;
 }
 
 World::RunNews World::gatherNews() const {
@@ -642,8 +649,13 @@ void World::integrate(const Island& island, double h) {
   }
 }
 
-void World::setThreads(int threads) {
+void World::setThreads(int threads, double min_shared_run_us) {
   if (threads < 1) throw std::invalid_argument("World::setThreads: expected at least 1 thread, got " + std::to_string(threads));
+  if (!std::isfinite(min_shared_run_us) || min_shared_run_us < 0.0)
+    throw std::invalid_argument("World::setThreads: expected a finite minimum run >= 0 us, got " +
+                                std::to_string(min_shared_run_us));
+  min_shared_run_ns_ = 1e3 * min_shared_run_us;
+  share_runs_ = min_shared_run_ns_ == 0.0;  // else as measured, from the next step
   if (threads == threads_) return;
   threads_ = threads;
   pool_.reset();          // started again by buildIslands() if there are islands to share

@@ -34,7 +34,7 @@ StaticMachine atwoods(int count, SolverKind solver, int iterations, int threads)
   StaticMachine m = machines::islands(spec);
   World& world = *m.scene.world;
   for (int k = 0; k < count; ++k) world.setMass(*world.findBody("right" + std::to_string(k)), rightMass(k));
-  world.setThreads(threads);
+  world.setThreads(threads, 0.0);  // shared however short the runs
   return m;
 }
 
@@ -130,6 +130,24 @@ TEST(Islands, JointsCablesContactsAndKinematicBodiesJoinIslandsStaticOnesDoNot) 
   EXPECT_THROW(world.setThreads(0), std::invalid_argument);
 }
 
+// Threads share the runs only while the islands' work a run reaches the
+// minimum: 64 machines' runs (about 50 us a run on one thread here) pass
+// 1 us, 2 machines' never reach 1 ms, and a minimum of 0 always shares.
+TEST(Islands, RunsAreSharedOnlyWhereTheyPay) {
+  const auto shared = [](int machines, double min_us) {
+    StaticMachine m = atwoods(machines, SolverKind::Direct, 2, 2);
+    m.scene.world->setThreads(2, min_us);
+    for (int f = 0; f < 3; ++f) m.scene.world->step(1.0 / 60.0);
+    return m.scene.world->runsShared();
+  };
+  EXPECT_TRUE(shared(64, 1.0));
+  EXPECT_FALSE(shared(2, 1000.0));
+  EXPECT_TRUE(shared(2, 0.0));
+  World world;
+  EXPECT_THROW(world.setThreads(2, -1.0), std::invalid_argument);
+  EXPECT_THROW(world.setThreads(2, std::nan("")), std::invalid_argument);
+}
+
 // Each island solved on its own still moves as the closed form says: a =
 // (m2 - m1) g / (m1 + m2 + M / 2), and semi-implicit Euler gives v = a t
 // exactly under constant acceleration.
@@ -178,7 +196,7 @@ TEST(Islands, ShippedScenesGiveTheSameBitsOnOneAndTwoThreads) {
     std::vector<std::vector<unsigned char>> runs;
     for (const int threads : {1, 2}) {
       Scene scene = loadScene(std::string(REEVE_SCENES_DIR) + "/" + name + ".json");
-      scene.world->setThreads(threads);
+      scene.world->setThreads(threads, 0.0);
       if (std::string(name) == "hybrid" || std::string(name) == "elastic") EXPECT_GE(scene.world->islandCount(), 2) << name;
       std::vector<unsigned char> all;
       for (int f = 0; f < 60; ++f) {

@@ -241,10 +241,17 @@ class World {
   /// flows (summed by island, in island order). What joins islands runs
   /// between on the caller's thread: the hooks' other parts, contact
   /// detection, the re-solves a ResolveCheck asks for. The threads start
-  /// with the first step that has two islands or more. The results are
-  /// the same bits for any number. Throws std::invalid_argument below 1.
-  void setThreads(int threads);
+  /// with the first step that has two islands or more, and share a run
+  /// only while its islands' work, timed at each step, is at least
+  /// `min_shared_run_us` (us; half that once shared; 0: always): below,
+  /// a run's join costs more than the threads save. The results are the
+  /// same bits for any number. Throws std::invalid_argument for threads
+  /// below 1 or a negative or non-finite minimum.
+  void setThreads(int threads, double min_shared_run_us = kMinSharedRunUs);
+  static constexpr double kMinSharedRunUs = 20.0;
   int threads() const { return threads_; }
+  /// Whether the last step's runs were shared between the threads.
+  bool runsShared() const { return pool_ && share_runs_ && islands_.size() > 1; }
 
   SolverSettings& settings() { return settings_; }
   const SolverSettings& settings() const { return settings_; }
@@ -450,7 +457,8 @@ class World {
   void cutIslandRuns();
   /// Shares each thread's measured time (run_ns_) out over the islands it
   /// ran, and cuts the runs again by those costs: which thread steps an
-  /// island changes no result.
+  /// island changes no result. Decides from the runs' measured work
+  /// whether the next step's runs are shared at all (share_runs_).
   void balanceIslandRuns();
   /// Hands this substep's contact manifolds to their islands.
   void sortManifolds();
@@ -551,6 +559,10 @@ class World {
   std::unique_ptr<ThreadPool> pool_;                // threads_ of them, once there are two islands
   std::vector<int> island_runs_;  // thread t's islands: [island_runs_[t], island_runs_[t + 1])
   std::vector<double> run_ns_;    // per thread: ns spent on its islands since the last balanceIslandRuns
+  bool share_runs_ = false;       // the islands' runs are worth the threads (balanceIslandRuns)
+  double min_shared_run_ns_ = 1e3 * kMinSharedRunUs;  // setThreads
+  double serial_ns_ = 0.0;        // ns of runs not shared since the last balanceIslandRuns
+  int timed_runs_ = 0;            // runs timed since then
   /// What a thread's islands reported in its last run (forEachIsland),
   /// each on a cache line of its own.
   struct alignas(64) RunNews {

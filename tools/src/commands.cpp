@@ -7,6 +7,7 @@
 #include <string>
 
 #include "frame_folder.h"
+#include "reeve/engine/thread_pool.h"
 #include "reeve/scene/scene.h"
 #include "reeve/scene/warnings.h"
 #include "run_scene.h"
@@ -46,7 +47,7 @@ int simulate(const RunOptions& o) {
                                 : loadScene(o.scene);
   if (o.substeps) scene.world->settings().substeps = *o.substeps;
   if (o.iterations) scene.world->settings().iterations = *o.iterations;
-  if (o.threads) scene.world->setThreads(*o.threads);
+  scene.world->setThreads(o.threads.value_or(ThreadPool::cores()));
   if (!o.solver.empty()) scene.world->settings().solver = *solverMethodFromName(o.solver);
   if (!o.projection.empty()) scene.world->settings().projection = o.projection == "start" ? Projection::Start : Projection::End;
   if (scene.world->settings().solver == SolverKind::GaussSeidel && scene.world->settings().projection == Projection::Start) {

@@ -15,7 +15,7 @@ inline constexpr int kExitUsage = 64;        ///< bad command line, or outputs t
 struct RunOptions {
   std::string scene;  ///< empty: the built-in default scene
   std::optional<int> frames, substeps, iterations;
-  std::optional<int> threads;  ///< World::setThreads; none: 1
+  std::optional<int> threads;  ///< World::setThreads; none: the cores (ThreadPool::cores)
   std::string solver;  ///< "direct" or "gauss-seidel" (checked by the parser); empty: the scene's
   std::string projection;  ///< "end" or "start" (checked by the parser); empty: the scene's
   std::filesystem::path png_dir, video, csv, events, html;

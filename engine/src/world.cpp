@@ -70,7 +70,6 @@ void checkSpring(const char* kind, double stiffness, double damping, bool positi
 }
 
 constexpr double kPi = std::numbers::pi;
-
 constexpr double kAny = std::numeric_limits<double>::infinity();
 
 // [v]x: the matrix of v x (.).

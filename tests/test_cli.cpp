@@ -146,6 +146,9 @@ TEST_F(Cli, ThreadsChangeNoDigitOfTheCsvAndAreChecked) {
   const Result zero = reeve("run --frames 1 --threads 0");
   EXPECT_EQ(zero.code, 64);
   EXPECT_NE(zero.err.find("--threads"), std::string::npos) << zero.err;
+  const Result view = reeve("view --threads 1025");
+  EXPECT_EQ(view.code, 64);
+  EXPECT_NE(view.err.find("--threads"), std::string::npos) << view.err;
 }
 
 TEST_F(Cli, ExistingOutputsAreNotOverwrittenWithoutForce) {

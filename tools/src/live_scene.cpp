@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "reeve/engine/fp_exceptions.h"
+#include "reeve/engine/thread_pool.h"
 #include "reeve/render/cable_path.h"
 #include "reeve/render/markers.h"
 #include "reeve/scene/scene_file.h"
@@ -122,6 +123,7 @@ void LiveScene::start(Scene scene) {
   if (overrides_.substeps) s.substeps = *overrides_.substeps;
   if (overrides_.iterations) s.iterations = *overrides_.iterations;
   if (overrides_.solver) s.solver = *overrides_.solver;
+  scene_.world->setThreads(overrides_.threads.value_or(ThreadPool::cores()));
   if (s.solver == SolverKind::GaussSeidel) s.projection = Projection::End;  // the start projection is the direct solver's
   ++generation_;
   frame_ = 0;

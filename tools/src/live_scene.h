@@ -48,6 +48,7 @@ class LiveScene {
   struct Overrides {
     std::optional<int> substeps, iterations;
     std::optional<SolverKind> solver;
+    std::optional<int> threads;  ///< World::setThreads; none: the cores (as reeve run)
   };
 
   /// Loads `file` (empty: the built-in simple.json). Throws SceneError.

@@ -78,6 +78,9 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 100000));
   view_cmd->add_option("--iterations", view.overrides.iterations, "Solver iterations per substep, 1..100000")
       ->check(CLI::Range(1, 100000));
+  view_cmd->add_option("--threads", view.overrides.threads,
+                       "Threads to step the scene's islands on, 1..1024 (default: the cores), as reeve run")
+      ->check(CLI::Range(1, 1024));
   view_cmd->add_option("--solver", view_solver, "direct or gauss-seidel (default: the scene's)")
       ->check(CLI::IsMember({"direct", "gauss-seidel"}));
   view_cmd->footer(

@@ -19,6 +19,22 @@
 namespace reeve {
 namespace {
 
+// +1 where the symmetric 3 x 3 matrix K is positive semidefinite and not
+// zero (its principal minors all >= 0: Sylvester), -1 where -K is, else 0.
+// Near a singular K rounding may decide either way; |K| and +-K then differ
+// by that rounding alone.
+double semidefinite(const Mat3& K) {
+  const auto positive = [](const Mat3& m) {
+    return m(0, 0) >= 0.0 && m(1, 1) >= 0.0 && m(2, 2) >= 0.0 && m(0, 0) * m(1, 1) - m(0, 1) * m(1, 0) >= 0.0 &&
+           m(1, 1) * m(2, 2) - m(1, 2) * m(2, 1) >= 0.0 && m(0, 0) * m(2, 2) - m(0, 2) * m(2, 0) >= 0.0 &&
+           m.determinant() >= 0.0;
+  };
+  if (K.isZero()) return 0.0;
+  if (positive(K)) return 1.0;
+  if (positive(-K)) return -1.0;
+  return 0.0;
+}
+
 // A lower bound on the least eigenvalue of a symmetric 3 x 3 matrix
 // (Gershgorin's discs; exact for a body's diagonal inertia): kg m^2.
 double leastMomentBound(const Mat3& inertia) {
@@ -494,6 +510,11 @@ void DirectSolver::newtonShift() {
         // v . I v, so the loop below would keep none: the same inverse,
         // without the eigenvectors (a tenth of a step of 64 Atwood machines).
         f.inv_inertia = inertia.inverse();
+        reweigh_[i] = 1;
+      } else if (hub_of_[i] < 0 && f.inv_mass > 0.0 && !warm && semidefinite(stiffness_[i]) != 0) {
+        // Later iterations keep all of |K|: K itself where it is positive
+        // semidefinite (every principal minor >= 0), -K where negative.
+        f.inv_inertia = (inertia + semidefinite(stiffness_[i]) * stiffness_[i]).inverse();
         reweigh_[i] = 1;
       } else if (hub_of_[i] < 0 && f.inv_mass > 0.0 && !stiffness_[i].isZero()) {
         Eigen::SelfAdjointEigenSolver<Mat3> eig;

@@ -474,11 +474,13 @@ void DirectSolver::newtonShift() {
     }
     if (stiff[e.row] != 0.0) stiffness_[e.body] += stiff[e.row] * e.curvature;
   }
-  shift_size_ = moved_size_ = 0.0;
+  // The sizes' squares, and one square root at the end: the same bits, as
+  // the root is monotonic and correctly rounded.
+  double shift2 = 0.0, moved2 = 0.0;
   for (std::size_t i = 0; i < m; ++i) {
     BodyFrame& f = frames_[i];
     const BodyState& b = *f.state;
-    moved_size_ = std::max({moved_size_, moved_x_[i].norm(), moved_phi_[i].norm()});
+    moved2 = std::max({moved2, moved_x_[i].squaredNorm(), moved_phi_[i].squaredNorm()});
     if (moved_phi_[i].norm() > kNewtonTurn) {  // XPBD's steps, W and no residual
       if (f.inv_axial > 0.0) {
         f.inv_axial = b.rotor_axis.dot(b.inv_inertia * b.rotor_axis);
@@ -530,8 +532,10 @@ void DirectSolver::newtonShift() {
       shift_x_[i] = -f.inv_mass * g_x;
       shift_phi_[i] = -(f.inv_inertia * g_phi);
     }
-    shift_size_ = std::max({shift_size_, shift_x_[i].norm(), shift_phi_[i].norm()});
+    shift2 = std::max({shift2, shift_x_[i].squaredNorm(), shift_phi_[i].squaredNorm()});
   }
+  shift_size_ = std::sqrt(shift2);
+  moved_size_ = std::sqrt(moved2);
   for (Entry& e : entries_)
     if (reweigh_[e.body]) weigh(e);
 }

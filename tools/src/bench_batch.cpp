@@ -7,6 +7,7 @@
 
 #include "batch.h"
 #include "bench_format.h"
+#include "bench_threads.h"
 
 namespace reeve {
 namespace {
@@ -39,12 +40,7 @@ double measure(const std::filesystem::path& file, int copies, int threads, int f
 int benchBatch(const BatchBenchOptions& o) {
   if (o.copies < 1 || o.frames < 1 || o.repeats < 1)
     throw std::invalid_argument("--copies, --frames and --repeats: expected at least 1");
-  std::vector<int> threads = o.threads;
-  if (threads.empty()) threads = {1, 2, ThreadPool::cores()};
-  std::sort(threads.begin(), threads.end());
-  threads.erase(std::unique(threads.begin(), threads.end()), threads.end());
-  if (threads.front() < 1) throw std::invalid_argument("--threads: expected counts of at least 1");
-  if (threads.front() != 1) threads.insert(threads.begin(), 1);  // the speed-up's baseline
+  const std::vector<int> threads = threadCounts(o.threads);
   for (const std::string& name : o.scenes)
     if (!std::filesystem::is_regular_file(o.scenes_dir / (name + ".json")))
       throw std::invalid_argument("--only: no scene file " + (o.scenes_dir / (name + ".json")).string());

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "bench_format.h"
+#include "bench_threads.h"
 #include "reeve/engine/thread_pool.h"
 #include "reeve/machines/machines.h"
 
@@ -64,12 +65,7 @@ Measured measure(const IslandsBenchOptions& o, SolverKind solver, int threads) {
 int benchIslands(const IslandsBenchOptions& o) {
   if (o.machines < 1 || o.frames < 1 || o.repeats < 1 || o.substeps < 1 || o.iterations < 1)
     throw std::invalid_argument("--machines, --frames, --repeats and the budget: expected at least 1");
-  std::vector<int> threads = o.threads;
-  if (threads.empty()) threads = {1, 2, ThreadPool::cores()};
-  std::sort(threads.begin(), threads.end());
-  threads.erase(std::unique(threads.begin(), threads.end()), threads.end());
-  if (threads.front() < 1) throw std::invalid_argument("--threads: expected counts of at least 1");
-  if (threads.front() != 1) threads.insert(threads.begin(), 1);  // the speed-up's baseline
+  const std::vector<int> threads = threadCounts(o.threads);
   bench::checkOutput(o.output);
   bench::Environment env = bench::environment();
   env.threads_used = threads.back();

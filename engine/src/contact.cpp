@@ -104,11 +104,24 @@ void solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, 
   const Vec3& n = contacts[m.first].normal;
   const double mu_s = contacts[m.first].static_friction;
   const double radius = m.patch_radius;
-  const Vec3 xa = a.x, xb = b.x, friction_before = m.friction_impulse;
-  const Quat qa = a.q, qb = b.q;
-  const Vec3 impulse_a = a.impulse, impulse_b = b.impulse;
-  const Vec3 angular_a = a.angular_impulse, angular_b = b.angular_impulse;
-  const Vec3 turn_a = a.solve_turn, turn_b = b.solve_turn;
+  // What holding changes on a body, kept to undo it (on the bodies the
+  // solve writes to: BodyState::takesImpulses).
+  struct Held {
+    Vec3 x;
+    Quat q;
+    Vec3 impulse, angular_impulse, solve_turn;
+  };
+  const auto keep = [](const BodyState& s) { return Held{s.x, s.q, s.impulse, s.angular_impulse, s.solve_turn}; };
+  const auto undo = [](BodyState& s, const Held& k) {
+    if (!s.takesImpulses()) return;
+    s.x = k.x;
+    s.q = k.q;
+    s.impulse = k.impulse;
+    s.angular_impulse = k.angular_impulse;
+    s.solve_turn = k.solve_turn;
+  };
+  const Held before_a = keep(a), before_b = keep(b);
+  const Vec3 friction_before = m.friction_impulse;
   const double twist_before = m.twist_impulse;
   // Holds the anchor (local_a, local_b, relative orientation anchor_turn);
   // false, with everything undone, when that passes the bound.
@@ -136,21 +149,9 @@ void solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, 
     }
     if (m.friction_impulse.norm() <= mu_s * lambda_n && std::abs(m.twist_impulse) <= mu_s * lambda_n * radius)
       return true;
-    // Sliding or spinning: undone (on the bodies the solve writes to).
-    if (a.takesImpulses()) {
-      a.x = xa;
-      a.q = qa;
-      a.impulse = impulse_a;
-      a.angular_impulse = angular_a;
-      a.solve_turn = turn_a;
-    }
-    if (b.takesImpulses()) {
-      b.x = xb;
-      b.q = qb;
-      b.impulse = impulse_b;
-      b.angular_impulse = angular_b;
-      b.solve_turn = turn_b;
-    }
+    // Sliding or spinning: undone.
+    undo(a, before_a);
+    undo(b, before_b);
     m.friction_impulse = friction_before;
     m.twist_impulse = twist_before;
     return false;

@@ -12,25 +12,17 @@ namespace reeve {
 void World::sweepGaussSeidel(Island& island, double h) {
   const double inv_h2 = 1.0 / (h * h);
   const BodyTable table{bodies_.data(), &world_frame_};
+  // The island's joints of one type, each by its kernel.
+  const auto visit = [&](const std::vector<int>& list, auto& joints, auto solve) {
+    for (const int i : list) solve(joints[i], body(joints[i].a), body(joints[i].b), h);
+  };
   for (int it = 0; it < settings_.iterations; ++it) {
     ++island.iterations;
     // Joints first (all types), then distances and paths (cables).
-    for (const int i : island.hinges) {
-      HingeJoint& j = hinges_[i];
-      solveHingeJoint(j, body(j.a), body(j.b), h);
-    }
-    for (const int i : island.prismatics) {
-      PrismaticJoint& j = prismatics_[i];
-      solvePrismaticJoint(j, body(j.a), body(j.b), h);
-    }
-    for (const int i : island.sphericals) {
-      SphericalJoint& j = sphericals_[i];
-      solveSphericalJoint(j, body(j.a), body(j.b), h);
-    }
-    for (const int i : island.fixeds) {
-      FixedJoint& j = fixeds_[i];
-      solveFixedJoint(j, body(j.a), body(j.b), h);
-    }
+    visit(island.hinges, hinges_, solveHingeJoint);
+    visit(island.prismatics, prismatics_, solvePrismaticJoint);
+    visit(island.sphericals, sphericals_, solveSphericalJoint);
+    visit(island.fixeds, fixeds_, solveFixedJoint);
     for (const int i : island.distances) {
       DistanceConstraint& c = distances_[i];
       solveDistanceConstraint(c, body(c.a), body(c.b), c.compliance * inv_h2, h);

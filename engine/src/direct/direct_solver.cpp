@@ -19,8 +19,8 @@
 namespace reeve {
 namespace {
 
-// +1 where the symmetric 3 x 3 matrix K is positive semidefinite and not
-// zero (its principal minors all >= 0: Sylvester), -1 where -K is, else 0.
+// +1 where the symmetric 3 x 3 matrix K is positive semidefinite (its
+// principal minors all >= 0: Sylvester), -1 where -K is, else 0.
 // Near a singular K rounding may decide either way; |K| and +-K then differ
 // by that rounding alone.
 double semidefinite(const Mat3& K) {
@@ -29,7 +29,6 @@ double semidefinite(const Mat3& K) {
            m(1, 1) * m(2, 2) - m(1, 2) * m(2, 1) >= 0.0 && m(0, 0) * m(2, 2) - m(0, 2) * m(2, 0) >= 0.0 &&
            m.determinant() >= 0.0;
   };
-  if (K.isZero()) return 0.0;
   if (positive(K)) return 1.0;
   if (positive(-K)) return -1.0;
   return 0.0;
@@ -506,27 +505,28 @@ void DirectSolver::newtonShift() {
     } else {
       const Mat3 inertia = f.R * b.inertia * f.R.transpose();
       g_phi += inertia * moved_phi_[i];
-      if (hub_of_[i] < 0 && f.inv_mass > 0.0 && !stiffness_[i].isZero() && warm &&
-          stiffness_[i].norm() < 0.5 * leastMomentBound(b.inertia)) {
-        // Warm, every |eigenvalue| of K (at most its Frobenius norm) is below
-        // v . I v, so the loop below would keep none: the same inverse,
-        // without the eigenvectors (a tenth of a step of 64 Atwood machines).
-        f.inv_inertia = inertia.inverse();
-        reweigh_[i] = 1;
-      } else if (hub_of_[i] < 0 && f.inv_mass > 0.0 && !warm && semidefinite(stiffness_[i]) != 0) {
-        // Later iterations keep all of |K|: K itself where it is positive
-        // semidefinite (every principal minor >= 0), -K where negative.
-        f.inv_inertia = (inertia + semidefinite(stiffness_[i]) * stiffness_[i]).inverse();
-        reweigh_[i] = 1;
-      } else if (hub_of_[i] < 0 && f.inv_mass > 0.0 && !stiffness_[i].isZero()) {
-        Eigen::SelfAdjointEigenSolver<Mat3> eig;
-        eig.computeDirect(stiffness_[i]);
-        Vec3 k = eig.eigenvalues().cwiseAbs();
-        for (int a = 0; a < 3 && warm; ++a) {
-          const Vec3 v = eig.eigenvectors().col(a);
-          if (k[a] <= v.dot(inertia * v)) k[a] = 0.0;
+      if (hub_of_[i] < 0 && f.inv_mass > 0.0 && !stiffness_[i].isZero()) {
+        const Mat3& K = stiffness_[i];
+        double sign = 0.0;
+        if (warm && K.norm() < 0.5 * leastMomentBound(b.inertia)) {
+          // Every |eigenvalue| of K (at most its Frobenius norm) is below
+          // v . I v, so the warm loop below would keep none: the same
+          // inverse, without the eigenvectors.
+          f.inv_inertia = inertia.inverse();
+        } else if (!warm && (sign = semidefinite(K)) != 0.0) {
+          // Later iterations keep all of |K|: K itself where it is positive
+          // semidefinite (every principal minor >= 0), -K where negative.
+          f.inv_inertia = (inertia + sign * K).inverse();
+        } else {
+          Eigen::SelfAdjointEigenSolver<Mat3> eig;
+          eig.computeDirect(K);
+          Vec3 k = eig.eigenvalues().cwiseAbs();
+          for (int a = 0; a < 3 && warm; ++a) {
+            const Vec3 v = eig.eigenvectors().col(a);
+            if (k[a] <= v.dot(inertia * v)) k[a] = 0.0;
+          }
+          f.inv_inertia = (inertia + eig.eigenvectors() * k.asDiagonal() * eig.eigenvectors().transpose()).inverse();
         }
-        f.inv_inertia = (inertia + eig.eigenvectors() * k.asDiagonal() * eig.eigenvectors().transpose()).inverse();
         reweigh_[i] = 1;
       }
       shift_x_[i] = -f.inv_mass * g_x;

@@ -197,7 +197,9 @@ TEST(Islands, ShippedScenesGiveTheSameBitsOnOneAndTwoThreads) {
     for (const int threads : {1, 2}) {
       Scene scene = loadScene(std::string(REEVE_SCENES_DIR) + "/" + name + ".json");
       scene.world->setThreads(threads, 0.0);
-      if (std::string(name) == "hybrid" || std::string(name) == "elastic") EXPECT_GE(scene.world->islandCount(), 2) << name;
+      if (std::string(name) == "hybrid" || std::string(name) == "elastic") {
+        EXPECT_GE(scene.world->islandCount(), 2) << name;
+      }
       std::vector<unsigned char> all;
       for (int f = 0; f < 60; ++f) {
         scene.world->step(1.0 / scene.frame_rate_hz);

@@ -253,8 +253,10 @@ TEST(BenchTable1, ReportsTheSceneTheEnvironmentAndTheSpeedUpItMeasured) {
     EXPECT_NE(out.find(key), std::string::npos) << key;
   ASSERT_EQ(rows.size(), 3u);  // paper 1 x 1, paper 1 x 10, scene default 10 x 2
   // The split of a substep's cost, once per machine and solver (its first
-  // row): a time per joint-iteration that is one.
-  EXPECT_GT(std::stod(rows[0].at("marginal_ns_per_joint_iteration")), 0.0);
+  // row): a number. Not its sign: it is the difference of two timings, 1
+  // and 10 iterations of 10 frames of Simple (tens of us), which the load
+  // of a full suite beside it can turn round (it read -3140 ns once).
+  EXPECT_TRUE(std::isfinite(std::stod(rows[0].at("marginal_ns_per_joint_iteration"))));
   EXPECT_NE(rows[0].at("fixed_us_per_substep"), "");
   EXPECT_EQ(rows[1].at("fixed_us_per_substep"), "");
   for (const auto& row : rows) {

@@ -474,3 +474,33 @@ TEST_F(Cli, UsageErrorsAndHelp) {
 }
 
 }  // namespace
+
+TEST_F(Cli, ImportMjcfWritesTheSceneSaysWhatIsLeftOutAndRunsTheModelDirectly) {
+  const std::string atwood = std::string(REEVE_MJCF_MODELS) + "/atwood.xml";
+  const Result r = reeve("import mjcf " + atwood + " -o " + path("atwood.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(reeve("validate " + path("atwood.json")).code, 0);
+  EXPECT_EQ(reeve("import mjcf " + atwood + " -o " + path("atwood.json")).code, 3);
+  EXPECT_EQ(reeve("import mjcf " + atwood + " -o " + path("atwood.json") + " --force --wheels turning").code, 0);
+  EXPECT_NE(test::slurp(path("atwood.json")).find("\"hinges\""), std::string::npos) << "the pulley turns on a hinge";
+  const Result out = reeve("import mjcf " + atwood);
+  ASSERT_EQ(out.code, 0) << out.err;
+  EXPECT_EQ(out.out.rfind("{", 0), 0u) << "the scene on standard output";
+  EXPECT_EQ(reeve("import mjcf " + atwood + " --wheels square").code, 64);
+  // `reeve run` and `validate` read the model as it is.
+  const Result run = reeve("run " + atwood + " --frames 3 --csv " + path("atwood.csv"));
+  ASSERT_EQ(run.code, 0) << run.err;
+  EXPECT_NE(test::slurp(path("atwood.csv")).find("heavy.z_m"), std::string::npos);
+  const std::string damped = write("damped.xml", "<mujoco>\n<worldbody>\n<body>\n<joint type=\"hinge\" damping=\"1\"/>\n"
+                                                 "<geom size=\"0.1\"/>\n</body>\n</worldbody>\n</mujoco>\n");
+  const Result validate = reeve("validate " + damped);
+  EXPECT_EQ(validate.code, 0) << validate.err;
+  EXPECT_NE(validate.err.find("1 part of the model is not imported:\n  " + damped + ":4: <joint>: damping"), std::string::npos)
+      << validate.err;
+  const std::string bad = write("bad.xml", "<mujoco>\n<worldbody>\n<body pos=\"1 2\"/>\n</worldbody>\n</mujoco>\n");
+  for (const std::string command : {"run ", "validate ", "import mjcf "}) {
+    const Result e = reeve(command + bad);
+    EXPECT_EQ(e.code, 2) << command;
+    EXPECT_NE(e.err.find(bad + ":3: <body>: expected pos of 3 numbers"), std::string::npos) << e.err;
+  }
+}

@@ -12,6 +12,8 @@ packages=(
   libccd-dev             # contacts: narrow phase (MPR)
   libqhull-dev           # convex-hull shapes: faces
   nlohmann-json3-dev     # scene files
+  libpugixml-dev         # MuJoCo models (MJCF XML): reeve import mjcf
+  libmujoco-dev libmujoco-samples  # reeve bench peers; MJCF imports checked against MuJoCo itself
   libvalijson-dev        # JSON Schema validation of scenes
   libcli11-dev           # command line
   libcpp-httplib-dev     # reeve view's HTTP server

@@ -45,7 +45,20 @@ BodyState makeBodyState(const BodyDef& def) {
   if (!isRepresentableMass(m))
     throw std::invalid_argument("body '" + def.name + "': a dynamic body needs a mass between 1e-100 and 1e100 kg");
   s.inv_mass = 1.0 / m;
-  s.inertia = inertiaTensor(def.shape, m);
+  if (def.inertia != Vec3::Zero()) {
+    const Vec3& I = def.inertia;
+    if (!(def.mass > 0.0))
+      throw std::invalid_argument("body '" + def.name + "': moments of inertia need a mass, not a density");
+    // A rigid body's principal moments: each at most the sum of the other
+    // two (equal for a flat plate), to rounding.
+    if (!(I.minCoeff() > 0.0) || !(I.x() + I.y() >= I.z() * (1 - 1e-12) && I.y() + I.z() >= I.x() * (1 - 1e-12) &&
+                                   I.z() + I.x() >= I.y() * (1 - 1e-12)))
+      throw std::invalid_argument("body '" + def.name +
+                                  "': moments of inertia must be positive, each at most the sum of the other two");
+    s.inertia = I.asDiagonal();
+  } else {
+    s.inertia = inertiaTensor(def.shape, m);
+  }
   const Vec3 moments = s.inertia.diagonal();
   if (!isRepresentableMass(moments.minCoeff()) || !isRepresentableMass(moments.maxCoeff()))
     throw std::invalid_argument("body '" + def.name +

@@ -23,6 +23,7 @@ reeve.SimulationError (a RuntimeError) for a run that had to stop.
 import json as _json
 import os as _os
 import pathlib as _pathlib
+import warnings as _warnings
 
 from . import _runtime
 
@@ -44,12 +45,13 @@ from ._reeve import (  # noqa: F401  (the public names)
     default_scene_json,
     scene_schema_json,
 )
-from ._reeve import _SOURCE_SCENES_DIR, _load_file, _load_text
+from ._reeve import _SOURCE_SCENES_DIR, _import_mjcf, _load_file, _load_text
 from .sweep import sweep  # noqa: F401
 
 __all__ = [
     "Batch", "Bodies", "Cable", "Cables", "Hinges", "Joints", "Scene", "SceneError", "Settings", "SimulationError",
-    "Viewer", "default_scene_json", "load", "run", "scene_schema_json", "scenes_dir", "sweep", "__version__",
+    "Viewer", "default_scene_json", "import_mjcf", "load", "run", "scene_schema_json", "scenes_dir", "sweep",
+    "__version__",
 ]
 
 
@@ -59,7 +61,8 @@ def load(source):
     `source` is a path (str or os.PathLike) to a scene file, the JSON text of
     a scene (a str whose first non-blank character is "{"), or a dict as
     json.load() gives (numpy arrays allowed). The scene format is scenes/README.md; the schema is
-    reeve.scene_schema_json().
+    reeve.scene_schema_json(). A path ending in .xml is a MuJoCo model, imported as
+    import_mjcf(path) does (its pulleys fixed, as MuJoCo's).
 
     Raises reeve.SceneError (a ValueError) with the message the command line
     prints: the file ("<text>" or "<dict>" when there is none), the JSON
@@ -76,8 +79,35 @@ def load(source):
     if isinstance(source, str) and source.lstrip().startswith("{"):
         return _load_text(source, "<text>")
     if isinstance(source, (str, _os.PathLike)):
-        return _load_file(_os.fspath(source))
+        path = _os.fspath(source)
+        if path.lower().endswith(".xml"):
+            return _load_text(_json.dumps(_imported(path, "fixed", stacklevel=3)), path)
+        return _load_file(path)
     raise TypeError(f"reeve.load: expected a path, JSON text or a dict, got {type(source).__name__}")
+
+
+def import_mjcf(path, wheels="fixed"):
+    """Reads a MuJoCo model (MJCF XML) and returns the Reeve scene it makes, as a dict.
+
+    Bodies, joints and spatial tendons are imported; each wrap cylinder a
+    tendon runs over becomes a pulley: with wheels="fixed" (the default) a
+    frictionless one welded to its body, as MuJoCo's wrap is; with
+    wheels="turning" a wheel hinged on its axis with the geom's mass, the
+    tendon rolling on it. scenes/README.md ("MuJoCo models") lists the
+    mapping. What the scene does not carry of the model is given in one
+    UserWarning, a line for each element with its file and line. Raises
+    reeve.SceneError ("FILE:LINE: <element>: expected ..., got ...") for a
+    malformed model or one Reeve cannot build. reeve.load(d) builds the dict.
+    """
+    return _imported(_os.fspath(path), wheels, stacklevel=3)
+
+
+def _imported(path, wheels, stacklevel):
+    text, unmapped = _import_mjcf(path, wheels)
+    if unmapped:
+        _warnings.warn(f"reeve: {len(unmapped)} parts of {path} are not imported:\n  " + "\n  ".join(unmapped),
+                       stacklevel=stacklevel)
+    return _json.loads(text)
 
 
 def _plain(value):

@@ -13,6 +13,7 @@
 #include <stdexcept>
 
 #include "html_replay.h"
+#include "reeve/scene/mjcf.h"
 #include "interrupt.h"
 #include "run_scene.h"
 
@@ -181,6 +182,15 @@ void raiseReceivedSignal(int signal) {
 void bindScene(py::module_& m) {
   m.def("_load_file", &fromFile, py::arg("path"));
   m.def("_load_text", &fromText, py::arg("text"), py::arg("source"));
+  m.def(
+      "_import_mjcf",
+      [](const std::filesystem::path& path, const std::string& wheels) {
+        if (wheels != "fixed" && wheels != "turning")
+          throw py::value_error("wheels: expected \"fixed\" or \"turning\", got \"" + wheels + "\"");
+        MjcfImport model = importMjcf(path, {wheels == "turning" ? MjcfWheels::Turning : MjcfWheels::Fixed});
+        return py::make_tuple(model.scene_json, model.unmapped);
+      },
+      py::arg("path"), py::arg("wheels"));
   m.def(
       "default_scene_json", [] { return std::string(defaultSceneJson()); },
       "The text of scenes/simple.json (paper Fig. 12, left), the command line's default scene.");

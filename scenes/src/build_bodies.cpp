@@ -79,6 +79,7 @@ BodyNames addBodies(const nlohmann::json& bodies, World& world, const std::strin
     // position_m places the frame of the vertices; the body's origin is the
     // hull's centre of mass.
     def.position += def.orientation * hullOrigin(def.shape);
+    const auto inertia = b.find("inertia_kg_m2");
     def.is_static = b.value("static", false);
     def.material.static_friction = b.value("static_friction", def.material.static_friction);
     def.material.dynamic_friction = b.value("dynamic_friction", def.material.dynamic_friction);
@@ -93,7 +94,7 @@ BodyNames addBodies(const nlohmann::json& bodies, World& world, const std::strin
            literal(*motion));
     if (def.is_static || kinematic) {
       const std::string why = kinematic ? " for a kinematic body (its motion moves it)" : " for a static body (it never moves)";
-      for (const char* key : {"density_kg_per_m3", "mass_kg"})
+      for (const char* key : {"density_kg_per_m3", "mass_kg", "inertia_kg_m2"})
         if (b.contains(key)) fail(key, "no density or mass" + why, literal(b.at(key)));
       for (const char* key : {"linear_velocity_m_per_s", "angular_velocity_rad_per_s"})
         if (b.contains(key)) fail(key, "no velocity" + why, literal(b.at(key)));
@@ -121,6 +122,14 @@ BodyNames addBodies(const nlohmann::json& bodies, World& world, const std::strin
         def.mass = b.at("mass_kg").get<double>();
       else
         def.density = b.at("density_kg_per_m3").get<double>();
+      if (inertia != b.end()) {
+        if (!has_mass) fail("inertia_kg_m2", "mass_kg with moments of inertia", "density_kg_per_m3");
+        def.inertia = vec3(*inertia);
+        const Vec3& I = def.inertia;
+        if (!(I.x() + I.y() >= I.z() * (1 - 1e-12) && I.y() + I.z() >= I.x() * (1 - 1e-12) &&
+              I.z() + I.x() >= I.y() * (1 - 1e-12)))
+          fail("inertia_kg_m2", "moments a rigid body can have (each at most the sum of the other two)", literal(*inertia));
+      }
       if (const auto v = b.find("linear_velocity_m_per_s"); v != b.end())
         def.linear_velocity = vec3(*v);
       if (const auto w = b.find("angular_velocity_rad_per_s"); w != b.end())
@@ -143,11 +152,12 @@ BodyNames addBodies(const nlohmann::json& bodies, World& world, const std::strin
              "a mass between 1e-100 and 1e100 kg (its cube finite and non-zero in double precision)",
              has_mass ? number(m) + " kg"
                       : number(def.density) + " kg/m^3 x " + number(volume_m3) + " m^3 = " + number(m) + " kg");
-      const Mat3 inertia = inertiaTensor(def.shape, m);
-      const Vec3 moments = inertia.diagonal();
+      const Mat3 tensor = def.inertia != Vec3::Zero() ? Mat3(def.inertia.asDiagonal()) : inertiaTensor(def.shape, m);
+      const Vec3 moments = tensor.diagonal();
       if (!isRepresentableMass(moments.minCoeff()) || !isRepresentableMass(moments.maxCoeff()) ||
-          !inertia.inverse().allFinite())
-        fail("shape", "a size whose moments of inertia are between 1e-100 and 1e100 kg m^2",
+          !tensor.inverse().allFinite())
+        fail(def.inertia != Vec3::Zero() ? "inertia_kg_m2" : "shape",
+             "a size whose moments of inertia are between 1e-100 and 1e100 kg m^2",
              "moments " + number(moments.x()) + ", " + number(moments.y()) + ", " + number(moments.z()) +
                  " kg m^2 for " + number(m) + " kg");
     }

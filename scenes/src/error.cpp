@@ -33,6 +33,13 @@ SceneError SceneError::unreadable(std::string file, std::string reason) {
   return SceneError(what, std::move(file), "", "a readable file", std::move(reason), 0, 0);
 }
 
+SceneError SceneError::atLine(std::string file, int line, std::string element, std::string expected,
+                              std::string found) {
+  const std::string what =
+      file + ":" + std::to_string(line) + ": " + element + ": expected " + expected + ", got " + found;
+  return SceneError(what, std::move(file), std::move(element), std::move(expected), std::move(found), line, 0);
+}
+
 SceneError::SceneError(const std::string& what, std::string file, std::string json_path,
                        std::string expected, std::string found, int line, int column)
     : std::runtime_error(what),

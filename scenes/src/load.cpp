@@ -3,6 +3,7 @@
 #include <memory>
 #include <system_error>
 
+#include "reeve/scene/mjcf.h"
 #include "reeve/scene/scene.h"
 #include "reeve/scene/scene_file.h"
 
@@ -50,6 +51,16 @@ std::string readSceneFile(const std::filesystem::path& path) {
   return text;
 }
 
-Scene loadScene(const std::filesystem::path& path) { return parseScene(readSceneFile(path), path.string()); }
+std::string sceneJsonOf(const std::filesystem::path& path) {
+  return isMjcfPath(path) ? importMjcf(path).scene_json : readSceneFile(path);
+}
+
+Scene loadScene(const std::filesystem::path& path) {
+  if (!isMjcfPath(path)) return parseScene(readSceneFile(path), path.string());
+  MjcfImport model = importMjcf(path);
+  Scene scene = parseScene(model.scene_json, path.string());
+  scene.not_imported = std::move(model.unmapped);
+  return scene;
+}
 
 }  // namespace reeve

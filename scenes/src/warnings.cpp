@@ -9,6 +9,12 @@ namespace reeve {
 
 std::vector<SceneWarning> sceneWarnings(const Scene& scene) {
   std::vector<SceneWarning> warnings;
+  if (!scene.not_imported.empty()) {
+    std::string lines = std::to_string(scene.not_imported.size()) + " part" +
+                        (scene.not_imported.size() == 1 ? " of the model is" : "s of the model are") + " not imported:";
+    for (const std::string& line : scene.not_imported) lines += "\n  " + line;
+    warnings.push_back({"(MJCF import)", lines});
+  }
   const CableSystem& cables = *scene.cables;
   for (int c = 0; c < static_cast<int>(cables.cables().size()); ++c) {
     const Cable& cable = cables.cables()[c];

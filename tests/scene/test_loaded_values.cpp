@@ -245,3 +245,22 @@ TEST(LoadedValues, SpeedGuards) {
 
 }  // namespace
 }  // namespace reeve::test
+
+namespace reeve::test {
+namespace {
+
+// inertia_kg_m2 replaces the shape's moments: a box of 2 kg spinning at
+// (1, 2, 0) rad/s about its axes with moments (2, 3, 4) kg m^2 carries
+// (2 x 1 + 3 x 4) / 2 = 7 J, whatever its half extents say (they would give
+// 1/3 x 2 x (0.5^2 + 0.5^2) = 0.33 kg m^2 about each axis).
+TEST(LoadedValues, GivenMomentsOfInertiaReplaceTheShapes) {
+  const Scene s = parseScene(R"({"name": "spin", "solver": {}, "bodies": [
+    {"name": "box", "shape": {"type": "box", "half_extents_m": [0.5, 0.5, 0.5]}, "mass_kg": 2,
+     "inertia_kg_m2": [2, 3, 4], "position_m": [0, 0, 0], "angular_velocity_rad_per_s": [1, 2, 0]}]})",
+                             "spin.json");
+  EXPECT_EQ(s.world->body(0).inertia, Mat3(Vec3(2, 3, 4).asDiagonal()));
+  EXPECT_DOUBLE_EQ(s.world->energy().kinetic, 7.0);
+}
+
+}  // namespace
+}  // namespace reeve::test

@@ -16,7 +16,7 @@ TEST(SchemaErrors, MissingRequiredTopLevelFieldIsAtTheRoot) {
 
 TEST(SchemaErrors, UnknownFieldListsTheAllowedOnes) {
   expectError(baseWith(R"("mass_kg": 2,)", R"("mass_kg": 2, "colour": "red",)"), "/bodies/1/colour",
-              "no property \"colour\" (allowed: name, shape, density_kg_per_m3, mass_kg, "
+              "no property \"colour\" (allowed: name, shape, density_kg_per_m3, mass_kg, inertia_kg_m2, "
               "position_m, orientation, static, linear_velocity_m_per_s, "
               "angular_velocity_rad_per_s, linear_damping_per_s, angular_damping_per_s, "
               "static_friction, dynamic_friction, restitution, collides, motion)",

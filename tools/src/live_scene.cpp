@@ -108,7 +108,7 @@ std::string framed(unsigned char type, const std::string& payload) {
 std::string jsonMessage(const std::string& text) { return framed(kJsonMessage, text); }
 
 LiveScene::LiveScene(fs::path file, Overrides overrides)
-    : LiveScene(file.empty() ? std::string(defaultSceneJson()) : readSceneFile(file),
+    : LiveScene(file.empty() ? std::string(defaultSceneJson()) : sceneJsonOf(file),
                 file.empty() ? kBuiltIn : file.string(), overrides) {}
 
 LiveScene::LiveScene(std::string text, std::string source, Overrides overrides)
@@ -139,7 +139,7 @@ void LiveScene::start(Scene scene) {
   }
 }
 
-void LiveScene::reloadFile(const fs::path& file) { reload(readSceneFile(file)); }
+void LiveScene::reloadFile(const fs::path& file) { reload(sceneJsonOf(file)); }
 
 void LiveScene::reload(const std::string& text) {
   Scene scene = parseScene(text, source_);

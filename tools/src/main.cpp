@@ -12,6 +12,7 @@
 #include "bench_command.h"
 #include "commands.h"
 #include "generate_command.h"
+#include "import_command.h"
 #include "segment_command.h"
 #include "view_server.h"
 #include "reeve/scene/scene.h"
@@ -127,6 +128,20 @@ int main(int argc, char** argv) {
                           "Output scene (default hilbert<level>.json, or hilbert<level>_loose.json with slack)");
   hilbert_cmd->add_flag("--force", hilbert.force, "Overwrite an existing output file");
 
+  reeve::ImportCommandOptions import_options;
+  std::string wheels = "fixed";
+  CLI::App* import_cmd = app.add_subcommand("import", "Write the Reeve scene a model of another format makes.");
+  import_cmd->require_subcommand(1);
+  CLI::App* mjcf_cmd = import_cmd->add_subcommand(
+      "mjcf", "A MuJoCo model (MJCF XML): bodies, joints and spatial tendons over wrap cylinders (scenes/README.md).");
+  mjcf_cmd->add_option("model", import_options.model, "MJCF file (.xml)")->required();
+  mjcf_cmd->add_option("-o,--output", import_options.output, "Scene JSON file to write (default: standard output)");
+  mjcf_cmd->add_option("--wheels", wheels,
+                       "fixed: wrap cylinders are frictionless fixed pulleys, as in MuJoCo (default); turning: wheels "
+                       "hinged on their axes with the geoms' masses, the tendon rolling on them")
+      ->check(CLI::IsMember({"fixed", "turning"}));
+  mjcf_cmd->add_flag("--force", import_options.force, "Overwrite an existing output file");
+
   CLI::App* bench_cmd = nullptr;
   const std::function<int()> bench = reeve::addBenchCommand(app, bench_cmd);
 
@@ -142,6 +157,10 @@ int main(int argc, char** argv) {
     return reeve::viewCommand(view);
   }
   if (*hilbert_cmd) return reeve::generateHilbertCommand(hilbert);
+  if (*mjcf_cmd) {
+    import_options.mjcf.wheels = wheels == "turning" ? reeve::MjcfWheels::Turning : reeve::MjcfWheels::Fixed;
+    return reeve::importCommand(import_options);
+  }
   if (*bench_cmd) return bench();
   if (*segment_cmd) {
     if (*rope_mass_opt) segment.segment.rope_mass_kg = rope_mass;

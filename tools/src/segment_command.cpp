@@ -2,9 +2,9 @@
 
 #include <fstream>
 #include <iostream>
-#include <sstream>
 
 #include "commands.h"
+#include "reeve/scene/scene_file.h"
 
 namespace reeve {
 
@@ -20,10 +20,7 @@ int segmentCommand(const SegmentCommandOptions& options) {
   nlohmann::ordered_json doc;
   try {
     Scene scene = loadScene(in);
-    std::ifstream file(in);
-    std::stringstream text;
-    text << file.rdbuf();
-    doc = nlohmann::ordered_json::parse(text.str());
+    doc = nlohmann::ordered_json::parse(sceneJsonOf(in));  // a MuJoCo model's scene, too
     doc = segmentScene(doc, scene, options.segment);
     // The result must be a valid scene itself.
     parseScene(doc.dump(), out.string());

@@ -29,12 +29,17 @@ struct MotionKeyframe {
 /// What a user asks for. Exactly one of `density` (kg/m^3) or `mass` (kg)
 /// is used: `mass` when positive, else density x volume. Static bodies
 /// ignore both and never move; kinematic ones (a `motion`) ignore both and
-/// move as told.
+/// move as told. `inertia`, when non-zero, replaces the shape's moments:
+/// the principal moments (kg m^2) about the body's axes through its origin,
+/// which is then its centre of mass whatever the shape (an imported model's
+/// mass properties); it needs `mass` and moments that a rigid body can have
+/// (each at most the sum of the other two).
 struct BodyDef {
   std::string name;
   Shape shape;
   double density = 1000.0;
   double mass = 0.0;
+  Vec3 inertia = Vec3::Zero();
   bool is_static = false;
   Vec3 position = Vec3::Zero();                // m, world
   Quat orientation = Quat::Identity();         // local -> world

@@ -49,6 +49,9 @@ struct Scene {
   /// kind is World's k-th joint of it (prismatic(), spherical(),
   /// fixedJoint()). Hinges ("hinges") are World's hinges in order.
   std::vector<JointKind> joint_kinds;
+  /// An imported model's parts that the scene does not carry, one line
+  /// each (importMjcf); sceneWarnings() lists them in one warning.
+  std::vector<std::string> not_imported;
 
   /// Number of frames to simulate: round(duration_s * frame_rate_hz).
   int frameCount() const;
@@ -61,6 +64,8 @@ struct Scene {
 ///
 /// what() is one of
 ///   "FILE: PATH: expected EXPECTED, got FOUND"   (PATH "(root)" for "")
+///   "FILE:LINE: ELEMENT: expected EXPECTED, got FOUND"  (an imported
+///                                                 model: atLine)
 ///   "FILE:LINE:COLUMN: invalid JSON: REASON"     (JSON syntax; expected()
 ///                                                 is "valid JSON", found() REASON)
 ///   "FILE: cannot read: REASON"                  (expected() is "a readable
@@ -75,6 +80,10 @@ class SceneError : public std::runtime_error {
   static SceneError syntax(std::string file, int line, int column, std::string reason);
   /// A file that cannot be read, `reason` as from strerror.
   static SceneError unreadable(std::string file, std::string reason);
+  /// An error in an imported model (an MJCF file, mjcf.h) at 1-based
+  /// `line`, in `element` (`<joint name="elbow">`), held in jsonPath():
+  /// "FILE:LINE: ELEMENT: expected EXPECTED, got FOUND".
+  static SceneError atLine(std::string file, int line, std::string element, std::string expected, std::string found);
 
   const std::string& file() const { return file_; }
   const std::string& jsonPath() const { return json_path_; }
@@ -109,7 +118,8 @@ inline constexpr std::size_t kMaxSceneObjectMembers = 1000;  ///< keys of one ob
 inline constexpr std::size_t kMaxSceneJoints = 100000;       ///< entries of "hinges" and "joints" together
 inline constexpr std::size_t kMaxSceneLinks = 100000;        ///< links of all cables together
 
-/// Reads and builds the scene in the JSON file at `path`.
+/// Reads and builds the scene in the JSON file at `path`, or imports the
+/// MuJoCo model there when it ends in .xml (mjcf.h: importMjcf).
 /// Throws SceneError if the file cannot be read, is not a regular file (a
 /// FIFO, a device such as /dev/zero, a folder: refused before it is
 /// opened, so nothing blocks), is larger than kMaxSceneFileBytes, or the

@@ -13,4 +13,9 @@ namespace reeve {
 /// while read), or unreadable.
 std::string readSceneFile(const std::filesystem::path& path);
 
+/// The scene JSON of the file at `path`: its text, or for a MuJoCo model
+/// (mjcf.h: isMjcfPath) the scene importMjcf makes of it with the default
+/// options. Throws SceneError as loadScene does.
+std::string sceneJsonOf(const std::filesystem::path& path);
+
 }  // namespace reeve

@@ -1,0 +1,139 @@
+// The MJCF model as the importer reads it (mjcf_read.cpp) before it is
+// mapped to a scene (mjcf_scene.cpp): every element resolved against its
+// defaults, angles in radians, each frame relative to its body. Private to
+// reeve_scene.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "reeve/engine/math.h"
+#include "reeve/scene/mjcf.h"
+
+namespace reeve::mjcf {
+
+/// Where an element is: its file, line and a short description
+/// (<joint name="elbow">), for errors and the unmapped list.
+struct Origin {
+  std::string file;
+  int line = 0;
+  std::string element;
+  std::string where() const { return file + ":" + std::to_string(line) + ": " + element; }
+};
+
+struct Pose {
+  Vec3 pos = Vec3::Zero();
+  Quat quat = Quat::Identity();  // local -> parent
+  Vec3 apply(const Vec3& p) const { return pos + quat * p; }
+  Pose then(const Pose& child) const { return {apply(child.pos), quat * child.quat}; }
+};
+
+enum class GeomType { Plane, Sphere, Capsule, Ellipsoid, Cylinder, Box, Mesh };
+
+struct Geom {
+  Origin origin;
+  std::string name;
+  GeomType type = GeomType::Sphere;
+  Pose pose;                      // in its body's frame
+  Vec3 size = Vec3::Zero();       // MuJoCo's: radius, half-length, half-sizes
+  double mass = 0.0;              // kg, from `mass` or density x volume
+  Mat3 inertia = Mat3::Zero();    // kg m^2 about its centre, in its own frame
+  int contype = 1, conaffinity = 1;
+  double friction = 1.0;          // sliding
+  int body = 0;
+};
+
+struct Site {
+  Origin origin;
+  std::string name;
+  Vec3 pos = Vec3::Zero();  // in its body's frame
+  int body = 0;
+};
+
+enum class JointType { Free, Ball, Slide, Hinge };
+
+struct Joint {
+  Origin origin;
+  std::string name;
+  JointType type = JointType::Hinge;
+  Vec3 pos = Vec3::Zero();    // in its body's frame
+  Vec3 axis = Vec3::UnitZ();  // in its body's frame, unit
+  bool limited = false;
+  std::array<double, 2> range{0.0, 0.0};  // rad or m
+  double damping = 0.0, stiffness = 0.0, springref = 0.0, armature = 0.0, frictionloss = 0.0;
+  int body = 0;
+};
+
+struct Body {
+  Origin origin;
+  std::string name;
+  int parent = -1;    // -1 for the world
+  Pose pose;          // in its parent's frame
+  Pose world;         // in the world
+  std::vector<int> joints, geoms, sites;
+  // <inertial>, when given: mass, centre and inertia in the body's frame.
+  bool has_inertial = false;
+  double mass = 0.0;
+  Vec3 com = Vec3::Zero();
+  Mat3 inertia = Mat3::Zero();  // about com
+};
+
+/// One element of a spatial tendon's path.
+struct PathElement {
+  Origin origin;
+  enum class Kind { Site, Geom, Pulley } kind = Kind::Site;
+  int index = -1;          // the site or geom
+  int sidesite = -1;       // a geom's sidesite, or -1
+  double divisor = 1.0;    // a pulley's
+};
+
+struct Tendon {
+  Origin origin;
+  std::string name;
+  bool spatial = true;
+  std::vector<PathElement> path;
+  bool limited = false;
+  std::array<double, 2> range{0.0, 0.0};
+  double stiffness = 0.0, damping = 0.0, frictionloss = 0.0;
+  std::optional<double> springlength;
+};
+
+struct Actuator {
+  Origin origin;
+  std::string name, kind;  // its tag: motor, position, velocity, muscle, general, ...
+  std::string target;      // what it acts on, as "joint NAME" or "tendon NAME"
+};
+
+struct Model {
+  std::string name = "MuJoCo model";
+  std::string file;
+  double timestep = 0.002;
+  Vec3 gravity = Vec3(0.0, 0.0, -9.81);
+  std::string inertia_from_geom = "auto";  // <compiler inertiafromgeom>: true, false or auto
+  std::vector<Body> bodies;  // 0 is the world, parents before children
+  std::vector<Geom> geoms;
+  std::vector<Site> sites;
+  std::vector<Joint> joints;
+  std::vector<Tendon> tendons;
+  std::vector<Actuator> actuators;
+  /// What was read but not kept: one line each (Origin::where() and why).
+  std::vector<std::string> unmapped;
+};
+
+/// Reads the model at `path` (throws SceneError as importMjcf does).
+Model readModel(const std::string& path);
+
+/// The scene of `model` (mjcf_scene.cpp), its rest lengths taut. `lengths`:
+/// per tendon, its cable's index in the scene (-1: not a cable) and the
+/// length (m) of cable it is to have in all (NaN: as long as at load).
+MjcfImport mapModel(const Model& model, const MjcfOptions& options, std::vector<std::pair<int, double>>& lengths);
+
+/// A geom's volume (m^3) and inertia about its centre in its frame for a
+/// mass of 1 kg (MuJoCo's formulas; a capsule is a cylinder and two
+/// hemispheres). Planes and meshes: 0.
+double geomVolume(GeomType type, const Vec3& size);
+Mat3 geomUnitInertia(GeomType type, const Vec3& size);
+
+}  // namespace reeve::mjcf

@@ -1,0 +1,514 @@
+// mjcf::Model -> a scene's JSON (scene.schema.json). Each MJCF body with a
+// joint becomes one Reeve body carrying the bodies welded to it (no joint:
+// MuJoCo moves them together), at their joint centre of mass, along their
+// principal axes, with their mass and moments; the world's geoms and the
+// sites tendons are tied to become static bodies; each wrap cylinder a body
+// of its own, welded (a frictionless pulley, as MuJoCo's wrap) or hinged
+// (a wheel, `--wheels turning`). scenes/README.md, "MuJoCo models", lists
+// the mapping.
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <set>
+
+#include "mjcf_model.h"
+#include "reeve/scene/mjcf.h"
+#include "reeve/scene/scene.h"
+
+namespace reeve::mjcf {
+namespace {
+
+using json = nlohmann::ordered_json;
+
+// A welded pulley's mass, of the body it is welded to: it stands for a
+// geom whose mass stays with that body, so it should weigh nothing, and
+// the direct solver is exact across this ratio.
+constexpr double kWeldedWheelMass = 1e-6;
+
+json vec(const Vec3& v) { return json::array({v.x(), v.y(), v.z()}); }
+
+json orientationJson(const Quat& q) {
+  const Eigen::AngleAxisd aa(q.normalized());
+  return {{"axis", vec(aa.axis())}, {"angle_rad", aa.angle()}};
+}
+
+[[noreturn]] void fail(const Origin& o, const std::string& expected, const std::string& found) {
+  throw SceneError::atLine(o.file, o.line, o.element, expected, found);
+}
+
+// Points on a geom's surface (its frame), for a hull or bounds.
+std::vector<Vec3> surfacePoints(const Geom& g) {
+  std::vector<Vec3> points;
+  constexpr int kRound = 16;  // points on a circle
+  const auto ring = [&](double r, double z) {
+    for (int i = 0; i < kRound; ++i) {
+      const double a = 2.0 * std::numbers::pi * i / kRound;
+      points.emplace_back(r * std::cos(a), r * std::sin(a), z);
+    }
+  };
+  const Vec3& s = g.size;
+  switch (g.type) {
+    case GeomType::Box:
+      for (int i = 0; i < 8; ++i) points.emplace_back(i & 1 ? s[0] : -s[0], i & 2 ? s[1] : -s[1], i & 4 ? s[2] : -s[2]);
+      break;
+    case GeomType::Cylinder: ring(s[0], -s[1]); ring(s[0], s[1]); break;
+    case GeomType::Sphere:
+    case GeomType::Capsule:
+    case GeomType::Ellipsoid: {
+      const double half = g.type == GeomType::Capsule ? s[1] : 0.0;
+      const Vec3 radii = g.type == GeomType::Ellipsoid ? s : Vec3::Constant(s[0]);
+      for (int k = -3; k <= 3; ++k) {  // latitudes, symmetric about the equator
+        const double lat = k * std::numbers::pi / 8.0, z = radii.z() * std::sin(lat), r = std::cos(lat);
+        for (int i = 0; i < kRound; ++i) {
+          const double a = 2.0 * std::numbers::pi * i / kRound;
+          const Vec3 p(radii.x() * r * std::cos(a), radii.y() * r * std::sin(a), z);
+          if (half > 0.0 && k != 0) points.push_back(p + Vec3(0, 0, k > 0 ? half : -half));
+          else if (half > 0.0) points.push_back(p + Vec3(0, 0, half)), points.push_back(p - Vec3(0, 0, half));
+          else points.push_back(p);
+        }
+      }
+      points.emplace_back(0, 0, radii.z() + half);
+      points.emplace_back(0, 0, -radii.z() - half);
+      break;
+    }
+    case GeomType::Plane:
+    case GeomType::Mesh: break;
+  }
+  return points;
+}
+
+// A geom's own shape, about its centre in its frame, where Reeve has it.
+json shapeOf(const Geom& g) {
+  switch (g.type) {
+    case GeomType::Sphere: return {{"type", "sphere"}, {"radius_m", g.size[0]}};
+    case GeomType::Box: return {{"type", "box"}, {"half_extents_m", vec(g.size)}};
+    case GeomType::Cylinder: return {{"type", "cylinder"}, {"radius_m", g.size[0]}, {"half_length_m", g.size[1]}};
+    default: {
+      json vertices = json::array();
+      for (const Vec3& p : surfacePoints(g)) vertices.push_back(vec(p));
+      return {{"type", "hull"}, {"vertices_m", vertices}};
+    }
+  }
+}
+
+// Mass, centre and inertia about it, summed in one frame.
+struct MassProperties {
+  double mass = 0.0;
+  Vec3 first = Vec3::Zero();     // sum m p
+  Mat3 second = Mat3::Zero();    // sum of each part's inertia about the frame's origin
+  void add(double m, const Vec3& centre, const Mat3& inertia_about_centre) {
+    mass += m;
+    first += m * centre;
+    second += inertia_about_centre + m * (centre.squaredNorm() * Mat3::Identity() - centre * centre.transpose());
+  }
+  Vec3 centre() const { return mass > 0.0 ? Vec3(first / mass) : Vec3::Zero(); }
+  Mat3 aboutCentre() const {
+    const Vec3 c = centre();
+    return second - mass * (c.squaredNorm() * Mat3::Identity() - c * c.transpose());
+  }
+};
+
+class Mapper {
+ public:
+  Mapper(const Model& model, const MjcfOptions& options) : m_(model), options_(options) {}
+
+  MjcfImport map() {
+    findWraps();
+    groupBodies();
+    for (std::size_t b = 0; b < m_.bodies.size(); ++b)
+      if (group_[b] == static_cast<int>(b) && b != 0) addMovingBody(static_cast<int>(b));
+    addStaticGeoms();
+    for (std::size_t b = 1; b < m_.bodies.size(); ++b)
+      if (group_[b] == static_cast<int>(b)) addJoint(static_cast<int>(b));
+    addWheels();
+    for (const Tendon& t : m_.tendons) addCable(t);
+    for (const Actuator& a : m_.actuators)
+      unmapped_.push_back(a.origin.where() + ": actuators are not imported yet" + (a.target.empty() ? "" : " (on the " + a.target + ")"));
+    scene_["name"] = m_.name.empty() ? "MuJoCo model" : m_.name;
+    scene_["description"] = "Imported from the MuJoCo model " + m_.file + " (reeve import mjcf).";
+    scene_["solver"] = solver();
+    scene_["duration_s"] = 5.0;
+    scene_["bodies"] = bodies_;
+    if (!hinges_.empty()) scene_["hinges"] = hinges_;
+    if (!joints_.empty()) scene_["joints"] = joints_;
+    if (!cables_.empty()) scene_["cables"] = cables_;
+    if (ground_) scene_["ground"] = *ground_;
+    scene_["camera"] = camera();
+    MjcfImport out;
+    out.scene_json = scene_.dump(2);
+    out.unmapped = m_.unmapped;
+    out.unmapped.insert(out.unmapped.end(), unmapped_.begin(), unmapped_.end());
+    return out;
+  }
+
+  /// The cables' indices in the scene, per tendon (-1: none), and the
+  /// rest length (m) each is to have in all: its range's upper end or its
+  /// spring length; NaN: as long as it is at load.
+  std::vector<std::pair<int, double>> cableLengths() const { return cable_lengths_; }
+  json& scene() { return scene_; }
+
+ private:
+  // --- bodies -----------------------------------------------------------
+
+  void findWraps() {
+    wrap_.assign(m_.geoms.size(), 0);
+    for (const Tendon& t : m_.tendons)
+      if (mappable(t))
+        for (const PathElement& p : t.path)
+          if (p.kind == PathElement::Kind::Geom) wrap_[p.index] = 1;
+  }
+
+  // Whether a tendon becomes a cable, and if not, why (into unmapped_ once).
+  bool mappable(const Tendon& t, bool report = false) {
+    std::string why;
+    if (!t.spatial) why = "not a spatial tendon";
+    else if (t.path.size() < 2 || t.path.front().kind != PathElement::Kind::Site || t.path.back().kind != PathElement::Kind::Site)
+      why = "a path that does not start and end at a site";
+    else if (std::any_of(t.path.begin(), t.path.end(), [](const PathElement& p) { return p.kind == PathElement::Kind::Pulley; }))
+      why = "pulley branches are not imported yet";
+    else if (std::any_of(t.path.begin(), t.path.end(), [&](const PathElement& p) {
+               return p.kind == PathElement::Kind::Geom && m_.geoms[p.index].type != GeomType::Cylinder;
+             }))
+      why = "wraps on geoms other than cylinders are not imported yet";
+    else if (!t.limited && !(t.stiffness > 0.0))
+      why = "no range and no stiffness: it pulls on nothing in MuJoCo either (actuators on tendons are not imported yet)";
+    if (!why.empty() && report) unmapped_.push_back(t.origin.where() + ": " + why);
+    return why.empty();
+  }
+
+  void groupBodies() {
+    group_.assign(m_.bodies.size(), 0);
+    for (std::size_t b = 1; b < m_.bodies.size(); ++b) {
+      const Body& body = m_.bodies[b];
+      if (body.joints.size() > 1)
+        fail(body.origin, "at most one joint in a body (several in one body are not imported yet)",
+             std::to_string(body.joints.size()));
+      group_[b] = body.joints.empty() ? group_[body.parent] : static_cast<int>(b);
+    }
+  }
+
+  std::string uniqueName(std::string name, const std::string& fallback) {
+    if (name.empty() || name == "world") name = fallback;
+    std::string candidate = name;
+    for (int k = 2; names_.count(candidate); ++k) candidate = name + "_" + std::to_string(k);
+    names_.insert(candidate);
+    return candidate;
+  }
+
+  void addMovingBody(int root) {
+    const Body& r = m_.bodies[root];
+    MassProperties mp;  // in the root's frame
+    std::vector<const Geom*> geoms;
+    for (std::size_t b = 0; b < m_.bodies.size(); ++b) {
+      if (group_[b] != root) continue;
+      const Body& body = m_.bodies[b];
+      const Pose to_root{r.world.quat.conjugate() * (body.world.pos - r.world.pos), r.world.quat.conjugate() * body.world.quat};
+      const bool inertial = body.has_inertial && m_.inertia_from_geom != "true";
+      if (inertial) {
+        const Mat3 R = to_root.quat.toRotationMatrix();
+        mp.add(body.mass, to_root.apply(body.com), R * body.inertia * R.transpose());
+      }
+      for (const int gi : body.geoms) {
+        const Geom& g = m_.geoms[gi];
+        if (g.type == GeomType::Plane) {
+          unmapped_.push_back(g.origin.where() + ": a plane on a moving body is not imported");
+          continue;
+        }
+        if (g.type == GeomType::Mesh) continue;  // listed by the reader
+        if (!(wrap_[gi] && options_.wheels == MjcfWheels::Turning)) geoms.push_back(&g);
+        if (inertial || m_.inertia_from_geom == "false") continue;
+        if (wrap_[gi] && options_.wheels == MjcfWheels::Turning) continue;  // the wheel's own
+        const Pose p = to_root.then(g.pose);
+        const Mat3 R = p.quat.toRotationMatrix();
+        mp.add(g.mass, p.pos, R * g.inertia * R.transpose());
+      }
+    }
+    for (const int j : r.joints)
+      if (m_.joints[j].armature > 0.0) {
+        const Joint& joint = m_.joints[j];
+        if (joint.type == JointType::Hinge) mp.second += joint.armature * joint.axis * joint.axis.transpose();
+        else unmapped_.push_back(joint.origin.where() + ": armature on a joint that is not a hinge is not imported");
+      }
+    if (!(mp.mass > 0.0))
+      fail(r.origin, "a moving body with mass (from <inertial> or its geoms, with the bodies welded to it)", "0 kg");
+    const Vec3 c = mp.centre();
+    const Mat3 I = mp.aboutCentre();
+    // Its principal frame: the frame of its one geom where that is one (a
+    // box stays a box), else the eigenvectors of its inertia.
+    Mat3 axes = Mat3::Identity();
+    json shape;
+    const auto diagonalIn = [&](const Mat3& R) {
+      const Mat3 local = R.transpose() * I * R;
+      const double scale = local.diagonal().cwiseAbs().maxCoeff();
+      return (local - Mat3(local.diagonal().asDiagonal())).cwiseAbs().maxCoeff() <= 1e-12 * scale;
+    };
+    if (geoms.size() == 1) {
+      const Body& owner = m_.bodies[geoms[0]->body];
+      const Pose to_root{r.world.quat.conjugate() * (owner.world.pos - r.world.pos), r.world.quat.conjugate() * owner.world.quat};
+      const Pose p = to_root.then(geoms[0]->pose);
+      if ((p.pos - c).norm() <= 1e-9 * (1.0 + c.norm()) && diagonalIn(p.quat.toRotationMatrix())) {
+        axes = p.quat.toRotationMatrix();
+        shape = shapeOf(*geoms[0]);
+      }
+    }
+    if (shape.is_null()) {
+      if (!diagonalIn(Mat3::Identity())) {
+        Eigen::SelfAdjointEigenSolver<Mat3> eig(I);
+        axes = eig.eigenvectors();
+        if (axes.determinant() < 0.0) axes.col(2) = -axes.col(2);
+      }
+      // A box about the centre that holds every geom, for drawing.
+      Vec3 half = Vec3::Constant(1e-3);
+      for (const Geom* g : geoms) {
+        const Body& owner = m_.bodies[g->body];
+        const Pose to_root{r.world.quat.conjugate() * (owner.world.pos - r.world.pos), r.world.quat.conjugate() * owner.world.quat};
+        const Pose p = to_root.then(g->pose);
+        for (const Vec3& s : surfacePoints(*g)) half = half.cwiseMax((axes.transpose() * (p.apply(s) - c)).cwiseAbs());
+      }
+      shape = {{"type", "box"}, {"half_extents_m", vec(half)}};
+    }
+    Vec3 moments = (axes.transpose() * I * axes).diagonal();
+    const Quat q = r.world.quat * Quat(axes);
+    const std::string fallback = !r.name.empty() || r.geoms.empty() || m_.geoms[r.geoms[0]].name.empty()
+                                     ? "body" + std::to_string(root)
+                                     : m_.geoms[r.geoms[0]].name;
+    json body = {{"name", uniqueName(r.name, fallback)},
+                 {"shape", shape},
+                 {"mass_kg", mp.mass},
+                 {"inertia_kg_m2", vec(moments)},
+                 {"position_m", vec(r.world.apply(c))}};
+    if (q.angularDistance(Quat::Identity()) > 0.0) body["orientation"] = orientationJson(q);
+    reeve_body_[root] = body["name"];
+    frame_[root] = Pose{r.world.apply(c), q.normalized()};
+    bodies_.push_back(body);
+  }
+
+  // The world's geoms (and those of bodies welded to it), each a static body.
+  void addStaticGeoms() {
+    for (std::size_t gi = 0; gi < m_.geoms.size(); ++gi) {
+      const Geom& g = m_.geoms[gi];
+      if (group_[g.body] != 0) continue;
+      const Pose p = m_.bodies[g.body].world.then(g.pose);
+      if (g.type == GeomType::Plane) {
+        if (ground_) {
+          unmapped_.push_back(g.origin.where() + ": a second plane is not imported (Reeve has one ground)");
+          continue;
+        }
+        const Vec3 n = p.quat * Vec3::UnitZ();
+        ground_ = json{{"normal", vec(n)}, {"height_m", n.dot(p.pos)}};
+        continue;
+      }
+      if (g.type == GeomType::Mesh || (wrap_[gi] && options_.wheels == MjcfWheels::Turning)) continue;
+      json body = {{"name", uniqueName(g.name, "geom" + std::to_string(gi))},
+                   {"shape", shapeOf(g)}, {"static", true}, {"position_m", vec(p.pos)}};
+      if (p.quat.angularDistance(Quat::Identity()) > 0.0) body["orientation"] = orientationJson(p.quat);
+      geom_body_[static_cast<int>(gi)] = body["name"];
+      bodies_.push_back(body);
+    }
+  }
+
+  std::string reeveBodyOf(int mj_body) const { return group_[mj_body] == 0 ? "world" : reeve_body_.at(group_[mj_body]); }
+
+  // --- joints -----------------------------------------------------------
+
+  void addJoint(int b) {
+    const Body& body = m_.bodies[b];
+    const Joint& j = m_.joints[body.joints[0]];
+    if (j.type == JointType::Free) return;
+    const Vec3 anchor = body.world.apply(j.pos), axis = body.world.quat * j.axis;
+    const std::string other = reeveBodyOf(body.parent);
+    if (j.frictionloss > 0.0) unmapped_.push_back(j.origin.where() + ": frictionloss not imported");
+    if (j.type == JointType::Ball) {
+      if (j.limited) unmapped_.push_back(j.origin.where() + ": a ball joint's range (a cone on its whole rotation) is not imported");
+      if (j.damping > 0.0 || j.stiffness > 0.0) unmapped_.push_back(j.origin.where() + ": a ball joint's damping and stiffness are not imported");
+      joints_.push_back({{"type", "spherical"}, {"body", reeve_body_.at(b)}, {"other", other}, {"anchor_m", vec(anchor)}});
+      return;
+    }
+    const bool hinge = j.type == JointType::Hinge;
+    json def = {{"body", reeve_body_.at(b)}, {"other", other}, {"anchor_m", vec(anchor)}, {"axis", vec(axis)}};
+    if (!hinge) def["type"] = "prismatic";
+    if (j.limited) {
+      if (hinge && (j.range[0] < -std::numbers::pi || j.range[1] > std::numbers::pi))
+        unmapped_.push_back(j.origin.where() + ": a range beyond [-180, 180] degrees is not imported (Reeve's hinge limits are within it)");
+      else if (hinge) def["limit"] = {{"lower_rad", j.range[0]}, {"upper_rad", j.range[1]}};
+      else def["limit"] = {{"lower_m", j.range[0]}, {"upper_m", j.range[1]}};
+    }
+    if (j.stiffness > 0.0) {
+      // MuJoCo's passive spring, -k (q - springref) - d q', as a spring drive.
+      def["drive"] = hinge ? json{{"mode", "angle"}, {"target_rad", j.springref}, {"stiffness_N_m_per_rad", j.stiffness},
+                                  {"damping_N_m_s_per_rad", j.damping}}
+                           : json{{"mode", "position"}, {"target_m", j.springref}, {"stiffness_N_per_m", j.stiffness},
+                                  {"damping_N_s_per_m", j.damping}};
+    } else if (j.damping > 0.0) {
+      unmapped_.push_back(j.origin.where() + ": damping without stiffness is not imported (Reeve's joint damping comes with a spring)");
+    }
+    (hinge ? hinges_ : joints_).push_back(def);
+  }
+
+  // --- wrap cylinders ---------------------------------------------------
+
+  void addWheels() {
+    for (std::size_t gi = 0; gi < m_.geoms.size(); ++gi) {
+      if (!wrap_[gi] || geom_body_.count(static_cast<int>(gi))) continue;  // the world's fixed ones are static already
+      const Geom& g = m_.geoms[gi];
+      const int owner = group_[g.body];
+      const std::string other = owner == 0 ? "world" : reeve_body_.at(owner);
+      const Pose p = m_.bodies[g.body].world.then(g.pose);
+      const bool turning = options_.wheels == MjcfWheels::Turning;
+      const std::string name = uniqueName(g.name, "wheel" + std::to_string(gi));
+      double mass = turning ? g.mass : kWeldedWheelMass * massOf(other);
+      if (!(mass > 0.0)) {  // a turning wheel of mass 0 (MuJoCo's wraps often are)
+        mass = 1000.0 * geomVolume(g.type, g.size);
+        unmapped_.push_back(g.origin.where() + ": mass 0 for a turning wheel; it weighs " + std::to_string(mass) +
+                            " kg (density 1000)");
+      }
+      json body = {{"name", name}, {"shape", shapeOf(g)}, {"mass_kg", mass}, {"position_m", vec(p.pos)}};
+      if (p.quat.angularDistance(Quat::Identity()) > 0.0) body["orientation"] = orientationJson(p.quat);
+      bodies_.push_back(body);
+      geom_body_[static_cast<int>(gi)] = name;
+      if (turning)
+        hinges_.push_back({{"body", name}, {"other", other}, {"anchor_m", vec(p.pos)}, {"axis", vec(p.quat * Vec3::UnitZ())}});
+      else
+        joints_.push_back({{"type", "fixed"}, {"body", name}, {"other", other}, {"anchor_m", vec(p.pos)}});
+    }
+  }
+
+  double massOf(const std::string& name) const {
+    for (const json& b : bodies_)
+      if (b["name"] == name) return b["mass_kg"].get<double>();
+    return 0.0;  // the world
+  }
+
+  // --- tendons ----------------------------------------------------------
+
+  Vec3 sitePosition(int s) const { return m_.bodies[m_.sites[s].body].world.apply(m_.sites[s].pos); }
+  Vec3 elementPoint(const PathElement& e) const {
+    if (e.kind == PathElement::Kind::Site) return sitePosition(e.index);
+    const Geom& g = m_.geoms[e.index];
+    return m_.bodies[g.body].world.then(g.pose).pos;
+  }
+
+  // A site's link: tied to (or through) the Reeve body that carries it, at
+  // its point in that body's frame; a site of the world gets a static body.
+  json siteLink(int s, const char* type) {
+    const Site& site = m_.sites[s];
+    const Vec3 world = sitePosition(s);
+    std::string body;
+    Vec3 local;
+    if (group_[site.body] == 0) {
+      if (!site_body_.count(s)) {
+        site_body_[s] = uniqueName(site.name, "site" + std::to_string(s));
+        bodies_.push_back({{"name", site_body_[s]}, {"shape", {{"type", "sphere"}, {"radius_m", 0.005}}}, {"static", true},
+                           {"position_m", vec(world)}});
+      }
+      body = site_body_[s];
+      local = Vec3::Zero();
+    } else {
+      const Pose& f = frame_.at(group_[site.body]);
+      body = reeve_body_.at(group_[site.body]);
+      local = f.quat.conjugate() * (world - f.pos);
+    }
+    return {{"type", type}, {"body", body}, {"point_m", vec(local)}};
+  }
+
+  void addCable(const Tendon& t) {
+    if (!mappable(t, true)) {
+      cable_lengths_.emplace_back(-1, 0.0);
+      return;
+    }
+    json links = json::array();
+    for (std::size_t k = 0; k < t.path.size(); ++k) {
+      const PathElement& e = t.path[k];
+      if (e.kind == PathElement::Kind::Site) {
+        links.push_back(siteLink(e.index, k == 0 || k + 1 == t.path.size() ? "attachment" : "pinhole"));
+        continue;
+      }
+      // A wrap: which way round, from the path's neighbours (and its
+      // sidesite), in the cylinder's plane seen from its +z.
+      const Geom& g = m_.geoms[e.index];
+      const Pose p = m_.bodies[g.body].world.then(g.pose);
+      const auto inPlane = [&](const Vec3& w) { return Vec2((p.quat.conjugate() * (w - p.pos)).head<2>()); };
+      const Vec2 a = inPlane(elementPoint(t.path[k - 1])), b = inPlane(elementPoint(t.path[k + 1]));
+      const Vec2 d = b - a;
+      const auto cross = [](const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); };
+      // Clockwise when the path passes the centre on its left (the centre
+      // to the right of a -> b: a rope over the top of a wheel, left to
+      // right), or round the side its sidesite is on.
+      const Vec2 side_site = e.sidesite >= 0 ? inPlane(sitePosition(e.sidesite)) : Vec2::Zero();
+      const double clockwise = e.sidesite >= 0 ? cross(d, side_site) : cross(d, a);
+      json link = {{"type", "rolling"}, {"body", geom_body_.at(e.index)}, {"orientation", clockwise > 0.0 ? "cw" : "ccw"}};
+      // A straight path that misses the cylinder is not wrapped until it
+      // would cut it (Reeve's inactive link), unless a sidesite on the
+      // other side of the centre makes MuJoCo wrap it the long way.
+      const double t01 = d.squaredNorm() > 0.0 ? std::clamp(-a.dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+      const Vec2 nearest = a + t01 * d;
+      if (nearest.norm() >= g.size[0] && !(e.sidesite >= 0 && side_site.dot(nearest) < 0.0)) link["active"] = false;
+      if (options_.wheels == MjcfWheels::Fixed) link["mu"] = 0.0;
+      links.push_back(link);
+    }
+    json cable = {{"name", uniqueName(t.name, "tendon" + std::to_string(cables_.size()))}, {"links", links}};
+    double length = std::numeric_limits<double>::quiet_NaN();
+    if (t.limited) {
+      if (t.range[0] > 0.0) unmapped_.push_back(t.origin.where() + ": the range's lower end is not imported (a cable does not push)");
+      length = t.range[1];
+    }
+    if (t.stiffness > 0.0) {
+      if (t.limited) unmapped_.push_back(t.origin.where() + ": the range with a stiffness is not imported (the cable is the spring)");
+      length = t.springlength ? *t.springlength : std::numeric_limits<double>::quiet_NaN();
+      cable["compliance_m_per_N"] = 1.0 / t.stiffness;  // set per metre once its length is known
+      if (t.damping > 0.0) cable["damping_N_s_per_m"] = t.damping;
+    } else if (t.damping > 0.0) {
+      unmapped_.push_back(t.origin.where() + ": damping without stiffness is not imported");
+    }
+    if (t.frictionloss > 0.0) unmapped_.push_back(t.origin.where() + ": frictionloss not imported");
+    cable_lengths_.emplace_back(static_cast<int>(cables_.size()), length);
+    cables_.push_back(cable);
+  }
+
+  // --- settings ---------------------------------------------------------
+
+  json solver() const {
+    // Substeps of MuJoCo's timestep, as many as make frames near 60 Hz.
+    const int substeps = std::max(1, static_cast<int>(std::lround(1.0 / (60.0 * m_.timestep))));
+    return {{"frame_rate_hz", 1.0 / (substeps * m_.timestep)}, {"substeps", substeps}, {"gravity_m_per_s2", vec(m_.gravity)}};
+  }
+
+  json camera() const {
+    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    for (const Body& b : m_.bodies) lo = lo.cwiseMin(b.world.pos), hi = hi.cwiseMax(b.world.pos);
+    for (std::size_t s = 0; s < m_.sites.size(); ++s) lo = lo.cwiseMin(sitePosition(static_cast<int>(s))), hi = hi.cwiseMax(sitePosition(static_cast<int>(s)));
+    const Vec3 centre = 0.5 * (lo + hi);
+    const double size = std::max(1.0, (hi - lo).norm());
+    // MuJoCo's convention: up is against gravity (+z by default).
+    const Vec3 up = m_.gravity.norm() > 0.0 ? Vec3(-m_.gravity.normalized()) : Vec3::UnitZ();
+    const Vec3 side = up.unitOrthogonal();
+    return {{"eye_m", vec(centre + 2.0 * size * side.cross(up) + 0.5 * size * up)}, {"target_m", vec(centre)}, {"up", vec(up)}};
+  }
+
+  const Model& m_;
+  MjcfOptions options_;
+  json scene_, bodies_ = json::array(), hinges_ = json::array(), joints_ = json::array(), cables_ = json::array();
+  std::optional<json> ground_;
+  std::vector<char> wrap_;
+  std::vector<int> group_;
+  std::set<std::string> names_{"world"};
+  std::map<int, std::string> reeve_body_, geom_body_, site_body_;
+  std::map<int, Pose> frame_;  // a moving group's Reeve body frame (world)
+  std::vector<std::string> unmapped_;
+  std::vector<std::pair<int, double>> cable_lengths_;
+};
+
+}  // namespace
+
+MjcfImport mapModel(const Model& model, const MjcfOptions& options, std::vector<std::pair<int, double>>& lengths) {
+  Mapper mapper(model, options);
+  MjcfImport out = mapper.map();
+  lengths = mapper.cableLengths();
+  return out;
+}
+
+}  // namespace reeve::mjcf

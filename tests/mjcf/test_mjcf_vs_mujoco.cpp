@@ -1,0 +1,84 @@
+// The test models stepped by MuJoCo itself (Debian's libmujoco-dev) and by
+// Reeve after import, at MuJoCo's timestep: the same statics to 1e-4, the
+// same motion to 1e-3 (MuJoCo's constraints are soft, Reeve's rigid; both
+// step with semi-implicit Euler). Built only where MuJoCo is installed.
+#include <mujoco/mujoco.h>
+
+#include <cmath>
+#include <memory>
+
+#include "mjcf_fixture.h"
+#include "reeve/engine/fp_exceptions.h"
+
+namespace reeve::test {
+namespace {
+
+struct MuJoCo {
+  mjModel* model = nullptr;
+  mjData* data = nullptr;
+  explicit MuJoCo(const std::string& path) {
+    const FloatingPointExceptionsMasked theirs;  // MuJoCo's own arithmetic is not under test
+    char error[1000] = "";
+    model = mj_loadXML(path.c_str(), nullptr, error, sizeof error);
+    if (!model) throw std::runtime_error(path + ": " + error);
+    data = mj_makeData(model);
+  }
+  ~MuJoCo() {
+    mj_deleteData(data);
+    mj_deleteModel(model);
+  }
+  void step(int n) {
+    const FloatingPointExceptionsMasked theirs;
+    for (int i = 0; i < n; ++i) mj_step(model, data);
+  }
+  // A free body's height (m, world) as its joint has it now (xipos is the
+  // pose the last step started from).
+  double freeHeight(const char* name) const {
+    const int id = mj_name2id(model, mjOBJ_BODY, name);
+    return data->qpos[model->jnt_qposadr[model->body_jntadr[id]] + 2];
+  }
+  // The force (N) the tendon's limit pulls with.
+  double tendonLimitForce(int tendon) const {
+    double f = 0.0;
+    for (int i = 0; i < data->nefc; ++i)
+      if (data->efc_type[i] == mjCNSTR_LIMIT_TENDON && data->efc_id[i] == tendon) f += data->efc_force[i];
+    return f;
+  }
+};
+
+// Steps Reeve frame by frame: its substep is MuJoCo's timestep.
+void stepReeve(Scene& s, int frames) {
+  for (int f = 0; f < frames; ++f) s.world->step(1.0 / s.frame_rate_hz);
+}
+
+// MuJoCo's limit is soft (it takes 0.9 of the tension in its first step),
+// Reeve's rigid; over 0.48 s the drops agree to 1e-3 and the tensions at
+// the end to 1e-4.
+TEST(MjcfVsMuJoCo, AtwoodFallsAsMuJoCoLetsIt) {
+  MuJoCo mj(mjcfModel("atwood"));
+  Scene s = importedScene("atwood");
+  const int substeps = s.world->settings().substeps;
+  ASSERT_NEAR(1.0 / (s.frame_rate_hz * substeps), mj.model->opt.timestep, 1e-15);
+  const int frames = 30;
+  mj.step(frames * substeps);
+  stepReeve(s, frames);
+  const double drop_mj = 1.0 - mj.freeHeight("heavy"), drop = 1.0 - s.world->body(bodyNamed(s, "heavy")).x.z();
+  EXPECT_GT(drop, 0.3);
+  EXPECT_NEAR(drop, drop_mj, 1e-3 * drop) << "MuJoCo " << drop_mj << " m, Reeve " << drop << " m";
+  const double T_mj = mj.tendonLimitForce(0), T = s.cables->tension(0, 0);
+  EXPECT_NEAR(T, T_mj, 1e-4 * T) << "MuJoCo " << T_mj << " N, Reeve " << T << " N";
+}
+
+TEST(MjcfVsMuJoCo, LeverHoldsWithMuJoCosTension) {
+  MuJoCo mj(mjcfModel("lever"));
+  Scene s = importedScene("lever");
+  const int substeps = s.world->settings().substeps;
+  const int frames = 120;  // 2 s: MuJoCo's soft limit settles
+  mj.step(frames * substeps);
+  stepReeve(s, frames);
+  const double T_mj = mj.tendonLimitForce(0), T = s.cables->tension(0, 0);
+  EXPECT_NEAR(T, T_mj, 1e-4 * T_mj) << "MuJoCo " << T_mj << " N, Reeve " << T << " N";
+}
+
+}  // namespace
+}  // namespace reeve::test

@@ -491,12 +491,19 @@ TEST_F(Cli, ImportMjcfWritesTheSceneSaysWhatIsLeftOutAndRunsTheModelDirectly) {
   const Result run = reeve("run " + atwood + " --frames 3 --csv " + path("atwood.csv"));
   ASSERT_EQ(run.code, 0) << run.err;
   EXPECT_NE(test::slurp(path("atwood.csv")).find("heavy.z_m"), std::string::npos);
-  const std::string damped = write("damped.xml", "<mujoco>\n<worldbody>\n<body>\n<joint type=\"hinge\" damping=\"1\"/>\n"
+  const std::string damped = write("damped.xml", "<mujoco>\n<worldbody>\n<body>\n<joint type=\"hinge\" frictionloss=\"1\"/>\n"
                                                  "<geom size=\"0.1\"/>\n</body>\n</worldbody>\n</mujoco>\n");
   const Result validate = reeve("validate " + damped);
   EXPECT_EQ(validate.code, 0) << validate.err;
-  EXPECT_NE(validate.err.find("1 part of the model is not imported:\n  " + damped + ":4: <joint>: damping"), std::string::npos)
+  EXPECT_NE(validate.err.find("1 part of the model is not imported:\n  " + damped + ":4: <joint>: frictionloss not imported"), std::string::npos)
       << validate.err;
+  // Controls held constant: a motor pulling a tendon is a winch.
+  const std::string actuators = std::string(REEVE_MJCF_MODELS) + "/actuators.xml";
+  const Result held = reeve("import mjcf " + actuators + " --control spin=0.5 --control lift=-20");
+  ASSERT_EQ(held.code, 0) << held.err;
+  EXPECT_NE(held.out.find("\"winch\""), std::string::npos);
+  for (const char* control : {"spin", "=1", "spin=abc", "spin=1e999"})
+    EXPECT_EQ(reeve("import mjcf " + actuators + " --control " + control).code, 64) << control;
   const std::string bad = write("bad.xml", "<mujoco>\n<worldbody>\n<body pos=\"1 2\"/>\n</worldbody>\n</mujoco>\n");
   for (const std::string command : {"run ", "validate ", "import mjcf "}) {
     const Result e = reeve(command + bad);

@@ -571,6 +571,8 @@ TEST(SpringDefinitions, AddHingeAndAddPrismaticRejectBadSprings) {
   hinge.drive = spring(0.1, 10.0, 1.0);
   hinge.drive.mode = HingeDrive::Mode::Velocity;  // a spring needs an angle drive
   EXPECT_THROW(world.addHinge(hinge), std::invalid_argument);
+  hinge.drive.stiffness = 0.0;  // a velocity drive's damping alone is a damper
+  EXPECT_NO_THROW(world.addHinge(hinge));
   hinge.drive = spring(0.1, 10.0, 1.0);
   EXPECT_NO_THROW(world.addHinge(hinge));
 
@@ -602,6 +604,49 @@ TEST(SpringDefinitions, AddHingeAndAddPrismaticRejectBadSprings) {
   rail.drive.damping = 0.0;
   rail.drive.integration = PrismaticDrive::Integration::Trapezoidal;
   EXPECT_THROW(world.addPrismatic(rail), std::invalid_argument);
+}
+
+// ------------------------------------------------------------- dampers --
+
+// A velocity drive with a damping c is a damper toward its target speed:
+// torque c (w_t - w) on a disc of inertia I (a rotor: its hinge through its
+// centre), implicit, so each substep h keeps 1 / (1 + c h / I) of the
+// difference: w_n = w_t + (w_0 - w_t) (1 + c h / I)^-n, to rounding, with
+// both solvers; a carriage on a rail with a damper (force c (v_t - v))
+// alike with its mass. Target 0 is MuJoCo's joint damping.
+TEST_P(Springs, AVelocityDriveWithDampingIsAnImplicitDamperTowardItsTarget) {
+  constexpr double m = 3.0, r = 0.2, c = 0.4, h = 1.0 / 600.0;
+  for (const double target : {0.0, 2.0}) {
+    World world = makeWorld(GetParam(), 10, 2, 0.0);
+    const BodyId disc = addBody(world, Shape::cylinder(r, 0.05), m, Vec3::Zero());
+    world.body(disc).omega = Vec3(0, 0, 10.0);
+    HingeDef hinge{disc, kWorldBody, Vec3::Zero(), Vec3::UnitZ()};
+    hinge.drive.mode = HingeDrive::Mode::Velocity;
+    hinge.drive.target = target;
+    hinge.drive.damping = c;
+    world.addHinge(hinge);
+    const BodyId cart = addBody(world, Shape::box(Vec3(0.1, 0.1, 0.1)), m, Vec3(0, -1, 0));
+    world.body(cart).v = Vec3(10.0, 0, 0);
+    PrismaticDef rail;
+    rail.body = cart;
+    rail.anchor = Vec3(0, -1, 0);
+    rail.axis = Vec3::UnitX();
+    rail.drive.mode = PrismaticDrive::Mode::Velocity;
+    rail.drive.target = target;
+    rail.drive.damping = c;
+    world.addPrismatic(rail);
+    const int frames = 60;
+    for (int f = 0; f < frames; ++f) world.step(10 * h);
+    const int n = 10 * frames;
+    const double I = 0.5 * m * r * r;
+    const double w = target + (10.0 - target) * std::pow(1.0 + c * h / I, -n);
+    const double v = target + (10.0 - target) * std::pow(1.0 + c * h / m, -n);
+    // Rounding over 600 substeps: 2e-12 of the speed here.
+    EXPECT_NEAR(world.body(disc).omega.z(), w, 1e-10 * 10.0) << solverName(GetParam()) << " target " << target;
+    EXPECT_NEAR(world.body(cart).v.x(), v, 1e-10 * 10.0) << solverName(GetParam()) << " target " << target;
+    // The closed form of the continuous damper, for scale: 1 % away here.
+    EXPECT_GT(std::abs(w - (target + (10.0 - target) * std::exp(-c * n * h / I))), 1e-4);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(BothSolvers, Springs, ::testing::Values(SolverKind::Direct, SolverKind::GaussSeidel),

@@ -156,7 +156,13 @@ void prepareCoordinate(JointCoordinate& c, const DriveSpec& drive, double start,
   c.max_drive_lambda = unlimited ? kInf : drive.max_effort * h * h;
   switch (drive.kind) {
     case DriveKind::None: break;
-    case DriveKind::Velocity: c.drive_step = drive.target * h; break;
+    case DriveKind::Velocity:
+      c.drive_step = drive.target * h;
+      // A damper toward the target speed: the row's impulse is the step it
+      // misses over alpha~ = 1 / (damping h), a torque of damping (target -
+      // speed), implicit (the spring's formula below with k = 0).
+      if (drive.damping > 0.0) c.drive_compliance = 1.0 / (drive.damping * h);
+      break;
     case DriveKind::Position: {
       const double e = drive.target - start;  // an angle's start counted through whole turns
       if (drive.stiffness > 0.0) {  // a spring: XPBD, damped (joint_rows.h)

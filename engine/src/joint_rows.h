@@ -99,7 +99,7 @@ struct DriveSpec {
   double target = 0.0;      // rad/s or m/s (Velocity), rad or m (Position)
   double max_effort = 0.0;  // N m or N; <= 0 or infinite: unlimited
   double stiffness = 0.0;   // N m/rad or N/m; > 0: a spring (Position only)
-  double damping = 0.0;     // N m s/rad or N s/m, with a spring
+  double damping = 0.0;     // N m s/rad or N s/m: a spring's, or a velocity drive's damper
   // Added to a spring's error x - x* (rad or m): a trapezoidal spring
   // (HingeDrive::Integration) is a row of a quarter of its stiffness whose
   // error is moved by the part known at the substep's start, 2 e_0 + e_-

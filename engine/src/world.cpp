@@ -56,16 +56,19 @@ void checkDrive(const char* kind, double target, double max_effort, double until
     if (!std::isfinite(k.target)) reject(kind, "the drive schedule's targets must be finite");
 }
 
-// A drive's spring (HingeDrive, PrismaticDrive): stiffness and damping
-// finite and >= 0, only on an angle or position drive, damping only with
-// a stiffness; trapezoidal integration only with a stiffness.
-void checkSpring(const char* kind, double stiffness, double damping, bool position_drive, bool trapezoidal) {
+// A drive's spring or damper (HingeDrive, PrismaticDrive): stiffness and
+// damping finite and >= 0; stiffness only on an angle or position drive,
+// whose damping needs it (a velocity drive's damping is a damper alone);
+// trapezoidal integration only with a stiffness.
+void checkSpring(const char* kind, double stiffness, double damping, bool position_drive, bool velocity_drive,
+                 bool trapezoidal) {
   // isfinite first: an ordered comparison with NaN raises FE_INVALID.
   if (!std::isfinite(stiffness) || stiffness < 0.0) reject(kind, "the drive's stiffness must be finite and >= 0");
   if (!std::isfinite(damping) || damping < 0.0) reject(kind, "the drive's damping must be finite and >= 0");
-  if ((stiffness > 0.0 || damping > 0.0) && !position_drive)
-    reject(kind, "stiffness and damping are for an angle or position drive only");
-  if (damping > 0.0 && stiffness == 0.0) reject(kind, "the drive's damping needs a stiffness > 0");
+  if (stiffness > 0.0 && !position_drive) reject(kind, "stiffness is for an angle or position drive only");
+  if (damping > 0.0 && !position_drive && !velocity_drive) reject(kind, "damping is for a drive (it has none)");
+  if (damping > 0.0 && position_drive && stiffness == 0.0)
+    reject(kind, "an angle or position drive's damping needs a stiffness > 0");
   if (trapezoidal && stiffness == 0.0) reject(kind, "trapezoidal integration is for a spring (a stiffness > 0)");
 }
 
@@ -284,7 +287,7 @@ HingeId World::addHinge(const HingeDef& def) {
   checkLimit("hinge", def.limit, kPi);
   checkDrive("hinge", def.drive.target, def.drive.max_torque, def.drive.until, def.drive.schedule);
   checkSpring("hinge", def.drive.stiffness, def.drive.damping, def.drive.mode == HingeDrive::Mode::Angle,
-              def.drive.integration == HingeDrive::Integration::Trapezoidal);
+              def.drive.mode == HingeDrive::Mode::Velocity, def.drive.integration == HingeDrive::Integration::Trapezoidal);
   rotors_dirty_ = islands_dirty_ = true;
   hinges_.push_back(makeHingeJoint(def, body(def.body), body(def.other)));
   return static_cast<HingeId>(hinges_.size() - 1);
@@ -298,7 +301,7 @@ PrismaticId World::addPrismatic(const PrismaticDef& def) {
   checkLimit("prismatic joint", def.limit, kAny);
   checkDrive("prismatic joint", def.drive.target, def.drive.max_force, def.drive.until, def.drive.schedule);
   checkSpring("prismatic joint", def.drive.stiffness, def.drive.damping,
-              def.drive.mode == PrismaticDrive::Mode::Position,
+              def.drive.mode == PrismaticDrive::Mode::Position, def.drive.mode == PrismaticDrive::Mode::Velocity,
               def.drive.integration == PrismaticDrive::Integration::Trapezoidal);
   rotors_dirty_ = islands_dirty_ = true;
   prismatics_.push_back(makePrismaticJoint(def, body(def.body), body(def.other)));

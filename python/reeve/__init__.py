@@ -81,29 +81,31 @@ def load(source):
     if isinstance(source, (str, _os.PathLike)):
         path = _os.fspath(source)
         if path.lower().endswith(".xml"):
-            return _load_text(_json.dumps(_imported(path, "fixed", stacklevel=3)), path)
+            return _load_text(_json.dumps(_imported(path, "fixed", {}, stacklevel=3)), path)
         return _load_file(path)
     raise TypeError(f"reeve.load: expected a path, JSON text or a dict, got {type(source).__name__}")
 
 
-def import_mjcf(path, wheels="fixed"):
+def import_mjcf(path, wheels="fixed", controls=None):
     """Reads a MuJoCo model (MJCF XML) and returns the Reeve scene it makes, as a dict.
 
     Bodies, joints and spatial tendons are imported; each wrap cylinder a
     tendon runs over becomes a pulley: with wheels="fixed" (the default) a
     frictionless one welded to its body, as MuJoCo's wrap is; with
     wheels="turning" a wheel hinged on its axis with the geom's mass, the
-    tendon rolling on it. scenes/README.md ("MuJoCo models") lists the
-    mapping. What the scene does not carry of the model is given in one
+    tendon rolling on it. controls: {actuator name: its control (MuJoCo's
+    ctrl)}, held constant while the scene runs (others 0, at rest): motors
+    and servos on joints become drives, a motor pulling a tendon a winch.
+    scenes/README.md ("MuJoCo models") lists the mapping. What the scene does not carry of the model is given in one
     UserWarning, a line for each element with its file and line. Raises
     reeve.SceneError ("FILE:LINE: <element>: expected ..., got ...") for a
     malformed model or one Reeve cannot build. reeve.load(d) builds the dict.
     """
-    return _imported(_os.fspath(path), wheels, stacklevel=3)
+    return _imported(_os.fspath(path), wheels, dict(controls or {}), stacklevel=3)
 
 
-def _imported(path, wheels, stacklevel):
-    text, unmapped = _import_mjcf(path, wheels)
+def _imported(path, wheels, controls, stacklevel):
+    text, unmapped = _import_mjcf(path, wheels, controls)
     if unmapped:
         _warnings.warn(f"reeve: {len(unmapped)} parts of {path} are not imported:\n  " + "\n  ".join(unmapped),
                        stacklevel=stacklevel)

@@ -184,13 +184,16 @@ void bindScene(py::module_& m) {
   m.def("_load_text", &fromText, py::arg("text"), py::arg("source"));
   m.def(
       "_import_mjcf",
-      [](const std::filesystem::path& path, const std::string& wheels) {
+      [](const std::filesystem::path& path, const std::string& wheels, const std::map<std::string, double>& controls) {
         if (wheels != "fixed" && wheels != "turning")
           throw py::value_error("wheels: expected \"fixed\" or \"turning\", got \"" + wheels + "\"");
-        MjcfImport model = importMjcf(path, {wheels == "turning" ? MjcfWheels::Turning : MjcfWheels::Fixed});
+        for (const auto& [name, value] : controls)
+          if (!std::isfinite(value)) throw py::value_error("controls[" + name + "]: expected a finite number");
+        MjcfImport model =
+            importMjcf(path, {wheels == "turning" ? MjcfWheels::Turning : MjcfWheels::Fixed, controls});
         return py::make_tuple(model.scene_json, model.unmapped);
       },
-      py::arg("path"), py::arg("wheels"));
+      py::arg("path"), py::arg("wheels"), py::arg("controls"));
   m.def(
       "default_scene_json", [] { return std::string(defaultSceneJson()); },
       "The text of scenes/simple.json (paper Fig. 12, left), the command line's default scene.");

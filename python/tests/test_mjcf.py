@@ -35,12 +35,12 @@ def test_loading_the_xml_is_importing_it_with_fixed_pulleys():
 
 def test_what_is_not_imported_is_one_warning_naming_lines(tmp_path):
     model = tmp_path / "damped.xml"
-    model.write_text('<mujoco>\n<worldbody>\n<body>\n<joint type="hinge" damping="1"/>\n<geom size="0.1"/>\n'
+    model.write_text('<mujoco>\n<worldbody>\n<body>\n<joint type="hinge" frictionloss="1"/>\n<geom size="0.1"/>\n'
                      '</body>\n</worldbody>\n</mujoco>\n')
     with pytest.warns(UserWarning) as caught:
         reeve.import_mjcf(model)
     assert len(caught) == 1
-    assert f"{model}:4: <joint>: damping without stiffness" in str(caught[0].message)
+    assert f"{model}:4: <joint>: frictionloss not imported" in str(caught[0].message)
 
 
 def test_a_malformed_model_raises_scene_error_with_its_line(tmp_path):
@@ -51,3 +51,14 @@ def test_a_malformed_model_raises_scene_error_with_its_line(tmp_path):
     assert str(caught.value).startswith(f"{model}:3: <body>: expected pos of 3 numbers")
     with pytest.raises(ValueError):
         reeve.import_mjcf(MODELS / "atwood.xml", wheels="square")
+
+
+def test_controls_are_held_constant():
+    # models/actuators.xml: a motor of gear 2 on a disc of 1 kg and radius
+    # 0.2 m (I = 0.02 kg m^2): at control 0.5 it turns it with 1 N m.
+    scene = reeve.load(reeve.import_mjcf(MODELS / "actuators.xml", controls={"spin": 0.5}))
+    scene.step(10)
+    spin = scene.bodies.names.index("spin")
+    assert scene.bodies.angular_velocities_rad_per_s[spin][2] == pytest.approx(1.0 * scene.time_s / 0.02, rel=1e-9)
+    with pytest.raises(ValueError):
+        reeve.import_mjcf(MODELS / "actuators.xml", controls={"spin": float("nan")})

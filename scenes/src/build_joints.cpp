@@ -134,6 +134,8 @@ void addPrismatic(const json& j, const std::string& path, const BodyNames& names
       driveSpring(*drive, path + "/drive", "stiffness_N_per_m", "damping_N_s_per_m", def.drive.stiffness,
                   def.drive.damping, trapezoidal, source);
       if (trapezoidal) def.drive.integration = PrismaticDrive::Integration::Trapezoidal;
+    } else {
+      def.drive.damping = drive->value("damping_N_s_per_m", 0.0);  // a damper; omitted: rigid
     }
   }
   addChecked([&] { world.addPrismatic(def); }, path, source);
@@ -198,6 +200,7 @@ HingeDrive hingeDrive(const json& drive, const std::string& pointer, const std::
   if (drive.at("mode") == "velocity") {
     result.mode = HingeDrive::Mode::Velocity;
     driveTarget(drive, pointer, "target_rad_per_s", result.target, result.schedule, source);
+    result.damping = drive.value("damping_N_m_s_per_rad", 0.0);  // a damper; omitted: rigid
   } else {
     result.mode = HingeDrive::Mode::Angle;
     driveTarget(drive, pointer, "target_rad", result.target, result.schedule, source);  // any number of turns

@@ -288,7 +288,7 @@ TEST(JointErrors, HingeDampingWithoutStiffness) {
 TEST(JointErrors, StiffnessOnAHingeVelocityDrive) {
   expectError(jointsWith(R"("max_torque_N_m": 1.5)", R"("max_torque_N_m": 1.5, "stiffness_N_m_per_rad": 30)"),
               "/hinges/0/drive/stiffness_N_m_per_rad",
-              "no property \"stiffness_N_m_per_rad\" (allowed: mode, target_rad_per_s, schedule, max_torque_N_m, until_s)",
+              "no property \"stiffness_N_m_per_rad\" (allowed: mode, target_rad_per_s, schedule, max_torque_N_m, until_s, damping_N_m_s_per_rad)",
               "\"stiffness_N_m_per_rad\"");
 }
 
@@ -310,7 +310,7 @@ TEST(JointErrors, PrismaticDampingWithoutStiffness) {
 TEST(JointErrors, StiffnessOnAPrismaticVelocityDrive) {
   expectError(jointsWith(R"("max_force_N": 30)", R"("max_force_N": 30, "stiffness_N_per_m": 400)"),
               "/joints/0/drive/stiffness_N_per_m",
-              "no property \"stiffness_N_per_m\" (allowed: mode, target_m_per_s, schedule, max_force_N, until_s)",
+              "no property \"stiffness_N_per_m\" (allowed: mode, target_m_per_s, schedule, max_force_N, until_s, damping_N_s_per_m)",
               "\"stiffness_N_per_m\"");
 }
 
@@ -332,7 +332,7 @@ TEST(JointErrors, UnknownSpringIntegration) {
 TEST(JointErrors, IntegrationOnAHingeVelocityDrive) {
   expectError(jointsWith(R"("max_torque_N_m": 1.5})", R"("max_torque_N_m": 1.5, "integration": "trapezoidal"})"),
               "/hinges/0/drive/integration",
-              "no property \"integration\" (allowed: mode, target_rad_per_s, schedule, max_torque_N_m, until_s)",
+              "no property \"integration\" (allowed: mode, target_rad_per_s, schedule, max_torque_N_m, until_s, damping_N_m_s_per_rad)",
               "\"integration\"");
 }
 
@@ -469,7 +469,7 @@ TEST(JointErrors, PrismaticWithoutAxis) {
 TEST(JointErrors, VelocityDriveWithAnAngleTarget) {
   expectError(jointsWith(R"("target_rad_per_s": 10,)", R"("target_rad": 1,)"),
               "/hinges/0/drive/target_rad",
-              "no property \"target_rad\" (allowed: mode, target_rad_per_s, schedule, max_torque_N_m, until_s)",
+              "no property \"target_rad\" (allowed: mode, target_rad_per_s, schedule, max_torque_N_m, until_s, damping_N_m_s_per_rad)",
               "\"target_rad\"");
 }
 

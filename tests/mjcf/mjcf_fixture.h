@@ -18,7 +18,9 @@ inline std::string mjcfModel(const std::string& name) { return std::string(REEVE
 /// The scene importMjcf makes of models/NAME.xml.
 inline Scene importedScene(const std::string& name, MjcfWheels wheels = MjcfWheels::Fixed) {
   const std::string path = mjcfModel(name);
-  MjcfImport model = importMjcf(path, {wheels});
+  MjcfOptions options;
+  options.wheels = wheels;
+  MjcfImport model = importMjcf(path, options);
   Scene scene = parseScene(model.scene_json, path);
   scene.not_imported = model.unmapped;
   return scene;

@@ -26,9 +26,6 @@ const BadModel kBadModels[] = {
     {"massless", "<mujoco>\n<worldbody>\n<body name=\"m\">\n<joint type=\"hinge\"/>\n<geom size=\"1\" mass=\"0\"/>\n</body>\n"
                  "</worldbody>\n</mujoco>\n",
      3, "<body name=\"m\">", "a moving body with mass"},
-    {"two_joints", "<mujoco>\n<worldbody>\n<body name=\"u\">\n<joint type=\"hinge\"/>\n<joint type=\"hinge\" axis=\"1 0 0\"/>\n"
-                   "<geom size=\"1\"/>\n</body>\n</worldbody>\n</mujoco>\n",
-     3, "<body name=\"u\">", "at most one joint in a body"},
     {"unknown_class", "<mujoco>\n<worldbody>\n<body>\n<freejoint/>\n<geom class=\"nope\" size=\"1\"/>\n</body>\n</worldbody>\n</mujoco>\n",
      5, "<geom>", "a class defined in <default>"},
     {"bad_type", "<mujoco>\n<worldbody>\n<body>\n<freejoint/>\n<geom type=\"torus\" size=\"1\"/>\n</body>\n</worldbody>\n</mujoco>\n",

@@ -96,5 +96,113 @@ TEST(MjcfPhysics, HingeSpringAndDampingSwingAsTheirOscillator) {
   EXPECT_NEAR(theta, expected * kept, 2e-4) << "t " << t << " period " << period;
 }
 
+// MuJoCo's joint damping alone, -d q', is a damper: a 1 kg disc of radius
+// 0.2 m (I = 0.02 kg m^2) spinning at 10 rad/s on a hinge with damping 0.01
+// keeps 1 / (1 + d h / I) of its speed a substep (implicit; the continuous
+// e^(-d t / I) is 1e-5 away after 1 s).
+TEST(MjcfPhysics, JointDampingAloneIsAnImplicitDamper) {
+  const auto path = writeModel("damper", R"(<mujoco model="damper">
+  <option timestep="0.002" gravity="0 0 0"/>
+  <worldbody>
+    <body name="disc">
+      <joint type="hinge" axis="0 0 1" damping="0.01"/>
+      <geom type="cylinder" size="0.2 0.05" mass="1"/>
+    </body>
+  </worldbody>
+</mujoco>)");
+  MjcfImport model = importMjcf(path);
+  EXPECT_TRUE(model.unmapped.empty());
+  Scene s = parseScene(model.scene_json, path.string());
+  const BodyId disc = bodyNamed(s, "disc");
+  s.world->body(disc).omega = Vec3(0, 0, 10.0);
+  const double t = stepFrames(s, 60);
+  const double h = 1.0 / (s.frame_rate_hz * s.world->settings().substeps), I = 0.5 * 1.0 * 0.2 * 0.2;
+  EXPECT_NEAR(s.world->body(disc).omega.z(), 10.0 * std::pow(1.0 + 0.01 * h / I, -std::lround(t / h)), 1e-12);
+}
+
+// models/ball.xml: a 2 kg rod, 1 m long, level on a ball joint at one end,
+// its other end hung from a tendon straight up: at rest T = m g / 2, and
+// the rod stays level (the tendon holds its pitch and its yaw; its twist
+// about its own axis is free and nothing turns it).
+TEST(MjcfPhysics, BallJointedRodHangsFromItsTendonWithHalfItsWeight) {
+  Scene s = importedScene("ball");
+  const BodyId rod = bodyNamed(s, "rod");
+  stepFrames(s, 60);
+  EXPECT_NEAR(s.cables->tension(0, 0), 2.0 * g / 2.0, 1e-7 * g);
+  EXPECT_NEAR((s.world->body(rod).x - Vec3(0.5, 0, 0)).norm(), 0.0, 1e-9);
+}
+
+}  // namespace
+}  // namespace reeve::test
+
+namespace reeve::test {
+namespace {
+
+// models/actuators.xml with its controls held: a motor is a constant
+// torque (omega = gear x ctrl x t / I), a velocity servo an implicit damper
+// toward its control, a position servo a spring of kp gear^2 toward
+// ctrl / gear (held there), a motor pulling a tendon a constant tension
+// (a box lifted at 20 N / 1 kg - g).
+TEST(MjcfPhysics, ActuatorsWithControlsHeldAreDrivesAndAWinch) {
+  MjcfOptions options;
+  options.controls = {{"spin", 0.5}, {"servo", 3.0}, {"hold", 0.4}, {"lift", -20.0}};
+  const std::string path = mjcfModel("actuators");
+  MjcfImport model = importMjcf(path, options);
+  EXPECT_TRUE(model.unmapped.empty()) << model.unmapped.front();
+  Scene s = parseScene(model.scene_json, path);
+  const double t = stepFrames(s, 12);  // 0.192 s: the box rises 0.19 m of the 0.95 m to its hook
+  const double h = 1.0 / (s.frame_rate_hz * s.world->settings().substeps), I = 0.5 * 0.2 * 0.2;
+  const long n = std::lround(t / h);
+  EXPECT_NEAR(s.world->body(bodyNamed(s, "spin")).omega.z(), 2.0 * 0.5 * t / I, 1e-9);
+  EXPECT_NEAR(s.world->body(bodyNamed(s, "servo")).omega.z(), 3.0 - 3.0 * std::pow(1.0 + 0.5 * h / I, -n), 1e-9);
+  const BodyId box = bodyNamed(s, "box");
+  EXPECT_NEAR(s.world->body(box).v.z(), (20.0 - g) * t, 1e-9);
+  EXPECT_NEAR(s.cables->tension(0, 0), 20.0, 1e-9);
+  // The position servo swings about 0.2 rad undamped (w = sqrt(32 / I) =
+  // 40 rad/s), losing what implicit Euler loses: settle it and read it.
+  stepFrames(s, 600);
+  const Vec3 side = s.world->body(bodyNamed(s, "hold")).q * Vec3::UnitX();
+  EXPECT_NEAR(std::atan2(side.y(), side.x()), 0.2, 1e-6);
+}
+
+// Without controls every actuator is at rest: nothing moves but what
+// gravity moves (the box falls; its tendon, pulled by nothing, is no cable).
+TEST(MjcfPhysics, ActuatorsAtRestDoNothing) {
+  Scene s = importedScene("actuators");
+  EXPECT_TRUE(s.cables->cables().empty());
+  const double t = stepFrames(s, 30);
+  for (const char* disc : {"spin", "servo", "hold"}) EXPECT_EQ(s.world->body(bodyNamed(s, disc)).omega.norm(), 0.0) << disc;
+  EXPECT_NEAR(s.world->body(bodyNamed(s, "box")).v.z(), -g * t, 1e-9);
+}
+
+}  // namespace
+}  // namespace reeve::test
+
+namespace reeve::test {
+namespace {
+
+// models/gimbal.xml: joints chained through light links. The box on two
+// slides falls at g exactly and stays on x = 3; the bob swings about x
+// only, its roll hinge at rest, and its energy is not created.
+TEST(MjcfPhysics, SeveralJointsInOneBodyChainThroughLightLinks) {
+  Scene s = importedScene("gimbal");
+  EXPECT_TRUE(s.not_imported.empty());
+  EXPECT_EQ(s.world->hinges().size(), 2u);
+  const BodyId bob = bodyNamed(s, "bob"), box = bodyNamed(s, "box");
+  const double e0 = s.world->energy().kinetic + s.world->energy().gravity;
+  double most = 0.0;
+  for (int f = 0; f < 60; ++f) {
+    s.world->step(1.0 / s.frame_rate_hz);
+    EXPECT_NEAR(s.world->body(bob).x.x(), 0.0, 1e-9);
+    most = std::max(most, s.world->energy().kinetic + s.world->energy().gravity - e0);
+  }
+  const double t = 60 / s.frame_rate_hz;
+  EXPECT_NEAR(s.world->body(box).v.z(), -g * t, 1e-9);
+  EXPECT_NEAR(s.world->body(box).x.x(), 3.0, 1e-12);
+  EXPECT_LE(most, 1e-9);  // J: a swing of 0.44 J loses, never gains
+  // The bob swung: about 0.3 rad of its 1 m rod's angle, back and forth.
+  EXPECT_GT(s.world->body(bob).v.norm(), 0.1);
+}
+
 }  // namespace
 }  // namespace reeve::test

@@ -4,6 +4,7 @@
 
 #include <fenv.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -13,6 +14,7 @@
 #include "commands.h"
 #include "generate_command.h"
 #include "import_command.h"
+#include "reeve/engine/fp_exceptions.h"
 #include "segment_command.h"
 #include "view_server.h"
 #include "reeve/scene/scene.h"
@@ -140,6 +142,10 @@ int main(int argc, char** argv) {
                        "fixed: wrap cylinders are frictionless fixed pulleys, as in MuJoCo (default); turning: wheels "
                        "hinged on their axes with the geoms' masses, the tendon rolling on them")
       ->check(CLI::IsMember({"fixed", "turning"}));
+  std::vector<std::string> controls;
+  mjcf_cmd->add_option("--control", controls,
+                       "NAME=VALUE: the control (MuJoCo's ctrl) of the actuator NAME, held constant while the scene "
+                       "runs; repeat for more actuators (default 0: at rest)");
   mjcf_cmd->add_flag("--force", import_options.force, "Overwrite an existing output file");
 
   CLI::App* bench_cmd = nullptr;
@@ -159,6 +165,20 @@ int main(int argc, char** argv) {
   if (*hilbert_cmd) return reeve::generateHilbertCommand(hilbert);
   if (*mjcf_cmd) {
     import_options.mjcf.wheels = wheels == "turning" ? reeve::MjcfWheels::Turning : reeve::MjcfWheels::Fixed;
+    for (const std::string& c : controls) {
+      const auto eq = c.find('=');
+      char* end = nullptr;
+      double value = 0.0;
+      if (eq != std::string::npos) {
+        const reeve::FloatingPointExceptionsMasked overflow_is_tested;  // "1e999" is checked below
+        value = std::strtod(c.c_str() + eq + 1, &end);
+      }
+      if (eq == std::string::npos || eq == 0 || end == c.c_str() + eq + 1 || *end != '\0' || !std::isfinite(value)) {
+        std::cerr << "reeve: --control: expected NAME=VALUE with a finite number, got \"" << c << "\"\n";
+        return reeve::kExitUsage;
+      }
+      import_options.mjcf.controls[c.substr(0, eq)] = value;
+    }
     return reeve::importCommand(import_options);
   }
   if (*bench_cmd) return bench();

@@ -104,6 +104,11 @@ struct Actuator {
   Origin origin;
   std::string name, kind;  // its tag: motor, position, velocity, muscle, general, ...
   std::string target;      // what it acts on, as "joint NAME" or "tendon NAME"
+  int joint = -1, tendon = -1;  // the joint or tendon it acts on, or -1
+  double gear = 1.0;       // its gear's first number
+  double kp = 1.0, kv = 0.0;  // a position servo's gains (kv also a velocity servo's)
+  bool ctrllimited = false, forcelimited = false;
+  std::array<double, 2> ctrlrange{0.0, 0.0}, forcerange{0.0, 0.0};
 };
 
 struct Model {

@@ -79,11 +79,12 @@ class Reader {
       const std::string tag = n.xml.name();
       if (tag == "worldbody") readBodyChildren(n, 0, "main");
     }
+    for (const Node& n : children(root))  // before the actuators that name them
+      if (std::string(n.xml.name()) == "tendon") readTendons(n);
     for (const Node& n : children(root)) {
       const std::string tag = n.xml.name();
-      if (tag == "tendon") readTendons(n);
-      else if (tag == "actuator") readActuators(n);
-      else if (tag == "compiler" || tag == "option" || tag == "default" || tag == "worldbody") continue;
+      if (tag == "actuator") readActuators(n);
+      else if (tag == "compiler" || tag == "option" || tag == "default" || tag == "worldbody" || tag == "tendon") continue;
       else if (tag == "visual" || tag == "asset" || tag == "size" || tag == "statistic") continue;  // drawing, memory
       else unmapped(n, "not imported (Reeve has no " + tag + " section)");
     }
@@ -508,8 +509,9 @@ class Reader {
       Tendon t;
       t.origin = originOf(n);
       t.name = n.xml.attribute("name").value();
-      if (tag == "fixed") {
-        unmapped(n, "fixed tendons (joint couplings) are not imported");
+      if (tag == "fixed") {  // kept for the actuators that name it; not a cable
+        t.spatial = false;
+        model_.tendons.push_back(t);
         continue;
       }
       if (tag != "spatial") fail(n, "<spatial> or <fixed>", "<" + tag + ">");
@@ -556,8 +558,26 @@ class Reader {
       a.origin = originOf(n);
       a.name = n.xml.attribute("name").value();
       a.kind = n.xml.name();
+      const std::string cls = classOf(n, "main");
       for (const char* target : {"joint", "tendon", "site", "body", "jointinparent"})
         if (const auto t = n.xml.attribute(target)) a.target = std::string(target) + " " + t.value();
+      if (n.xml.attribute("joint")) a.joint = find(n, "joint", "joint", model_.joints);
+      if (n.xml.attribute("tendon")) a.tendon = find(n, "tendon", "tendon", model_.tendons);
+      if (const auto gear = lookup(n, a.kind, cls, "gear")) a.gear = numbers(n, gear, 1, 6)[0];
+      a.kp = number(n, a.kind, cls, "kp", 1.0);
+      a.kv = number(n, a.kind, cls, "kv", a.kind == "velocity" ? 1.0 : 0.0);
+      const auto range = [&](const char* limited, const char* range_name, bool& on, std::array<double, 2>& r) {
+        const auto given = lookup(n, a.kind, cls, range_name);
+        if (given) {
+          const auto v = numbers(n, given, 2, 2);
+          r = {v[0], v[1]};
+        }
+        on = flag(n, a.kind, cls, limited).value_or(autolimits_ && given);
+        if (on && !given) fail(n, std::string("a ") + range_name + " with " + limited + "=\"true\"", "none");
+        if (on && !(r[0] <= r[1])) fail(n, std::string("a ") + range_name + " with lower <= upper", given.value());
+      };
+      range("ctrllimited", "ctrlrange", a.ctrllimited, a.ctrlrange);
+      range("forcelimited", "forcerange", a.forcelimited, a.forcerange);
       model_.actuators.push_back(a);
     }
   }

@@ -24,6 +24,16 @@ namespace {
 
 using json = nlohmann::ordered_json;
 
+// The speed (rad/s, m/s) a motor's drive aims at: never reached, so the
+// drive stays at its torque cap, a constant torque (MuJoCo's motor); a
+// motor's tendon is reeled in at it, its winch stalled at its pull.
+constexpr double kMotorSpeed = 1e6;
+
+// The mass of each light link between two joints of one body (a universal
+// joint's cross), of the body: MuJoCo's joints there have no mass between
+// them, and the direct solver is exact across this ratio.
+constexpr double kJointLinkMass = 1e-6;
+
 // A welded pulley's mass, of the body it is welded to: it stands for a
 // geom whose mass stays with that body, so it should weigh nothing, and
 // the direct solver is exact across this ratio.
@@ -117,17 +127,19 @@ class Mapper {
   Mapper(const Model& model, const MjcfOptions& options) : m_(model), options_(options) {}
 
   MjcfImport map() {
-    findWraps();
     groupBodies();
+    findWraps();  // which tendons are cables: their winch ends need the groups
     for (std::size_t b = 0; b < m_.bodies.size(); ++b)
       if (group_[b] == static_cast<int>(b) && b != 0) addMovingBody(static_cast<int>(b));
     addStaticGeoms();
     for (std::size_t b = 1; b < m_.bodies.size(); ++b)
       if (group_[b] == static_cast<int>(b)) addJoint(static_cast<int>(b));
+    for (const Actuator& a : m_.actuators) addJointActuator(a);
     addWheels();
     for (const Tendon& t : m_.tendons) addCable(t);
     for (const Actuator& a : m_.actuators)
-      unmapped_.push_back(a.origin.where() + ": actuators are not imported yet" + (a.target.empty() ? "" : " (on the " + a.target + ")"));
+      if (a.tendon >= 0 && !tendon_actuator_done_.count(&a))
+        notImported(a, "an actuator on a tendon that is not imported (listed) is not imported");
     scene_["name"] = m_.name.empty() ? "MuJoCo model" : m_.name;
     scene_["description"] = "Imported from the MuJoCo model " + m_.file + " (reeve import mjcf).";
     scene_["solver"] = solver();
@@ -165,7 +177,7 @@ class Mapper {
   // Whether a tendon becomes a cable, and if not, why (into unmapped_ once).
   bool mappable(const Tendon& t, bool report = false) {
     std::string why;
-    if (!t.spatial) why = "not a spatial tendon";
+    if (!t.spatial) why = "fixed tendons (joint couplings) are not imported";
     else if (t.path.size() < 2 || t.path.front().kind != PathElement::Kind::Site || t.path.back().kind != PathElement::Kind::Site)
       why = "a path that does not start and end at a site";
     else if (std::any_of(t.path.begin(), t.path.end(), [](const PathElement& p) { return p.kind == PathElement::Kind::Pulley; }))
@@ -174,8 +186,8 @@ class Mapper {
                return p.kind == PathElement::Kind::Geom && m_.geoms[p.index].type != GeomType::Cylinder;
              }))
       why = "wraps on geoms other than cylinders are not imported yet";
-    else if (!t.limited && !(t.stiffness > 0.0))
-      why = "no range and no stiffness: it pulls on nothing in MuJoCo either (actuators on tendons are not imported yet)";
+    else if (!t.limited && !(t.stiffness > 0.0) && !pulledBy(t))
+      why = "no range, no stiffness and no motor pulling it: it pulls on nothing in MuJoCo either";
     if (!why.empty() && report) unmapped_.push_back(t.origin.where() + ": " + why);
     return why.empty();
   }
@@ -184,9 +196,6 @@ class Mapper {
     group_.assign(m_.bodies.size(), 0);
     for (std::size_t b = 1; b < m_.bodies.size(); ++b) {
       const Body& body = m_.bodies[b];
-      if (body.joints.size() > 1)
-        fail(body.origin, "at most one joint in a body (several in one body are not imported yet)",
-             std::to_string(body.joints.size()));
       group_[b] = body.joints.empty() ? group_[body.parent] : static_cast<int>(b);
     }
   }
@@ -315,21 +324,44 @@ class Mapper {
 
   // --- joints -----------------------------------------------------------
 
+  // A body's joints, parent side first (MuJoCo's order): one joint joins
+  // it to its parent's Reeve body; several are a chain through light links
+  // of their own (kJointLinkMass of it, at its centre of mass), the first
+  // joint between the parent and the first link, the last between the
+  // last link and the body.
   void addJoint(int b) {
     const Body& body = m_.bodies[b];
-    const Joint& j = m_.joints[body.joints[0]];
-    if (j.type == JointType::Free) return;
+    std::string other = reeveBodyOf(body.parent);
+    const std::size_t n = body.joints.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      std::string own = reeve_body_.at(b);
+      if (k + 1 < n) {
+        own = uniqueName(reeve_body_.at(b) + "_joint" + std::to_string(k + 1), "link");
+        const double mass = kJointLinkMass * massOf(reeve_body_.at(b));
+        bodies_.push_back({{"name", own}, {"shape", {{"type", "sphere"}, {"radius_m", 0.01}}}, {"mass_kg", mass},
+                           {"position_m", vec(frame_.at(b).pos)}});
+      }
+      addJoint(body, body.joints[k], own, other);
+      other = own;
+    }
+  }
+
+  void addJoint(const Body& body, int index, const std::string& own, const std::string& other) {
+    const Joint& j = m_.joints[index];
+    if (j.type == JointType::Free) {
+      if (body.joints.size() > 1) unmapped_.push_back(j.origin.where() + ": a free joint beside other joints is not imported");
+      return;
+    }
     const Vec3 anchor = body.world.apply(j.pos), axis = body.world.quat * j.axis;
-    const std::string other = reeveBodyOf(body.parent);
     if (j.frictionloss > 0.0) unmapped_.push_back(j.origin.where() + ": frictionloss not imported");
     if (j.type == JointType::Ball) {
       if (j.limited) unmapped_.push_back(j.origin.where() + ": a ball joint's range (a cone on its whole rotation) is not imported");
       if (j.damping > 0.0 || j.stiffness > 0.0) unmapped_.push_back(j.origin.where() + ": a ball joint's damping and stiffness are not imported");
-      joints_.push_back({{"type", "spherical"}, {"body", reeve_body_.at(b)}, {"other", other}, {"anchor_m", vec(anchor)}});
+      joints_.push_back({{"type", "spherical"}, {"body", own}, {"other", other}, {"anchor_m", vec(anchor)}});
       return;
     }
     const bool hinge = j.type == JointType::Hinge;
-    json def = {{"body", reeve_body_.at(b)}, {"other", other}, {"anchor_m", vec(anchor)}, {"axis", vec(axis)}};
+    json def = {{"body", own}, {"other", other}, {"anchor_m", vec(anchor)}, {"axis", vec(axis)}};
     if (!hinge) def["type"] = "prismatic";
     if (j.limited) {
       if (hinge && (j.range[0] < -std::numbers::pi || j.range[1] > std::numbers::pi))
@@ -344,10 +376,84 @@ class Mapper {
                            : json{{"mode", "position"}, {"target_m", j.springref}, {"stiffness_N_per_m", j.stiffness},
                                   {"damping_N_s_per_m", j.damping}};
     } else if (j.damping > 0.0) {
-      unmapped_.push_back(j.origin.where() + ": damping without stiffness is not imported (Reeve's joint damping comes with a spring)");
+      // MuJoCo's joint damping, -d q': a damper toward standing still.
+      def["drive"] = hinge ? json{{"mode", "velocity"}, {"target_rad_per_s", 0.0}, {"damping_N_m_s_per_rad", j.damping}}
+                           : json{{"mode", "velocity"}, {"target_m_per_s", 0.0}, {"damping_N_s_per_m", j.damping}};
     }
-    (hinge ? hinges_ : joints_).push_back(def);
+    json& list = hinge ? hinges_ : joints_;
+    joint_slot_[index] = {&list, list.size()};
+    list.push_back(def);
   }
+
+  // --- actuators (their controls held constant) --------------------------
+
+  double control(const Actuator& a) const {
+    const auto it = options_.controls.find(a.name);
+    const double u = it == options_.controls.end() ? 0.0 : it->second;
+    return a.ctrllimited ? std::clamp(u, a.ctrlrange[0], a.ctrlrange[1]) : u;
+  }
+  // A motor's force (N or N m at the joint or along the tendon: gear x ctrl,
+  // within its forcerange).
+  double motorForce(const Actuator& a) const {
+    const double f = control(a);
+    return a.gear * (a.forcelimited ? std::clamp(f, a.forcerange[0], a.forcerange[1]) : f);
+  }
+  void notImported(const Actuator& a, const std::string& why) {
+    unmapped_.push_back(a.origin.where() + ": " + why + (a.target.empty() ? "" : " (on the " + a.target + ")"));
+  }
+
+  // A motor, position or velocity actuator on a hinge or slide: a drive.
+  void addJointActuator(const Actuator& a) {
+    if (a.tendon >= 0) return;  // addCable's
+    if (a.joint < 0) return notImported(a, "an actuator not on a joint or tendon is not imported");
+    const Joint& j = m_.joints[a.joint];
+    const auto slot = joint_slot_.find(a.joint);
+    if (slot == joint_slot_.end()) return notImported(a, "an actuator on a free or ball joint is not imported");
+    json& def = (*slot->second.first)[slot->second.second];
+    if (def.contains("drive")) return notImported(a, "a second drive on a joint with a spring or damping is not imported");
+    const bool hinge = j.type == JointType::Hinge;
+    const double g = a.gear, force_cap = a.forcelimited ? g * std::max(std::abs(a.forcerange[0]), std::abs(a.forcerange[1])) : 0.0;
+    json drive;
+    if (a.kind == "motor") {
+      const double f = motorForce(a);
+      if (f == 0.0) return;  // at rest: it pushes nothing
+      drive = {{"mode", "velocity"}, {hinge ? "target_rad_per_s" : "target_m_per_s", std::copysign(kMotorSpeed, f)},
+               {hinge ? "max_torque_N_m" : "max_force_N", std::abs(f)}};
+    } else if (a.kind == "position" || a.kind == "velocity") {
+      // Its force gain x (ctrl - gear q) (or q') acts with moment gear: a
+      // spring or damper of gain x gear^2 toward ctrl / gear.
+      const double u = control(a) / g;
+      if (a.kind == "position") {
+        drive = {{"mode", hinge ? "angle" : "position"}, {hinge ? "target_rad" : "target_m", u},
+                 {hinge ? "stiffness_N_m_per_rad" : "stiffness_N_per_m", a.kp * g * g}};
+        if (a.kv > 0.0) drive[hinge ? "damping_N_m_s_per_rad" : "damping_N_s_per_m"] = a.kv * g * g;
+      } else {
+        drive = {{"mode", "velocity"}, {hinge ? "target_rad_per_s" : "target_m_per_s", u},
+                 {hinge ? "damping_N_m_s_per_rad" : "damping_N_s_per_m", a.kv * g * g}};
+      }
+      if (force_cap > 0.0) drive[hinge ? "max_torque_N_m" : "max_force_N"] = force_cap;
+    } else {
+      return notImported(a, "<" + a.kind + "> actuators are not imported yet");
+    }
+    def["drive"] = drive;
+  }
+
+  // The motor pulling tendon t, if one does (MuJoCo's tendon force is
+  // negative where it shortens it), else null.
+  const Actuator* tendonMotor(const Tendon& t) const {
+    const int index = static_cast<int>(&t - m_.tendons.data());
+    for (const Actuator& a : m_.actuators)
+      if (a.tendon == index && a.kind == "motor" && motorForce(a) < 0.0 && winchEnd(t)) return &a;
+    return nullptr;
+  }
+  // The end of tendon t tied to the world, where a winch's drum can be.
+  const char* winchEnd(const Tendon& t) const {
+    const auto onWorld = [&](const PathElement& e) {
+      return e.kind == PathElement::Kind::Site && group_[m_.sites[e.index].body] == 0;
+    };
+    return t.path.empty() ? nullptr : onWorld(t.path.front()) ? "first" : onWorld(t.path.back()) ? "last" : nullptr;
+  }
+  bool pulledBy(const Tendon& t) const { return tendonMotor(t) != nullptr; }
 
   // --- wrap cylinders ---------------------------------------------------
 
@@ -465,6 +571,24 @@ class Mapper {
       unmapped_.push_back(t.origin.where() + ": damping without stiffness is not imported");
     }
     if (t.frictionloss > 0.0) unmapped_.push_back(t.origin.where() + ": frictionloss not imported");
+    const Actuator* motor = tendonMotor(t);
+    for (const Actuator& a : m_.actuators) {
+      if (a.tendon != static_cast<int>(&t - m_.tendons.data())) continue;
+      tendon_actuator_done_.insert(&a);
+      if (&a == motor) continue;
+      if (a.kind != "motor") notImported(a, "<" + a.kind + "> actuators are not imported yet");
+      else if (motorForce(a) > 0.0) notImported(a, "a motor pushing along a tendon is not imported (a cable pulls only)");
+      else if (motorForce(a) < 0.0 && !winchEnd(t)) notImported(a, "a motor on a tendon with neither end on the world is not imported (its winch needs a drum)");
+      else if (motorForce(a) < 0.0) notImported(a, "a second motor on a tendon is not imported");
+    }
+    if (motor) {
+      // A winch at the end tied to the world, hauling in faster than
+      // anything moves, stalled at the motor's pull: a constant tension.
+      cable["winch"] = {{"end", winchEnd(t)}, {"max_speed_m_per_s", kMotorSpeed}, {"max_pull_N", -motorForce(*motor)},
+                        {"commands", json::array({{{"from_s", 0.0}, {"speed_m_per_s", kMotorSpeed}}})}};
+      if (t.limited) unmapped_.push_back(t.origin.where() + ": the range of a tendon a motor pulls is not imported");
+      length = std::numeric_limits<double>::quiet_NaN();
+    }
     cable_lengths_.emplace_back(static_cast<int>(cables_.size()), length);
     cables_.push_back(cable);
   }
@@ -498,6 +622,8 @@ class Mapper {
   std::set<std::string> names_{"world"};
   std::map<int, std::string> reeve_body_, geom_body_, site_body_;
   std::map<int, Pose> frame_;  // a moving group's Reeve body frame (world)
+  std::map<int, std::pair<json*, std::size_t>> joint_slot_;
+  std::set<const Actuator*> tendon_actuator_done_;  // listed or mapped by addCable  // per MJCF joint: its entry in hinges_ or joints_
   std::vector<std::string> unmapped_;
   std::vector<std::pair<int, double>> cable_lengths_;
 };

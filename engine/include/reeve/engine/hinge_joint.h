@@ -45,6 +45,13 @@ namespace reeve {
 /// bodies by first-order corrections and needs w h below about 1. The
 /// damping stays implicit. In machines with unilateral cables it no longer
 /// damps the other errors away (DESIGN.md: the bow).
+///
+/// A Velocity drive with `damping` > 0 is a damper toward its target speed
+/// instead of a rigid one: the torque on a is damping (target - dtheta/dt),
+/// within max_torque (at target 0, a bearing's viscous friction: MuJoCo's
+/// joint damping; else its velocity servo of gain kv). One compliant row,
+/// implicit: a disc of inertia I keeps 1 / (1 + damping h / I) of its
+/// speed each substep h.
 struct HingeDrive {
   enum class Mode { None, Velocity, Angle };
   enum class Integration { Implicit, Trapezoidal };
@@ -52,7 +59,7 @@ struct HingeDrive {
   double target = 0.0;      // rad/s (Velocity) or rad (Angle)
   double max_torque = 0.0;  // N m; <= 0 or infinity: unlimited
   double stiffness = 0.0;   // N m/rad, finite; 0: rigid (Angle only)
-  double damping = 0.0;     // N m s/rad, finite; only with stiffness > 0
+  double damping = 0.0;     // N m s/rad, finite; an Angle drive's only with stiffness > 0
   Integration integration = Integration::Implicit;  // of a spring (stiffness > 0)
   // s, > 0: the drive acts in the substeps that start before this time
   // (World::time(), to half a substep) and is then removed (mode None), as

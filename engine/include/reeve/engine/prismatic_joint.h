@@ -22,6 +22,9 @@ namespace reeve {
 /// still within max_force; one compliant XPBD row, implicit, as a hinge's
 /// spring (HingeDrive).
 ///
+/// A Velocity drive with `damping` > 0 is a damper toward its target
+/// speed, force damping (target - ds/dt) within max_force, as a hinge's.
+///
 /// `integration`, as a hinge's (HingeDrive): Implicit (the default:
 /// implicit Euler) or Trapezoidal, the force -stiffness (e_+ + 2 e_0 +
 /// e_-) / 4 over a substep, e = s - target (the trapezoidal rule: an
@@ -33,7 +36,7 @@ struct PrismaticDrive {
   double target = 0.0;     // m/s (Velocity) or m (Position)
   double max_force = 0.0;  // N; <= 0 or infinity: unlimited
   double stiffness = 0.0;  // N/m, finite; 0: rigid (Position only)
-  double damping = 0.0;    // N s/m, finite; only with stiffness > 0
+  double damping = 0.0;    // N s/m, finite; a Position drive's only with stiffness > 0
   Integration integration = Integration::Implicit;  // of a spring (stiffness > 0)
   // s, > 0: the drive acts until then and is removed, as a hinge's
   // (HingeDrive::until); infinity: always.

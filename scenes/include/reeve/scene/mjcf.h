@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,10 @@ enum class MjcfWheels { Fixed, Turning };
 
 struct MjcfOptions {
   MjcfWheels wheels = MjcfWheels::Fixed;
+  /// Actuator name -> its control (MuJoCo's ctrl), held constant while the
+  /// scene runs (clamped to its ctrlrange); an actuator not named here has
+  /// control 0, as MuJoCo's at rest.
+  std::map<std::string, double> controls;
 };
 
 /// A model read: the scene (scene.schema.json) as JSON text, and one line

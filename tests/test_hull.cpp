@@ -75,6 +75,23 @@ TEST(Hull, CornerTetrahedronHasItsClosedFormInertia) {
       << inertiaTensor(s, m);
 }
 
+// With keep_frame the corner tetrahedron stays where it was given: its
+// corners unmoved, the origin at the right-angle corner, and its inertia
+// about that corner, m / 10 (b^2 + c^2) on the diagonal and -m a b / 20
+// off it (the integrals above, unshifted).
+TEST(Hull, KeptInItsFrameItsInertiaIsAboutTheOrigin) {
+  const double a = 1.0, b = 2.0, c = 3.0, m = 6.0;
+  const Shape s = Shape::convexHull({Vec3::Zero(), Vec3(a, 0, 0), Vec3(0, b, 0), Vec3(0, 0, c)}, true);
+  EXPECT_EQ(s.hull->input_centre_of_mass, Vec3::Zero());
+  EXPECT_NE(std::find(s.hull->vertices.begin(), s.hull->vertices.end(), Vec3(0, 0, c)), s.hull->vertices.end());
+  EXPECT_NEAR(s.hull->bounding_radius, c, 1e-15);
+  Mat3 expected;
+  expected << m * (b * b + c * c) / 10, -m * a * b / 20, -m * a * c / 20,  //
+      -m * a * b / 20, m * (a * a + c * c) / 10, -m * b * c / 20,          //
+      -m * a * c / 20, -m * b * c / 20, m * (a * a + b * b) / 10;
+  EXPECT_LT((inertiaTensor(s, m) - expected).cwiseAbs().maxCoeff(), 1e-12) << inertiaTensor(s, m);
+}
+
 TEST(Hull, DegenerateInputIsRejected) {
   const std::vector<Vec3> square = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0),
                                     Vec3(0.5, 0.5, 0)};

@@ -46,16 +46,11 @@ BodyState makeBodyState(const BodyDef& def) {
     throw std::invalid_argument("body '" + def.name + "': a dynamic body needs a mass between 1e-100 and 1e100 kg");
   s.inv_mass = 1.0 / m;
   if (def.inertia != Vec3::Zero()) {
-    const Vec3& I = def.inertia;
     if (!(def.mass > 0.0))
       throw std::invalid_argument("body '" + def.name + "': moments of inertia need a mass, not a density");
-    // A rigid body's principal moments: each at most the sum of the other
-    // two (equal for a flat plate), to rounding.
-    if (!(I.minCoeff() > 0.0) || !(I.x() + I.y() >= I.z() * (1 - 1e-12) && I.y() + I.z() >= I.x() * (1 - 1e-12) &&
-                                   I.z() + I.x() >= I.y() * (1 - 1e-12)))
-      throw std::invalid_argument("body '" + def.name +
-                                  "': moments of inertia must be positive, each at most the sum of the other two");
-    s.inertia = I.asDiagonal();
+    if (!(def.inertia.minCoeff() > 0.0))
+      throw std::invalid_argument("body '" + def.name + "': moments of inertia must be positive");
+    s.inertia = def.inertia.asDiagonal();
   } else {
     s.inertia = inertiaTensor(def.shape, m);
   }

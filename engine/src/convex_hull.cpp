@@ -57,7 +57,7 @@ std::vector<ConvexHull::Face> qhullFaces(const std::vector<Vec3>& points) {
 
 }  // namespace
 
-std::shared_ptr<const ConvexHull> makeConvexHull(const std::vector<Vec3>& points) {
+std::shared_ptr<const ConvexHull> makeConvexHull(const std::vector<Vec3>& points, bool keep_frame) {
   if (points.size() < 4)
     throw std::invalid_argument("convex hull: needs at least 4 points, got " +
                                 std::to_string(points.size()));
@@ -115,7 +115,11 @@ std::shared_ptr<const ConvexHull> makeConvexHull(const std::vector<Vec3>& points
   const Mat3 central = second / volume - centroid * centroid.transpose();  // per unit mass
   hull->volume = volume;
   hull->inertia_per_mass = central.trace() * Mat3::Identity() - central;
-  hull->input_centre_of_mass = o + centroid;
+  const Vec3 centre = o + centroid;
+  if (keep_frame)  // about the origin, by parallel axes
+    hull->inertia_per_mass += centre.squaredNorm() * Mat3::Identity() - centre * centre.transpose();
+  else
+    hull->input_centre_of_mass = centre;
   for (Vec3& v : hull->vertices) {
     v -= hull->input_centre_of_mass;
     hull->bounding_radius = std::max(hull->bounding_radius, v.norm());

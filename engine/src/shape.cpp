@@ -26,10 +26,10 @@ Shape Shape::sphere(double radius) {
   return s;
 }
 
-Shape Shape::convexHull(const std::vector<Vec3>& points) {
+Shape Shape::convexHull(const std::vector<Vec3>& points, bool keep_frame) {
   Shape s;
   s.type = Type::Hull;
-  s.hull = makeConvexHull(points);
+  s.hull = makeConvexHull(points, keep_frame);
   return s;
 }
 

@@ -8,8 +8,9 @@ namespace {
 constexpr const char* kWorldName = "world";
 
 // The "shape" object at `path` (schema-checked), and a hull's degenerate
-// points as a SceneError.
-Shape shapeOf(const nlohmann::json& shape, const std::string& path, const std::string& source) {
+// points as a SceneError. `keep_frame`: a hull about its vertices' origin,
+// the body's centre of mass given apart (inertia_kg_m2).
+Shape shapeOf(const nlohmann::json& shape, const std::string& path, const std::string& source, bool keep_frame) {
   const std::string type = shape.at("type").get<std::string>();
   if (type == "box") return Shape::box(vec3(shape.at("half_extents_m")));
   if (type == "cylinder")
@@ -19,7 +20,7 @@ Shape shapeOf(const nlohmann::json& shape, const std::string& path, const std::s
   std::vector<Vec3> points;
   for (const nlohmann::json& p : shape.at("vertices_m")) points.push_back(vec3(p));
   try {
-    return Shape::convexHull(points);
+    return Shape::convexHull(points, keep_frame);
   } catch (const std::invalid_argument&) {  // the schema has checked their count and numbers
     throw SceneError(source, path + "/vertices_m", "points spanning a volume",
                      std::to_string(points.size()) + " points on one plane or line");
@@ -66,7 +67,7 @@ BodyNames addBodies(const nlohmann::json& bodies, World& world, const std::strin
       fail("name",
            "a body name not already used by /bodies/" + std::to_string(names.ids.at(def.name)),
            quote(def.name));
-    def.shape = shapeOf(b.at("shape"), path + "/shape", source);
+    def.shape = shapeOf(b.at("shape"), path + "/shape", source, b.contains("inertia_kg_m2"));
     def.position = vec3(b.at("position_m"));
     if (const auto o = b.find("orientation"); o != b.end()) {
       const Vec3 axis = vec3(o->at("axis"));
@@ -77,7 +78,7 @@ BodyNames addBodies(const nlohmann::json& bodies, World& world, const std::strin
           Quat(Eigen::AngleAxisd(o->at("angle_rad").get<double>(), axis.normalized()));
     }
     // position_m places the frame of the vertices; the body's origin is the
-    // hull's centre of mass.
+    // hull's centre of mass (with inertia_kg_m2, the frame's origin: 0).
     def.position += def.orientation * hullOrigin(def.shape);
     const auto inertia = b.find("inertia_kg_m2");
     def.is_static = b.value("static", false);
@@ -124,11 +125,7 @@ BodyNames addBodies(const nlohmann::json& bodies, World& world, const std::strin
         def.density = b.at("density_kg_per_m3").get<double>();
       if (inertia != b.end()) {
         if (!has_mass) fail("inertia_kg_m2", "mass_kg with moments of inertia", "density_kg_per_m3");
-        def.inertia = vec3(*inertia);
-        const Vec3& I = def.inertia;
-        if (!(I.x() + I.y() >= I.z() * (1 - 1e-12) && I.y() + I.z() >= I.x() * (1 - 1e-12) &&
-              I.z() + I.x() >= I.y() * (1 - 1e-12)))
-          fail("inertia_kg_m2", "moments a rigid body can have (each at most the sum of the other two)", literal(*inertia));
+        def.inertia = vec3(*inertia);  // > 0 (the schema's); not always a rigid body's (an imported armature)
       }
       if (const auto v = b.find("linear_velocity_m_per_s"); v != b.end())
         def.linear_velocity = vec3(*v);

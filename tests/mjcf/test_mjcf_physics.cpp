@@ -19,23 +19,27 @@ double stepFrames(Scene& s, int frames) {
 // T = 2 m1 m2 g / (m1 + m2). Turning: a wheel of 1000 kg/m^3 x pi r^2 x
 // 0.1 m, I / r^2 = m / 2. Semi-implicit Euler carries a constant
 // acceleration's velocity exactly: v = a t at every substep.
-TEST(MjcfPhysics, AtwoodOverAWrapCylinderMeetsItsClosedForm) {
-  const double m1 = 1.0, m2 = 2.0;
-  const double wheel = 1000.0 * std::numbers::pi * 0.1 * 0.1 * 0.1;
+// models/atwood_sphere.xml: the same over a sphere of radius 0.1 m wrapped
+// in the plane of the two sites, I / r^2 = 2 m / 5 of a 4.19 kg ball.
+TEST(MjcfPhysics, AtwoodOverAWrapCylinderOrSphereMeetsItsClosedForm) {
+  const double m1 = 1.0, m2 = 2.0, pi = std::numbers::pi;
   struct Case {
+    const char* model;
     MjcfWheels wheels;
-    double a, light_tension;
+    double wheel_inertia_over_r2;  // kg
   };
-  const double a_fixed = (m2 - m1) * g / (m1 + m2), a_turning = (m2 - m1) * g / (m1 + m2 + wheel / 2.0);
-  for (const Case& c : {Case{MjcfWheels::Fixed, a_fixed, m1 * (g + a_fixed)},
-                        Case{MjcfWheels::Turning, a_turning, m1 * (g + a_turning)}}) {
-    Scene s = importedScene("atwood", c.wheels);
+  for (const Case& c : {Case{"atwood", MjcfWheels::Fixed, 0.0},
+                        Case{"atwood", MjcfWheels::Turning, 1000.0 * pi * 0.1 * 0.1 * 0.1 / 2.0},
+                        Case{"atwood_sphere", MjcfWheels::Fixed, 0.0},
+                        Case{"atwood_sphere", MjcfWheels::Turning, 0.4 * 1000.0 * 4.0 / 3.0 * pi * 0.001}}) {
+    const double a = (m2 - m1) * g / (m1 + m2 + c.wheel_inertia_over_r2), light_tension = m1 * (g + a);
+    Scene s = importedScene(c.model, c.wheels);
     const BodyId heavy = bodyNamed(s, "heavy"), light = bodyNamed(s, "light");
     const double t = stepFrames(s, 20);
     const double v = s.world->body(heavy).v.z();
-    EXPECT_NEAR(v, -c.a * t, 1e-7 * c.a * t) << (c.wheels == MjcfWheels::Turning ? "turning" : "fixed");
-    EXPECT_NEAR(s.world->body(light).v.z(), c.a * t, 1e-7 * c.a * t);
-    EXPECT_NEAR(s.cables->tension(0, 0), c.light_tension, 1e-7 * c.light_tension);
+    EXPECT_NEAR(v, -a * t, 1e-7 * a * t) << c.model << (c.wheels == MjcfWheels::Turning ? " turning" : " fixed");
+    EXPECT_NEAR(s.world->body(light).v.z(), a * t, 1e-7 * a * t);
+    EXPECT_NEAR(s.cables->tension(0, 0), light_tension, 1e-7 * light_tension);
     // The boxes hang straight: nothing moves them sideways.
     EXPECT_NEAR(s.world->body(heavy).x.x(), 0.1, 1e-9);
   }

@@ -262,5 +262,25 @@ TEST(LoadedValues, GivenMomentsOfInertiaReplaceTheShapes) {
   EXPECT_DOUBLE_EQ(s.world->energy().kinetic, 7.0);
 }
 
+// A hull with given moments stays about position_m, its centre of mass
+// then (the hull's own centre, (0.5, 0.5, 0.5) of this unit cube, is not):
+// without them the body moves to the hull's centre, as always.
+TEST(LoadedValues, AHullWithGivenMomentsStaysAboutItsPosition) {
+  const std::string cube = R"({"name": "cube", "solver": {}, "bodies": [
+    {"name": "c", "shape": {"type": "hull", "vertices_m": [[0,0,0],[1,0,0],[0,1,0],[1,1,0],[0,0,1],[1,0,1],[0,1,1],[1,1,1]]},
+     "mass_kg": 1, INERTIA "position_m": [0, 0, 0]}]})";
+  const auto with = [&](const std::string& inertia) {
+    std::string text = cube;
+    text.replace(text.find("INERTIA"), 7, inertia);
+    return parseScene(text, "cube.json");
+  };
+  const Scene given = with(R"("inertia_kg_m2": [1, 1, 1],)");
+  EXPECT_EQ(given.world->body(0).x, Vec3::Zero());
+  EXPECT_NEAR(given.world->bodyDef(0).shape.hull->bounding_radius, std::sqrt(3.0), 1e-15);
+  const Scene own = with("");
+  EXPECT_LT((own.world->body(0).x - Vec3::Constant(0.5)).norm(), 1e-15);
+  EXPECT_NEAR(own.world->bodyDef(0).shape.hull->bounding_radius, std::sqrt(0.75), 1e-15);
+}
+
 }  // namespace
 }  // namespace reeve::test

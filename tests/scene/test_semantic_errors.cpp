@@ -373,9 +373,7 @@ TEST(SemanticErrors, AWinchOnABeltAndABreakingTensionOfZeroAreRefused) {
 namespace reeve::test {
 namespace {
 
-TEST(SemanticErrors, MomentsOfInertiaNeedAMassAndMomentsARigidBodyCanHave) {
-  expectError(baseWith(R"("mass_kg": 2,)", R"("mass_kg": 2, "inertia_kg_m2": [1, 1, 3],)"), "/bodies/1/inertia_kg_m2",
-              "moments a rigid body can have (each at most the sum of the other two)", "[1,1,3]");
+TEST(SemanticErrors, MomentsOfInertiaNeedAMass) {
   expectError(baseWith(R"("density_kg_per_m3": 1000,)", R"("density_kg_per_m3": 1000, "inertia_kg_m2": [1, 1, 1],)"),
               "/bodies/0/inertia_kg_m2", "mass_kg with moments of inertia", "density_kg_per_m3");
 }

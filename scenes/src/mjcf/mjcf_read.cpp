@@ -88,6 +88,7 @@ class Reader {
       else if (tag == "visual" || tag == "asset" || tag == "size" || tag == "statistic") continue;  // drawing, memory
       else unmapped(n, "not imported (Reeve has no " + tag + " section)");
     }
+    listAttributes();
     return std::move(model_);
   }
 
@@ -151,7 +152,8 @@ class Reader {
       const auto it = classes_.find(c);
       if (it == classes_.end()) break;
       if (const auto d = it->second.defaults.find(tag); d != it->second.defaults.end())
-        if (const auto a = d->second.attribute(name)) return a;
+        for (auto node = d->second.rbegin(); node != d->second.rend(); ++node)  // the last given wins
+          if (const auto a = node->attribute(name)) return a;
       c = it->second.parent;
     }
     return {};
@@ -251,11 +253,24 @@ class Reader {
   }
 
   void unmapped(const Node& n, const std::string& why) { model_.unmapped.push_back(originOf(n).where() + ": " + why); }
-  // Attributes of `n` that change the physics but are not imported.
+  // Attributes of `n` that change the physics but are not imported (MuJoCo's
+  // soft-contact and limit settings, mostly): gathered per tag and
+  // attribute, one line each however many elements have it (listAttributes).
   void unmappedAttributes(const Node& n, const std::string& tag, const std::string& cls,
                           std::initializer_list<const char*> names) {
     for (const char* name : names)
-      if (const auto a = lookup(n, tag, cls, name)) unmapped(n, std::string(name) + "=\"" + a.value() + "\" not imported");
+      if (lookup(n, tag, cls, name)) unmapped_attributes_[{tag, name}].push_back(originOf(n));
+  }
+  void listAttributes() {
+    for (const auto& [key, origins] : unmapped_attributes_) {
+      std::string line = origins.front().where() + ": " + key.second + " not imported";
+      if (origins.size() > 1) {
+        line += ", nor on " + std::to_string(origins.size() - 1) + " more <" + key.first + "> (lines";
+        for (std::size_t i = 1; i < origins.size() && i <= 10; ++i) line += " " + std::to_string(origins[i].line);
+        line += origins.size() > 11 ? " ...)" : ")";
+      }
+      model_.unmapped.push_back(line);
+    }
   }
 
   // --- sections ---------------------------------------------------------
@@ -299,7 +314,9 @@ class Reader {
 
   void readDefaults(const Node& n, const std::string& cls, const std::string& parent, int depth = 0) {
     if (depth > kMaxNesting) fail(n, "defaults nested at most " + std::to_string(kMaxNesting) + " deep", "more");
-    if (classes_.count(cls)) fail(n, "a default class name used once", "\"" + cls + "\" again");
+    // The main class may be given in several <default> sections (a model and
+    // the files it includes): they add up, the last one's attributes winning.
+    if (classes_.count(cls) && cls != "main") fail(n, "a default class name used once", "\"" + cls + "\" again");
     DefaultClass& c = classes_[cls];
     c.parent = parent;
     for (const Node& child : children(n)) {
@@ -309,7 +326,7 @@ class Reader {
         if (!name) fail(child, "a class attribute on a nested <default>", "none");
         readDefaults(child, name.value(), cls, depth + 1);
       } else {
-        c.defaults[tag] = child.xml;
+        c.defaults[tag].push_back(child.xml);
       }
     }
   }
@@ -584,12 +601,13 @@ class Reader {
 
   struct DefaultClass {
     std::string parent;
-    std::map<std::string, pugi::xml_node> defaults;  // per tag
+    std::map<std::string, std::vector<pugi::xml_node>> defaults;  // per tag, in the order given
   };
 
   Model model_;
   std::vector<std::unique_ptr<Source>> sources_;
   std::map<std::string, DefaultClass> classes_;
+  std::map<std::pair<std::string, std::string>, std::vector<Origin>> unmapped_attributes_;  // per tag and attribute
   bool degrees_ = true;
   std::string eulerseq_ = "xyz";
   bool autolimits_ = true;

@@ -17,6 +17,7 @@
 
 #include "mjcf_model.h"
 #include "reeve/scene/mjcf.h"
+#include "reeve/engine/shape.h"
 #include "reeve/scene/scene.h"
 
 namespace reeve::mjcf {
@@ -132,6 +133,7 @@ class Mapper {
     for (std::size_t b = 0; b < m_.bodies.size(); ++b)
       if (group_[b] == static_cast<int>(b) && b != 0) addMovingBody(static_cast<int>(b));
     addStaticGeoms();
+    listContacts();
     for (std::size_t b = 1; b < m_.bodies.size(); ++b)
       if (group_[b] == static_cast<int>(b)) addJoint(static_cast<int>(b));
     for (const Actuator& a : m_.actuators) addJointActuator(a);
@@ -168,10 +170,35 @@ class Mapper {
 
   void findWraps() {
     wrap_.assign(m_.geoms.size(), 0);
-    for (const Tendon& t : m_.tendons)
-      if (mappable(t))
-        for (const PathElement& p : t.path)
-          if (p.kind == PathElement::Kind::Geom) wrap_[p.index] = 1;
+    for (const Tendon& t : m_.tendons) {
+      if (!mappable(t)) continue;
+      for (std::size_t k = 0; k < t.path.size(); ++k) {
+        const PathElement& e = t.path[k];
+        if (e.kind != PathElement::Kind::Geom) continue;
+        wrap_[e.index] = 1;
+        const Geom& g = m_.geoms[e.index];
+        if (g.type != GeomType::Sphere) continue;
+        // A sphere is wrapped in the plane through its centre and the path's
+        // neighbours at load (MuJoCo's, which turns as they move; Reeve's
+        // cable plane turns with the sphere's body).
+        const Vec3 c = m_.bodies[g.body].world.apply(g.pose.pos);
+        const Vec3 a = elementPoint(t.path[k - 1]) - c, b = elementPoint(t.path[k + 1]) - c;
+        Vec3 n = a.cross(b);
+        if (!(n.norm() > 1e-9 * a.norm() * b.norm())) n = (b - a).unitOrthogonal();  // in line: any plane through them
+        const Quat q = Quat::FromTwoVectors(Vec3::UnitZ(), n.normalized());
+        if (const auto it = wrap_frame_.find(e.index); it == wrap_frame_.end())
+          wrap_frame_[e.index] = Pose{c, q};
+        else if (std::abs((it->second.quat * Vec3::UnitZ()).dot(n.normalized())) < 1.0 - 1e-9)
+          unmapped_.push_back(e.origin.where() + ": a sphere wrapped in a second plane is not imported (the cable keeps the first tendon's plane)");
+      }
+    }
+  }
+
+  // A wrap geom's frame (world): its cable plane is the frame's xy plane.
+  Pose wrapFrame(int gi) const {
+    if (const auto it = wrap_frame_.find(gi); it != wrap_frame_.end()) return it->second;
+    const Geom& g = m_.geoms[gi];
+    return m_.bodies[g.body].world.then(g.pose);
   }
 
   // Whether a tendon becomes a cable, and if not, why (into unmapped_ once).
@@ -183,9 +210,10 @@ class Mapper {
     else if (std::any_of(t.path.begin(), t.path.end(), [](const PathElement& p) { return p.kind == PathElement::Kind::Pulley; }))
       why = "pulley branches are not imported yet";
     else if (std::any_of(t.path.begin(), t.path.end(), [&](const PathElement& p) {
-               return p.kind == PathElement::Kind::Geom && m_.geoms[p.index].type != GeomType::Cylinder;
+               return p.kind == PathElement::Kind::Geom && m_.geoms[p.index].type != GeomType::Cylinder &&
+                      m_.geoms[p.index].type != GeomType::Sphere;
              }))
-      why = "wraps on geoms other than cylinders are not imported yet";
+      why = "wraps on geoms other than cylinders and spheres are not imported yet";
     else if (!t.limited && !(t.stiffness > 0.0) && !pulledBy(t))
       why = "no range, no stiffness and no motor pulling it: it pulls on nothing in MuJoCo either";
     if (!why.empty() && report) unmapped_.push_back(t.origin.where() + ": " + why);
@@ -270,15 +298,24 @@ class Mapper {
         axes = eig.eigenvectors();
         if (axes.determinant() < 0.0) axes.col(2) = -axes.col(2);
       }
-      // A box about the centre that holds every geom, for drawing.
-      Vec3 half = Vec3::Constant(1e-3);
+      // The hull of its geoms about its centre of mass, to collide and draw
+      // (the scene keeps a hull's vertices about the body's origin where its
+      // moments are given); a small box where they span no volume.
+      json vertices = json::array();
+      std::vector<Vec3> points;
       for (const Geom* g : geoms) {
         const Body& owner = m_.bodies[g->body];
         const Pose to_root{r.world.quat.conjugate() * (owner.world.pos - r.world.pos), r.world.quat.conjugate() * owner.world.quat};
         const Pose p = to_root.then(g->pose);
-        for (const Vec3& s : surfacePoints(*g)) half = half.cwiseMax((axes.transpose() * (p.apply(s) - c)).cwiseAbs());
+        for (const Vec3& s : surfacePoints(*g)) points.push_back(axes.transpose() * (p.apply(s) - c));
       }
-      shape = {{"type", "box"}, {"half_extents_m", vec(half)}};
+      try {
+        Shape::convexHull(points, true);
+        for (const Vec3& v : points) vertices.push_back(vec(v));
+        shape = {{"type", "hull"}, {"vertices_m", vertices}};
+      } catch (const std::invalid_argument&) {
+        shape = {{"type", "box"}, {"half_extents_m", vec(Vec3::Constant(0.01))}};
+      }
     }
     Vec3 moments = (axes.transpose() * I * axes).diagonal();
     const Quat q = r.world.quat * Quat(axes);
@@ -296,12 +333,23 @@ class Mapper {
     bodies_.push_back(body);
   }
 
+  // Contacts between bodies are not imported (only the ground touches them):
+  // said once, where two of the model's bodies could touch in MuJoCo.
+  void listContacts() {
+    std::set<int> touching;  // groups with a geom that collides (the world's planes are the ground)
+    for (const Geom& g : m_.geoms)
+      if ((g.contype != 0 || g.conaffinity != 0) && g.type != GeomType::Plane) touching.insert(group_[g.body]);
+    if (touching.size() >= 2)
+      unmapped_.push_back(m_.bodies[0].origin.where() +
+                          ": contacts between bodies (contype, conaffinity) are not imported: only the ground touches them");
+  }
+
   // The world's geoms (and those of bodies welded to it), each a static body.
   void addStaticGeoms() {
     for (std::size_t gi = 0; gi < m_.geoms.size(); ++gi) {
       const Geom& g = m_.geoms[gi];
       if (group_[g.body] != 0) continue;
-      const Pose p = m_.bodies[g.body].world.then(g.pose);
+      const Pose p = wrapFrame(static_cast<int>(gi));
       if (g.type == GeomType::Plane) {
         if (ground_) {
           unmapped_.push_back(g.origin.where() + ": a second plane is not imported (Reeve has one ground)");
@@ -410,13 +458,13 @@ class Mapper {
     const auto slot = joint_slot_.find(a.joint);
     if (slot == joint_slot_.end()) return notImported(a, "an actuator on a free or ball joint is not imported");
     json& def = (*slot->second.first)[slot->second.second];
+    if (a.kind == "motor" && motorForce(a) == 0.0) return;  // at rest: it pushes nothing
     if (def.contains("drive")) return notImported(a, "a second drive on a joint with a spring or damping is not imported");
     const bool hinge = j.type == JointType::Hinge;
     const double g = a.gear, force_cap = a.forcelimited ? g * std::max(std::abs(a.forcerange[0]), std::abs(a.forcerange[1])) : 0.0;
     json drive;
     if (a.kind == "motor") {
       const double f = motorForce(a);
-      if (f == 0.0) return;  // at rest: it pushes nothing
       drive = {{"mode", "velocity"}, {hinge ? "target_rad_per_s" : "target_m_per_s", std::copysign(kMotorSpeed, f)},
                {hinge ? "max_torque_N_m" : "max_force_N", std::abs(f)}};
     } else if (a.kind == "position" || a.kind == "velocity") {
@@ -463,7 +511,7 @@ class Mapper {
       const Geom& g = m_.geoms[gi];
       const int owner = group_[g.body];
       const std::string other = owner == 0 ? "world" : reeve_body_.at(owner);
-      const Pose p = m_.bodies[g.body].world.then(g.pose);
+      const Pose p = wrapFrame(static_cast<int>(gi));
       const bool turning = options_.wheels == MjcfWheels::Turning;
       const std::string name = uniqueName(g.name, "wheel" + std::to_string(gi));
       double mass = turning ? g.mass : kWeldedWheelMass * massOf(other);
@@ -536,7 +584,7 @@ class Mapper {
       // A wrap: which way round, from the path's neighbours (and its
       // sidesite), in the cylinder's plane seen from its +z.
       const Geom& g = m_.geoms[e.index];
-      const Pose p = m_.bodies[g.body].world.then(g.pose);
+      const Pose p = wrapFrame(e.index);
       const auto inPlane = [&](const Vec3& w) { return Vec2((p.quat.conjugate() * (w - p.pos)).head<2>()); };
       const Vec2 a = inPlane(elementPoint(t.path[k - 1])), b = inPlane(elementPoint(t.path[k + 1]));
       const Vec2 d = b - a;
@@ -618,6 +666,7 @@ class Mapper {
   json scene_, bodies_ = json::array(), hinges_ = json::array(), joints_ = json::array(), cables_ = json::array();
   std::optional<json> ground_;
   std::vector<char> wrap_;
+  std::map<int, Pose> wrap_frame_;  // per wrapped sphere: its cable plane's frame (world)
   std::vector<int> group_;
   std::set<std::string> names_{"world"};
   std::map<int, std::string> reeve_body_, geom_body_, site_body_;

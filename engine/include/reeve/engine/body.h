@@ -32,8 +32,9 @@ struct MotionKeyframe {
 /// move as told. `inertia`, when non-zero, replaces the shape's moments:
 /// the principal moments (kg m^2) about the body's axes through its origin,
 /// which is then its centre of mass whatever the shape (an imported model's
-/// mass properties); it needs `mass` and moments that a rigid body can have
-/// (each at most the sum of the other two).
+/// mass properties); it needs `mass`. They need not be a rigid body's (each
+/// at most the sum of the other two): a MuJoCo joint's armature adds to
+/// one of them.
 struct BodyDef {
   std::string name;
   Shape shape;

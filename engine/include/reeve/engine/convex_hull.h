@@ -9,7 +9,9 @@
 
 namespace reeve {
 
-/// A convex polyhedron centred on its centre of mass (uniform density).
+/// A convex polyhedron about its body's origin: its own centre of mass
+/// (uniform density), or, built with keep_frame, the frame its points were
+/// given in (a body whose mass properties are given apart: BodyDef::inertia).
 /// Immutable once built; shapes share it.
 struct ConvexHull {
   /// A planar face: indices into `vertices`, counter-clockwise seen from
@@ -18,23 +20,25 @@ struct ConvexHull {
     std::vector<int> vertices;
     Vec3 normal;
   };
-  std::vector<Vec3> vertices;  ///< the hull's corners, m, relative to the centre of mass
+  std::vector<Vec3> vertices;  ///< the hull's corners, m, relative to the origin
   std::vector<Face> faces;
   double volume = 0.0;         ///< m^3
-  double bounding_radius = 0.0;  ///< m, the farthest vertex from the centre of mass
-  /// Inertia tensor about the centre of mass per unit mass (m^2), in the
-  /// axes the points were given in.
+  double bounding_radius = 0.0;  ///< m, the farthest vertex from the origin
+  /// Inertia tensor about the origin per unit mass (m^2), in the axes the
+  /// points were given in.
   Mat3 inertia_per_mass = Mat3::Zero();
-  /// Where the centre of mass lies in the frame the points were given in
-  /// (m): vertices = (corners of the given points) - input_centre_of_mass.
+  /// How far the origin was moved from the frame the points were given in
+  /// (m): vertices = (corners of the given points) - input_centre_of_mass;
+  /// the centre of mass, or 0 with keep_frame.
   Vec3 input_centre_of_mass = Vec3::Zero();
 };
 
 /// The convex hull of `points` (m, any frame, at least 4), moved so that
-/// its centre of mass is the origin; points inside the hull are dropped.
-/// Throws std::invalid_argument when a point is not finite, there are
-/// fewer than 4 points, or they span no volume (all on a plane or a line).
-std::shared_ptr<const ConvexHull> makeConvexHull(const std::vector<Vec3>& points);
+/// its centre of mass is the origin, or with `keep_frame` left where the
+/// points are; points inside the hull are dropped. Throws
+/// std::invalid_argument when a point is not finite, there are fewer than
+/// 4 points, or they span no volume (all on a plane or a line).
+std::shared_ptr<const ConvexHull> makeConvexHull(const std::vector<Vec3>& points, bool keep_frame = false);
 
 /// The hull's cross-section with the local plane z = `z` (m): the
 /// intersection points of its edges with the plane, unordered and possibly

@@ -25,17 +25,19 @@ struct Shape {
   static Shape cylinder(double radius, double half_length);
   static Shape sphere(double radius);
   /// The convex hull of `points` (m), moved so that its centre of mass is
-  /// the origin (hull->input_centre_of_mass says by how much). Throws as
-  /// makeConvexHull.
-  static Shape convexHull(const std::vector<Vec3>& points);
+  /// the origin (hull->input_centre_of_mass says by how much), or with
+  /// `keep_frame` about the origin of the points (for a body whose centre
+  /// of mass is given apart: BodyDef::inertia). Throws as makeConvexHull.
+  static Shape convexHull(const std::vector<Vec3>& points, bool keep_frame = false);
 };
 
 /// Volume in m^3.
 double volume(const Shape& shape);
 
 /// Inertia tensor (kg m^2) of a solid of uniform density and total `mass`
-/// (kg) about its centre of mass (the origin), in local axes: diagonal for
-/// a box, cylinder or sphere, full for a hull.
+/// (kg) about the origin (its centre of mass but for a hull built with
+/// keep_frame), in local axes: diagonal for a box, cylinder or sphere, full
+/// for a hull.
 Mat3 inertiaTensor(const Shape& shape, double mass);
 
 }  // namespace reeve

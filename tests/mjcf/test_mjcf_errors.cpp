@@ -26,6 +26,9 @@ const BadModel kBadModels[] = {
     {"massless", "<mujoco>\n<worldbody>\n<body name=\"m\">\n<joint type=\"hinge\"/>\n<geom size=\"1\" mass=\"0\"/>\n</body>\n"
                  "</worldbody>\n</mujoco>\n",
      3, "<body name=\"m\">", "a moving body with mass"},
+    {"no_moments", "<mujoco>\n<worldbody>\n<body name=\"p\">\n<freejoint/>\n<inertial mass=\"1\" diaginertia=\"0 0 0\"/>\n"
+                   "</body>\n</worldbody>\n</mujoco>\n",
+     3, "<body name=\"p\">", "a moving body with moments of inertia > 0"},
     {"unknown_class", "<mujoco>\n<worldbody>\n<body>\n<freejoint/>\n<geom class=\"nope\" size=\"1\"/>\n</body>\n</worldbody>\n</mujoco>\n",
      5, "<geom>", "a class defined in <default>"},
     {"bad_type", "<mujoco>\n<worldbody>\n<body>\n<freejoint/>\n<geom type=\"torus\" size=\"1\"/>\n</body>\n</worldbody>\n</mujoco>\n",

@@ -187,3 +187,40 @@ TEST(MjcfVsMuJoCo, MassPropertiesAreMuJoCosCompilers) {
 
 }  // namespace
 }  // namespace reeve::test
+
+namespace reeve::test {
+namespace {
+
+// Debian's arm26.xml (libmujoco-samples): two links on hinges in the
+// horizontal plane, six muscles on spatial tendons over the joints'
+// cylinders. It imports and runs; its muscles and their tendons (which
+// pull on nothing else) are listed, one line each. At rest (controls 0)
+// the difference from MuJoCo is the muscles' passive force: MuJoCo's pull
+// on their own (SF 1.7 N, BF 0.6 N after 1 s) and turn both joints 0.19
+// and 0.34 rad in 1 s; Reeve's arm, without them, stays where it is
+// (gravity lies along its axles).
+TEST(MjcfVsMuJoCo, Arm26ImportsAndRestsWhereMuJoCosMusclesPullItOnTheirOwn) {
+  const std::string path = "/usr/share/mujoco/model/tendon_arm/arm26.xml";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << "libmujoco-samples is not installed";
+  MjcfImport model = importMjcf(path);
+  const auto listed = [&](const std::string& what) {
+    return std::count_if(model.unmapped.begin(), model.unmapped.end(),
+                         [&](const std::string& u) { return u.find(what) != std::string::npos; });
+  };
+  EXPECT_EQ(listed("<muscle name="), 6);
+  EXPECT_EQ(listed("<spatial name="), 6);
+  Scene s = parseScene(model.scene_json, path);
+  MuJoCo mj(path);
+  const int frames = static_cast<int>(std::lround(s.frame_rate_hz));  // 1 s
+  mj.step(frames * s.world->settings().substeps);
+  stepReeve(s, frames);
+  EXPECT_GT(mj.data->qpos[0], 0.1);
+  EXPECT_GT(mj.data->qpos[1], 0.1);
+  for (const HingeJoint& h : s.world->hinges()) {
+    const BodyState& b = s.world->body(h.a);
+    EXPECT_LT(b.omega.norm(), 1e-12);
+  }
+}
+
+}  // namespace
+}  // namespace reeve::test

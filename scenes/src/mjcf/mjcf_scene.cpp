@@ -163,7 +163,6 @@ class Mapper {
   /// rest length (m) each is to have in all: its range's upper end or its
   /// spring length; NaN: as long as it is at load.
   std::vector<std::pair<int, double>> cableLengths() const { return cable_lengths_; }
-  json& scene() { return scene_; }
 
  private:
   // --- bodies -----------------------------------------------------------
@@ -184,7 +183,10 @@ class Mapper {
         const Vec3 c = m_.bodies[g.body].world.apply(g.pose.pos);
         const Vec3 a = elementPoint(t.path[k - 1]) - c, b = elementPoint(t.path[k + 1]) - c;
         Vec3 n = a.cross(b);
-        if (!(n.norm() > 1e-9 * a.norm() * b.norm())) n = (b - a).unitOrthogonal();  // in line: any plane through them
+        if (!(n.norm() > 1e-9 * a.norm() * b.norm())) {  // in line with the centre: any plane through them
+          const Vec3 along = (b - a).norm() > 0.0 ? Vec3(b - a) : a.norm() > 0.0 ? a : Vec3::UnitX();
+          n = along.unitOrthogonal();
+        }
         const Quat q = Quat::FromTwoVectors(Vec3::UnitZ(), n.normalized());
         if (const auto it = wrap_frame_.find(e.index); it == wrap_frame_.end())
           wrap_frame_[e.index] = Pose{c, q};
@@ -317,7 +319,10 @@ class Mapper {
         shape = {{"type", "box"}, {"half_extents_m", vec(Vec3::Constant(0.01))}};
       }
     }
-    Vec3 moments = (axes.transpose() * I * axes).diagonal();
+    const Vec3 moments = (axes.transpose() * I * axes).diagonal();
+    if (!(moments.minCoeff() > 0.0))  // a point mass, or <inertial> moments of 0
+      fail(r.origin, "a moving body with moments of inertia > 0 (from <inertial> or its geoms)",
+           std::to_string(moments.x()) + ", " + std::to_string(moments.y()) + ", " + std::to_string(moments.z()) + " kg m^2");
     const Quat q = r.world.quat * Quat(axes);
     const std::string fallback = !r.name.empty() || r.geoms.empty() || m_.geoms[r.geoms[0]].name.empty()
                                      ? "body" + std::to_string(root)

@@ -29,6 +29,8 @@ const BadModel kBadModels[] = {
     {"no_moments", "<mujoco>\n<worldbody>\n<body name=\"p\">\n<freejoint/>\n<inertial mass=\"1\" diaginertia=\"0 0 0\"/>\n"
                    "</body>\n</worldbody>\n</mujoco>\n",
      3, "<body name=\"p\">", "a moving body with moments of inertia > 0"},
+    {"not_utf8", "<mujoco>\n<worldbody>\n<body name=\"\xA1\"><freejoint/><geom size=\"1\"/></body>\n</worldbody>\n</mujoco>\n", 3,
+     "XML", "UTF-8 text"},
     {"unknown_class", "<mujoco>\n<worldbody>\n<body>\n<freejoint/>\n<geom class=\"nope\" size=\"1\"/>\n</body>\n</worldbody>\n</mujoco>\n",
      5, "<geom>", "a class defined in <default>"},
     {"bad_type", "<mujoco>\n<worldbody>\n<body>\n<freejoint/>\n<geom type=\"torus\" size=\"1\"/>\n</body>\n</worldbody>\n</mujoco>\n",

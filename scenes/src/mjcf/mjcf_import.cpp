@@ -42,7 +42,7 @@ MjcfImport importMjcf(const std::filesystem::path& path, const MjcfOptions& opti
       rest.push_back(cables.jointEnabled(c, static_cast<int>(j)) ? share * cables.lengthNow(c, static_cast<int>(j)) : 0.0);
     scene["cables"][c]["rest_length_m"] = rest;
   }
-  out.scene_json = scene.dump(2);
+  out.scene_json = scene.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
   return out;
 }
 

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -40,6 +41,35 @@ struct Node {
   pugi::xml_node xml;
   const Source* source = nullptr;
 };
+
+// The offset of the first byte that is not UTF-8 (RFC 3629: no overlong
+// forms, no surrogates, nothing past U+10FFFF), or npos. pugixml passes
+// such bytes through; names made of them would reach the scene's JSON.
+std::size_t firstNonUtf8(const std::string& text) {
+  const auto* s = reinterpret_cast<const unsigned char*>(text.data());
+  const std::size_t n = text.size();
+  for (std::size_t i = 0; i < n;) {
+    const unsigned char c = s[i];
+    std::size_t more = 0;
+    unsigned char lo = 0x80, hi = 0xBF;  // the bounds of the first continuation byte
+    if (c < 0x80) more = 0;
+    else if (c >= 0xC2 && c <= 0xDF) more = 1;
+    else if (c == 0xE0) more = 2, lo = 0xA0;
+    else if (c == 0xED) more = 2, hi = 0x9F;
+    else if (c >= 0xE1 && c <= 0xEF) more = 2;
+    else if (c == 0xF0) more = 3, lo = 0x90;
+    else if (c == 0xF4) more = 3, hi = 0x8F;
+    else if (c >= 0xF1 && c <= 0xF3) more = 3;
+    else return i;
+    for (std::size_t k = 1; k <= more; ++k) {
+      if (i + k >= n) return i;
+      const unsigned char b = s[i + k];
+      if (b < (k == 1 ? lo : 0x80) || b > (k == 1 ? hi : 0xBF)) return i;
+    }
+    i += more + 1;
+  }
+  return std::string::npos;
+}
 
 std::string describe(const pugi::xml_node& xml) {
   std::string text = std::string("<") + xml.name();
@@ -105,6 +135,11 @@ class Reader {
     source->line_starts.push_back(0);
     for (std::size_t i = 0; i < source->text.size(); ++i)
       if (source->text[i] == '\n') source->line_starts.push_back(i + 1);
+    if (const std::size_t bad = firstNonUtf8(source->text); bad != std::string::npos) {
+      char byte[8];
+      std::snprintf(byte, sizeof byte, "0x%02X", static_cast<unsigned char>(source->text[bad]));
+      throw SceneError::atLine(path, source->line(static_cast<std::ptrdiff_t>(bad)), "XML", "UTF-8 text", std::string("the byte ") + byte);
+    }
     const pugi::xml_parse_result result =
         source->doc.load_buffer(source->text.data(), source->text.size(), pugi::parse_default, pugi::encoding_utf8);
     if (!result) {

@@ -153,7 +153,8 @@ class Mapper {
     if (ground_) scene_["ground"] = *ground_;
     scene_["camera"] = camera();
     MjcfImport out;
-    out.scene_json = scene_.dump(2);
+    // Replace what is not UTF-8: the model's path may hold such bytes (its text may not).
+    out.scene_json = scene_.dump(2, ' ', false, json::error_handler_t::replace);
     out.unmapped = m_.unmapped;
     out.unmapped.insert(out.unmapped.end(), unmapped_.begin(), unmapped_.end());
     return out;

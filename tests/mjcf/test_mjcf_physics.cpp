@@ -1,7 +1,10 @@
 // Machines written as MuJoCo models, imported, against their closed forms.
 #include <cmath>
 
+#include <filesystem>
+
 #include "mjcf_fixture.h"
+#include "reeve/scene/energy.h"
 
 namespace reeve::test {
 namespace {
@@ -206,6 +209,34 @@ TEST(MjcfPhysics, SeveralJointsInOneBodyChainThroughLightLinks) {
   EXPECT_LE(most, 1e-9);  // J: a swing of 0.44 J loses, never gains
   // The bob swung: about 0.3 rad of its 1 m rod's angle, back and forth.
   EXPECT_GT(s.world->body(bob).v.norm(), 0.1);
+}
+
+}  // namespace
+}  // namespace reeve::test
+
+namespace reeve::test {
+namespace {
+
+// Debian's sample models with floors, as imported (MuJoCo's step, 10
+// iterations on a floor): the humanoid falls and lands, the mug rests;
+// the energy watch sees no energy created in 1.8 s. At 2 iterations the
+// humanoid's landing created 5.3 kJ in a frame, at 5 12 J.
+TEST(MjcfPhysics, SampleModelsOnFloorsLandWithoutCreatingEnergy) {
+  int run = 0;
+  for (const char* sample : {"humanoid/humanoid.xml", "mug/mug.xml"}) {
+    const std::string path = std::string("/usr/share/mujoco/model/") + sample;
+    if (!std::filesystem::exists(path)) continue;
+    Scene s = loadScene(path);
+    EXPECT_EQ(s.world->settings().iterations, 10) << sample;
+    EnergyWatch watch(s);
+    for (int f = 0; f < 120; ++f) {
+      s.world->step(1.0 / s.frame_rate_hz);
+      const auto created = watch.check(s);
+      EXPECT_FALSE(created.has_value()) << sample << ": " << created->created_J << " J at " << created->time_s << " s";
+    }
+    ++run;
+  }
+  if (run == 0) GTEST_SKIP() << "libmujoco-samples is not installed";
 }
 
 }  // namespace

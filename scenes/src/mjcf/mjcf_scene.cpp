@@ -30,6 +30,9 @@ using json = nlohmann::ordered_json;
 // motor's tendon is reeled in at it, its winch stalled at its pull.
 constexpr double kMotorSpeed = 1e6;
 
+// Solver iterations a substep for a model with a floor (solver()).
+constexpr int kIterationsOnAFloor = 10;
+
 // The mass of each light link between two joints of one body (a universal
 // joint's cross), of the body: MuJoCo's joints there have no mass between
 // them, and the direct solver is exact across this ratio.
@@ -652,7 +655,14 @@ class Mapper {
   json solver() const {
     // Substeps of MuJoCo's timestep, as many as make frames near 60 Hz.
     const int substeps = std::max(1, static_cast<int>(std::lround(1.0 / (60.0 * m_.timestep))));
-    return {{"frame_rate_hz", 1.0 / (substeps * m_.timestep)}, {"substeps", substeps}, {"gravity_m_per_s2", vec(m_.gravity)}};
+    json solver = {{"frame_rate_hz", 1.0 / (substeps * m_.timestep)}, {"substeps", substeps},
+                   {"gravity_m_per_s2", vec(m_.gravity)}};
+    // On a floor, contacts take every iteration (the direct solver stops
+    // early only without them): at the default 2, humanoid.xml's landing
+    // at MuJoCo's 5 ms step created energy in 43 frames of 120, at 5 in
+    // one (12 J), at 10 in none.
+    if (ground_) solver["iterations"] = kIterationsOnAFloor;
+    return solver;
   }
 
   json camera() const {

@@ -2,6 +2,8 @@
 #include <cmath>
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include "mjcf_fixture.h"
 #include "reeve/scene/energy.h"
@@ -51,17 +53,29 @@ TEST(MjcfPhysics, AtwoodOverAWrapCylinderOrSphereMeetsItsClosedForm) {
 // models/lever.xml: a 2 kg link and a welded 1 kg tip held level by a
 // tendon whose line of action passes r = 0.05 m from the hinge: at rest
 // T = g (2 x 0.25 + 1 x 0.5) / r = 196.2 N, and the link stays level.
+// Also with a 1000 kg tip (98 kN in the tendon), its welded pulley still
+// 1e-6 of the link's 1002 kg.
 TEST(MjcfPhysics, LeverOnATendonOverAJointCylinderHoldsItsStatics) {
-  for (const MjcfWheels wheels : {MjcfWheels::Fixed, MjcfWheels::Turning}) {
-    Scene s = importedScene("lever", wheels);
-    const BodyId link = bodyNamed(s, "link");
-    stepFrames(s, 60);
-    const double T = g * (2.0 * 0.25 + 1.0 * 0.5) / 0.05;
-    EXPECT_NEAR(s.cables->tension(0, 0), T, 1e-6 * T);
-    // The link's centre of mass, a third of the way out, stays at the axle's height.
-    EXPECT_NEAR(s.world->body(link).x.z(), 0.0, 1e-8);
-    EXPECT_NEAR(s.world->body(link).x.x(), (2.0 * 0.25 + 1.0 * 0.5) / 3.0, 1e-8);
-  }
+  std::ifstream in(mjcfModel("lever"));
+  const std::string xml((std::istreambuf_iterator<char>(in)), {});
+  for (const double tip : {1.0, 1000.0})
+    for (const MjcfWheels wheels : {MjcfWheels::Fixed, MjcfWheels::Turning}) {
+      std::string heavy = xml;
+      const std::string one = "size=\"0.03\" mass=\"1\"";
+      heavy.replace(heavy.find(one), one.size(), "size=\"0.03\" mass=\"" + std::to_string(tip) + "\"");
+      const auto path = writeModel("lever_tip", heavy);
+      MjcfOptions options;
+      options.wheels = wheels;
+      Scene s = parseScene(importMjcf(path, options).scene_json, path.string());
+      const BodyId link = bodyNamed(s, "link");
+      stepFrames(s, 60);
+      const double T = g * (2.0 * 0.25 + tip * 0.5) / 0.05;
+      EXPECT_NEAR(s.cables->tension(0, 0), T, 1e-6 * T) << "tip " << tip << " kg";
+      // The link's centre of mass stays at the axle's height.
+      const double x = (2.0 * 0.25 + tip * 0.5) / (2.0 + tip);
+      EXPECT_NEAR(s.world->body(link).x.z(), 0.0, 1e-8) << "tip " << tip << " kg";
+      EXPECT_NEAR(s.world->body(link).x.x(), x, 1e-8);
+    }
 }
 
 // A hinge's passive spring (stiffness, springref, damping) as a spring

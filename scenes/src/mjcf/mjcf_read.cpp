@@ -98,20 +98,19 @@ class Reader {
     world.origin = originOf(root);
     world.name = "world";
     model_.bodies.push_back(world);
+    const std::vector<Node> sections = children(root);  // its includes read once
     // Settings and defaults first: the elements that use them may come earlier in the file.
-    for (const Node& n : children(root)) {
+    for (const Node& n : sections) {
       const std::string tag = n.xml.name();
       if (tag == "compiler") readCompiler(n);
       else if (tag == "option") readOption(n);
       else if (tag == "default") readDefaults(n, "main", "");
     }
-    for (const Node& n : children(root)) {
-      const std::string tag = n.xml.name();
-      if (tag == "worldbody") readBodyChildren(n, 0, "main");
-    }
-    for (const Node& n : children(root))  // before the actuators that name them
+    for (const Node& n : sections)
+      if (std::string(n.xml.name()) == "worldbody") readBodyChildren(n, 0, "main");
+    for (const Node& n : sections)  // before the actuators that name them
       if (std::string(n.xml.name()) == "tendon") readTendons(n);
-    for (const Node& n : children(root)) {
+    for (const Node& n : sections) {
       const std::string tag = n.xml.name();
       if (tag == "actuator") readActuators(n);
       else if (tag == "compiler" || tag == "option" || tag == "default" || tag == "worldbody" || tag == "tendon") continue;
@@ -300,8 +299,8 @@ class Reader {
     for (const auto& [key, origins] : unmapped_attributes_) {
       std::string line = origins.front().where() + ": " + key.second + " not imported";
       if (origins.size() > 1) {
-        line += ", nor on " + std::to_string(origins.size() - 1) + " more <" + key.first + "> (lines";
-        for (std::size_t i = 1; i < origins.size() && i <= 10; ++i) line += " " + std::to_string(origins[i].line);
+        line.append(", nor on ").append(std::to_string(origins.size() - 1)).append(" more <").append(key.first).append("> (lines");
+        for (std::size_t i = 1; i < origins.size() && i <= 10; ++i) line.append(" ").append(std::to_string(origins[i].line));
         line += origins.size() > 11 ? " ...)" : ")";
       }
       model_.unmapped.push_back(line);

@@ -54,7 +54,7 @@ json orientationJson(const Quat& q) {
   throw SceneError::atLine(o.file, o.line, o.element, expected, found);
 }
 
-// Points on a geom's surface (its frame), for a hull or bounds.
+// Points on a geom's surface (its frame), for a hull.
 std::vector<Vec3> surfacePoints(const Geom& g) {
   std::vector<Vec3> points;
   constexpr int kRound = 16;  // points on a circle
@@ -244,12 +244,16 @@ class Mapper {
 
   void addMovingBody(int root) {
     const Body& r = m_.bodies[root];
+    // A body of the group in the root's frame.
+    const auto toRoot = [&](const Body& body) {
+      return Pose{r.world.quat.conjugate() * (body.world.pos - r.world.pos), r.world.quat.conjugate() * body.world.quat};
+    };
     MassProperties mp;  // in the root's frame
     std::vector<const Geom*> geoms;
     for (std::size_t b = 0; b < m_.bodies.size(); ++b) {
       if (group_[b] != root) continue;
       const Body& body = m_.bodies[b];
-      const Pose to_root{r.world.quat.conjugate() * (body.world.pos - r.world.pos), r.world.quat.conjugate() * body.world.quat};
+      const Pose to_root = toRoot(body);
       const bool inertial = body.has_inertial && m_.inertia_from_geom != "true";
       if (inertial) {
         const Mat3 R = to_root.quat.toRotationMatrix();
@@ -290,9 +294,7 @@ class Mapper {
       return (local - Mat3(local.diagonal().asDiagonal())).cwiseAbs().maxCoeff() <= 1e-12 * scale;
     };
     if (geoms.size() == 1) {
-      const Body& owner = m_.bodies[geoms[0]->body];
-      const Pose to_root{r.world.quat.conjugate() * (owner.world.pos - r.world.pos), r.world.quat.conjugate() * owner.world.quat};
-      const Pose p = to_root.then(geoms[0]->pose);
+      const Pose p = toRoot(m_.bodies[geoms[0]->body]).then(geoms[0]->pose);
       if ((p.pos - c).norm() <= 1e-9 * (1.0 + c.norm()) && diagonalIn(p.quat.toRotationMatrix())) {
         axes = p.quat.toRotationMatrix();
         shape = shapeOf(*geoms[0]);
@@ -310,9 +312,7 @@ class Mapper {
       json vertices = json::array();
       std::vector<Vec3> points;
       for (const Geom* g : geoms) {
-        const Body& owner = m_.bodies[g->body];
-        const Pose to_root{r.world.quat.conjugate() * (owner.world.pos - r.world.pos), r.world.quat.conjugate() * owner.world.quat};
-        const Pose p = to_root.then(g->pose);
+        const Pose p = toRoot(m_.bodies[g->body]).then(g->pose);
         for (const Vec3& s : surfacePoints(*g)) points.push_back(axes.transpose() * (p.apply(s) - c));
       }
       try {
@@ -339,6 +339,7 @@ class Mapper {
     if (q.angularDistance(Quat::Identity()) > 0.0) body["orientation"] = orientationJson(q);
     reeve_body_[root] = body["name"];
     frame_[root] = Pose{r.world.apply(c), q.normalized()};
+    mass_[root] = mp.mass;
     bodies_.push_back(body);
   }
 
@@ -394,7 +395,7 @@ class Mapper {
       std::string own = reeve_body_.at(b);
       if (k + 1 < n) {
         own = uniqueName(reeve_body_.at(b) + "_joint" + std::to_string(k + 1), "link");
-        const double mass = kJointLinkMass * massOf(reeve_body_.at(b));
+        const double mass = kJointLinkMass * mass_.at(b);
         bodies_.push_back({{"name", own}, {"shape", {{"type", "sphere"}, {"radius_m", 0.01}}}, {"mass_kg", mass},
                            {"position_m", vec(frame_.at(b).pos)}});
       }
@@ -523,7 +524,7 @@ class Mapper {
       const Pose p = wrapFrame(static_cast<int>(gi));
       const bool turning = options_.wheels == MjcfWheels::Turning;
       const std::string name = uniqueName(g.name, "wheel" + std::to_string(gi));
-      double mass = turning ? g.mass : kWeldedWheelMass * massOf(other);
+      double mass = turning ? g.mass : kWeldedWheelMass * (owner == 0 ? 0.0 : mass_.at(owner));
       if (!(mass > 0.0)) {  // a turning wheel of mass 0 (MuJoCo's wraps often are)
         mass = 1000.0 * geomVolume(g.type, g.size);
         unmapped_.push_back(g.origin.where() + ": mass 0 for a turning wheel; it weighs " + std::to_string(mass) +
@@ -538,12 +539,6 @@ class Mapper {
       else
         joints_.push_back({{"type", "fixed"}, {"body", name}, {"other", other}, {"anchor_m", vec(p.pos)}});
     }
-  }
-
-  double massOf(const std::string& name) const {
-    for (const json& b : bodies_)
-      if (b["name"] == name) return b["mass_kg"].get<double>();
-    return 0.0;  // the world
   }
 
   // --- tendons ----------------------------------------------------------
@@ -655,8 +650,11 @@ class Mapper {
   json solver() const {
     // Substeps of MuJoCo's timestep, as many as make frames near 60 Hz.
     const int substeps = std::max(1, static_cast<int>(std::lround(1.0 / (60.0 * m_.timestep))));
+    // The direct solver (the default, said so): the welded pulleys and the
+    // links between joints weigh 1e-6 of their bodies, a ratio Gauss-Seidel
+    // is not exact across (scenes/README.md, "MuJoCo models").
     json solver = {{"frame_rate_hz", 1.0 / (substeps * m_.timestep)}, {"substeps", substeps},
-                   {"gravity_m_per_s2", vec(m_.gravity)}};
+                   {"method", "direct"}, {"gravity_m_per_s2", vec(m_.gravity)}};
     // On a floor, contacts take every iteration (the direct solver stops
     // early only without them): at the default 2, humanoid.xml's landing
     // at MuJoCo's 5 ms step created energy in 43 frames of 120, at 5 in
@@ -687,6 +685,7 @@ class Mapper {
   std::set<std::string> names_{"world"};
   std::map<int, std::string> reeve_body_, geom_body_, site_body_;
   std::map<int, Pose> frame_;  // a moving group's Reeve body frame (world)
+  std::map<int, double> mass_;  // a moving group's mass (kg)
   std::map<int, std::pair<json*, std::size_t>> joint_slot_;
   std::set<const Actuator*> tendon_actuator_done_;  // listed or mapped by addCable  // per MJCF joint: its entry in hinges_ or joints_
   std::vector<std::string> unmapped_;

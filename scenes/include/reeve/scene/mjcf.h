@@ -35,10 +35,10 @@ struct MjcfImport {
 
 /// Reads the MJCF file at `path` (and the files its <include>s name,
 /// relative to it). Throws SceneError (scene.h) as "FILE:LINE: <tag>:
-/// expected EXPECTED, got FOUND" for a malformed file, a reference to an
-/// element that does not exist, or a model Reeve cannot build (a moving
-/// body without mass, a tendon wrapping a geom that is not a cylinder),
-/// and as loadScene does for a file it cannot read.
+/// expected EXPECTED, got FOUND" for a malformed file (or one not in
+/// UTF-8), a reference to an element that does not exist, or a model Reeve
+/// cannot build (a jointed body without mass or moments of inertia), and as
+/// loadScene does for a file it cannot read.
 MjcfImport importMjcf(const std::filesystem::path& path, const MjcfOptions& options = {});
 
 /// Whether `path` names an MJCF model: its extension is .xml (any case).

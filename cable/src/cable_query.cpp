@@ -24,7 +24,7 @@ bool CableSystem::jointEnabled(int c, int j) const {
 double CableSystem::tension(int c, int j) const {
   const Cable& cable = cables_[c];
   const CableJoint& joint = cable.joints[j];
-  return jointEnabled(c, j) ? world_.pathTension(cable.joints[joint.run].path) * joint.weight : 0.0;
+  return jointEnabled(c, j) ? world_.pathTension(tensionPath(cable, j)) * joint.weight * cable.junction_scale : 0.0;
 }
 
 double CableSystem::frictionLoss() const {
@@ -143,6 +143,11 @@ void CableSystem::setRestLength(int c, int j, double rest_length_m) {
   cable.joints[j].rest_length = rest_length_m;
   syncRuns(cable);
   cable.total_length = totalLength(c);
+  if (cable.junction < 0) return;
+  Junction& junction = junctions_[cable.junction];
+  junction.total_length = 0.0;
+  for (std::size_t b = 0; b < junction.cables.size(); ++b)
+    junction.total_length += junction.scales[b] * cables_[junction.cables[b]].total_length;
 }
 
 std::optional<CableBreach> CableSystem::findBreach() const {
@@ -177,6 +182,13 @@ std::optional<CableBreach> CableSystem::cableBreach(int c) const {
   if (std::abs(total - cable.total_length) > slack)
     return broken("the total length changed from " + std::to_string(cable.total_length) + " m to " +
                   std::to_string(total) + " m");
+  if (cable.junction < 0) return std::nullopt;
+  const Junction& junction = junctions_[cable.junction];
+  double joined = 0.0;  // its branches trade cable: the junction keeps the sum
+  for (std::size_t b = 0; b < junction.cables.size(); ++b) joined += junction.scales[b] * totalLength(junction.cables[b]);
+  if (std::abs(joined - junction.total_length) > 1e-9 * junction.total_length)
+    return broken("its junction '" + junction.name + "': the total length changed from " +
+                  std::to_string(junction.total_length) + " m to " + std::to_string(joined) + " m");
   return std::nullopt;
 }
 

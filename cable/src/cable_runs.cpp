@@ -171,14 +171,14 @@ double CableSystem::solvedTension(const Cable& cable, int j, double h) const {
   // itself (issue 28, item 6: read as 0 N, the link slipped the other
   // way, paying the winch's cable out to the load, which the path then
   // flung up at up to 10 m/s).
-  const PathId id = cable.joints[cable.joints[j].run].path;
+  const PathId id = tensionPath(cable, j);
   const PathConstraint& path = world_.path(id);
   if (path.compliance == 0.0 &&
       std::none_of(path.points.begin(), path.points.end(),
                    [&](const PathPoint& q) { return world_.body(q.body).moves(); }) &&
       world_.pathLength(id) > path.rest_length)
     return std::numeric_limits<double>::infinity();
-  return -path.lambda / (h * h) * cable.joints[j].weight;
+  return -path.lambda / (h * h) * cable.joints[j].weight * cable.junction_scale;
 }
 
 bool CableSystem::startsSlipping(Cable& cable, int k, double h) const {
@@ -297,6 +297,7 @@ void CableSystem::buildRuns(Cable& cable) {
     PathConstraint& reeled = world_.path(cable.joints[cable.joints[winchSpan(cable).second].run].path);
     reeled.max_tension = std::min(reeled.max_tension, cable.winch->max_pull);
   }
+  if (cable.junction >= 0) buildJunction(junctions_[cable.junction]);
 }
 
 double CableSystem::wrapAngle(const Cable& cable, int k) const {

@@ -79,6 +79,7 @@ double World::assemblyInverseInertia(BodyId start, BodyId other, int skip_edge, 
   for (const PathConstraint& p : paths_) {
     if (!p.enabled || !(p.lambda < 0.0)) continue;
     for (std::size_t i = 0; i + 1 < p.points.size(); ++i) {
+      if (segmentScale(p, i) == 0.0) continue;  // no cable between two joined cables
       const PathPoint &s = p.points[i], &e = p.points[i + 1];
       hang(s.body, body(s.body).toWorld(s.local), e.body);
       hang(e.body, body(e.body).toWorld(e.local), s.body);

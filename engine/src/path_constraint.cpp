@@ -151,7 +151,8 @@ void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double a
   const size_t n = path.points.size();
   assert(n >= 2);
   assert(path.weights.empty() || path.weights.size() == n - 1);
-  if (n == 2 && path.points[0].body != path.points[1].body)
+  assert(path.scales.empty() || path.scales.size() == n - 1);
+  if (n == 2 && path.points[0].body != path.points[1].body && path.scales.empty())
     return solveSpan(path, bodies(path.points[0].body), bodies(path.points[1].body), alpha_tilde, h);
   // World arm r_i, gradient of the length g_i = dC/dp_i and force direction
   // f_i (the weighted gradient; f = g without weights).
@@ -166,14 +167,15 @@ void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double a
     grad[i].setZero();
     force[i].setZero();
   }
-  // C = sum |p_{i+1} - p_i| - L; dC/dp_i = u_{i-1} - u_i, f_i = w_{i-1} u_{i-1} - w_i u_i.
+  // C = sum s_i |p_{i+1} - p_i| - L; dC/dp_i = u_{i-1} - u_i, f_i = w_{i-1} u_{i-1} - w_i u_i,
+  // u_i the unit segment times s_i.
   double length = 0.0;
   for (size_t i = 0; i + 1 < n; ++i) {
     const Vec3 d = pos[i + 1] - pos[i];
-    const double l = d.norm();
-    length += l;
-    if (l < 1e-12) continue;
-    const Vec3 u = d / l;
+    const double l = d.norm(), s = segmentScale(path, i);
+    length += s * l;
+    if (l < 1e-12 || s == 0.0) continue;
+    const Vec3 u = s * d / l;
     const double w = path.weights.empty() ? 1.0 : path.weights[i];
     grad[i] -= u;
     grad[i + 1] += u;
@@ -245,7 +247,8 @@ double pathStartLength(const PathConstraint& path, const BodyTable& bodies) {
   double length = 0.0;
   for (size_t i = 0; i + 1 < path.points.size(); ++i) {
     const PathPoint &p = path.points[i], &q = path.points[i + 1];
-    length += (bodies(q.body).toWorldAtSubstepStart(q.local) - bodies(p.body).toWorldAtSubstepStart(p.local)).norm();
+    length += segmentScale(path, i) *
+              (bodies(q.body).toWorldAtSubstepStart(q.local) - bodies(p.body).toWorldAtSubstepStart(p.local)).norm();
   }
   return length;
 }

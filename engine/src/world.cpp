@@ -384,7 +384,8 @@ double World::pathTension(PathId id) const {
 double World::pathLength(PathId id) const {
   // As the solves measure it: the rolling ends held where the last solve
   // left them, until the next substep's integration (path_constraint.h).
-  const std::vector<PathPoint>& points = paths_[id].points;
+  const PathConstraint& path = paths_[id];
+  const std::vector<PathPoint>& points = path.points;
   const std::size_t n = points.size();
   const SolvePoint first = solvePoint(body(points[0].body), points[0], poses_solved_);
   const SolvePoint last = solvePoint(body(points[n - 1].body), points[n - 1], poses_solved_);
@@ -393,9 +394,10 @@ double World::pathLength(PathId id) const {
     return Vec3(b.x + (i == 0 ? first.arm : i + 1 == n ? last.arm : Vec3(b.q * points[i].local)));
   };
   double length = 0.0;
-  for (size_t i = 0; i + 1 < n; ++i) length += (position(i + 1) - position(i)).norm();
-  if (first.turn != 0.0) length += first.payOut(-(position(1) - position(0)).normalized());
-  if (last.turn != 0.0) length += last.payOut((position(n - 1) - position(n - 2)).normalized());
+  for (size_t i = 0; i + 1 < n; ++i) length += segmentScale(path, i) * (position(i + 1) - position(i)).norm();
+  if (first.turn != 0.0) length += segmentScale(path, 0) * first.payOut(-(position(1) - position(0)).normalized());
+  if (last.turn != 0.0)
+    length += segmentScale(path, n - 2) * last.payOut((position(n - 1) - position(n - 2)).normalized());
   return length;
 }
 

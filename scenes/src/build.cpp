@@ -95,6 +95,8 @@ Scene buildScene(const nlohmann::json& document, const std::string& source) {
     scene.joint_kinds = addJoints(*joints, names, *scene.world, source);
   if (const auto cables = document.find("cables"); cables != document.end())
     addCables(*cables, names, *scene.cables, source);
+  if (const auto junctions = document.find("junctions"); junctions != document.end())
+    addJunctions(*junctions, *scene.cables, source);
   if (const auto camera = document.find("camera"); camera != document.end())
     scene.camera = cameraOf(*camera, source);
   return scene;

@@ -74,6 +74,11 @@ HingeDrive hingeDrive(const nlohmann::json& drive, const std::string& pointer,
 void addCables(const nlohmann::json& cables, const BodyNames& names, CableSystem& system,
                const std::string& source);
 
+/// Adds "junctions" (build_cables.cpp): unique names, known cables, each
+/// in one junction; CableSystem::addJunction's own refusals (a cable that
+/// cannot be a branch) at the branch's path.
+void addJunctions(const nlohmann::json& junctions, CableSystem& system, const std::string& source);
+
 /// [x, y, z] (schema-checked) as a vector.
 Vec3 vec3(const nlohmann::json& xyz);
 

@@ -1,4 +1,5 @@
 #include <cmath>
+#include <map>
 #include <optional>
 #include <set>
 #include <stdexcept>
@@ -221,6 +222,41 @@ void addCables(const nlohmann::json& cables, const BodyNames& names, CableSystem
       if (winch) system.setWinch(index, *winch);
     } catch (const std::invalid_argument& e) {
       throw SceneError(source, path, "a cable the solver can build", e.what());
+    }
+  }
+}
+
+void addJunctions(const nlohmann::json& junctions, CableSystem& system, const std::string& source) {
+  std::set<std::string> names;
+  std::map<int, std::string> joined;  // cable -> the path of the branch that took it
+  for (std::size_t i = 0; i < junctions.size(); ++i) {
+    const nlohmann::json& junction = junctions[i];
+    const std::string path = "/junctions/" + std::to_string(i);
+    JunctionDef def;
+    def.name = junction.at("name").get<std::string>();
+    if (!names.insert(def.name).second)
+      throw SceneError(source, path + "/name", "a junction name not already used", quote(def.name));
+    const nlohmann::json& branches = junction.at("branches");
+    for (std::size_t b = 0; b < branches.size(); ++b) {
+      const std::string branch_path = path + "/branches/" + std::to_string(b);
+      const std::string name = branches[b].at("cable").get<std::string>();
+      int found = -1;
+      for (std::size_t c = 0; c < system.cables().size(); ++c)
+        if (system.cables()[c].name == name) found = static_cast<int>(c);
+      if (found < 0) throw SceneError(source, branch_path + "/cable", "the name of a cable", quote(name));
+      if (const auto [at, fresh] = joined.emplace(found, branch_path); !fresh)
+        throw SceneError(source, branch_path + "/cable", "a cable in no other branch",
+                         quote(name) + " (already at " + at->second + ")");
+      def.cables.push_back(found);
+      def.divisors.push_back(branches[b].value("divisor", 1.0));
+      if (const std::string problem = system.branchProblem(found); !problem.empty())
+        throw SceneError(source, branch_path + "/cable", "a cable that can be a junction's branch",
+                         quote(name) + ", which " + problem);
+    }
+    try {
+      system.addJunction(def);
+    } catch (const std::invalid_argument& e) {
+      throw SceneError(source, path, "a junction the solver can build", e.what());
     }
   }
 }

@@ -50,6 +50,49 @@ TEST(MjcfPhysics, AtwoodOverAWrapCylinderOrSphereMeetsItsClosedForm) {
   }
 }
 
+// models/pulley.xml: a tendon of three pulley branches (divisors 1, 2, 2)
+// is a junction of three cables: the counterweight on the first pulls
+// with T, each load on the others with T / 2, and
+// T = 2 g / (1 / m_c + 1 / (4 m_l) + 1 / (4 m_r)); v = a t exactly. Also
+// with a 2.2 t counterweight (a 43 kN pull) and one of 2.2 mg (1e-6 of a
+// load), and with the loads balanced (m_c = 2 m_l = 2 m_r: nothing moves,
+// T = m_c g).
+TEST(MjcfPhysics, PulleyBranchesPullAsAFloatingPulleyBlock) {
+  std::ifstream in(mjcfModel("pulley"));
+  const std::string xml((std::istreambuf_iterator<char>(in)), {});
+  for (const double m_c : {2.2, 2.2e3, 2.2e-6, 2.0}) {
+    std::string model = xml;
+    const std::string from = "mass=\"2.2\"";
+    char text[32];
+    std::snprintf(text, sizeof text, "%.17g", m_c);
+    model.replace(model.find(from), from.size(), "mass=\"" + std::string(text) + "\"");
+    const auto path = writeModel("pulley_mass", model);
+    const MjcfImport imported = importMjcf(path);
+    Scene s = parseScene(imported.scene_json, path.string());
+    ASSERT_EQ(s.cables->junctions().size(), 1u);
+    const double T = 2.0 * g / (1.0 / m_c + 0.5), a_c = T / m_c - g, a_l = T / 2.0 - g;
+    const double t = stepFrames(s, 20);
+    const double scale = std::max(std::abs(a_c), g) * t;
+    EXPECT_NEAR(s.world->body(bodyNamed(s, "counterweight")).v.z(), a_c * t, 1e-7 * scale) << m_c << " kg";
+    EXPECT_NEAR(s.world->body(bodyNamed(s, "load_left")).v.z(), a_l * t, 1e-7 * scale) << m_c << " kg";
+    EXPECT_NEAR(s.world->body(bodyNamed(s, "load_right")).v.z(), a_l * t, 1e-7 * scale) << m_c << " kg";
+    EXPECT_NEAR(s.cables->tension(0, 0), T, 1e-7 * T) << m_c << " kg";
+    EXPECT_NEAR(s.cables->tension(0, 1), T, 1e-7 * T) << "the lift branch's span past the beam's site";
+    EXPECT_NEAR(s.cables->tension(1, 0), T / 2.0, 1e-7 * T);
+    EXPECT_NEAR(s.cables->tension(2, 0), T / 2.0, 1e-7 * T);
+  }
+}
+
+// The junction's length is MuJoCo's: sum_b L_b / divisor_b at load is the
+// range's upper end (6 m), its branches at equal strain.
+TEST(MjcfPhysics, PulleyBranchesShareTheTendonsLength) {
+  Scene s = importedScene("pulley");
+  const Junction& junction = s.cables->junctions()[0];
+  EXPECT_NEAR(s.world->path(junction.path).rest_length, 6.0, 1e-12);
+  EXPECT_NEAR(s.world->pathLength(junction.path), 6.0, 1e-12);
+  EXPECT_EQ(junction.scales, (std::vector<double>{1.0, 0.5, 0.5}));
+}
+
 // models/lever.xml: a 2 kg link and a welded 1 kg tip held level by a
 // tendon whose line of action passes r = 0.05 m from the hinge: at rest
 // T = g (2 x 0.25 + 1 x 0.5) / r = 196.2 N, and the link stays level.

@@ -41,6 +41,10 @@ struct MuJoCo {
     const int id = mj_name2id(model, mjOBJ_BODY, name);
     return data->qpos[model->jnt_qposadr[model->body_jntadr[id]] + 2];
   }
+  // A slide joint's position (m).
+  double slide(const char* joint) const {
+    return data->qpos[model->jnt_qposadr[mj_name2id(model, mjOBJ_JOINT, joint)]];
+  }
   // The force (N) the tendon's limit pulls with.
   double tendonLimitForce(int tendon) const {
     double f = 0.0;
@@ -99,6 +103,44 @@ TEST(MjcfVsMuJoCo, TendonsHoldWithMuJoCosTension) {
     stepReeve(s, frames);
     const double T_mj = mj.tendonLimitForce(0), T = s.cables->tension(0, 0);
     EXPECT_NEAR(T, T_mj, 1e-4 * T_mj) << name << ": MuJoCo " << T_mj << " N, Reeve " << T << " N";
+  }
+}
+
+// models/pulley.xml: MuJoCo's three pulley branches, Reeve's junction of
+// three cables. With a 4 kg counterweight (T = 26.16 N) it sinks 1.5 m in
+// 0.96 s, the loads rising as far: within 1e-3 of MuJoCo's, whose soft
+// limit lets the tendon stretch (its counterweight sinks 0.3 mm further
+// than its loads rise); the lift branch's pull within 1e-4 (MuJoCo's
+// limit force is the tendon's T). Balanced (2 kg against two 1 kg loads)
+// after 2 s: the pull within 1e-4, and MuJoCo's soft limit sags 0.28 mm
+// where Reeve's cable holds.
+TEST(MjcfVsMuJoCo, PulleyBranchesMoveAsInMuJoCo) {
+  std::ifstream in(mjcfModel("pulley"));
+  const std::string xml((std::istreambuf_iterator<char>(in)), {});
+  for (const std::string mass : {"4", "2"}) {
+    std::string model = xml;
+    const std::string from = "mass=\"2.2\"";
+    model.replace(model.find(from), from.size(), "mass=\"" + mass + "\"");
+    const std::string path = writeModel("pulley_vs", model).string();
+    MuJoCo mj(path);
+    Scene s = parseScene(importMjcf(path).scene_json, path);
+    const int substeps = s.world->settings().substeps;
+    const bool moving = mass == "4";
+    const int frames = moving ? 60 : 120;
+    mj.step(frames * substeps);
+    stepReeve(s, frames);
+    const double T_mj = mj.tendonLimitForce(0), T = s.cables->tension(0, 0);
+    EXPECT_NEAR(T, T_mj, 1e-4 * T) << mass << " kg: MuJoCo " << T_mj << " N, Reeve " << T << " N";
+    const double sink_mj = -mj.slide("counterweight_slide"), sink = -s.world->body(bodyNamed(s, "counterweight")).x.z();
+    const double rise_mj = mj.slide("left_slide"), rise = s.world->body(bodyNamed(s, "load_left")).x.z() + 1.0;
+    if (moving) {
+      EXPECT_GT(sink, 1.0);
+      EXPECT_NEAR(sink, sink_mj, 1e-3 * sink) << "MuJoCo " << sink_mj << " m, Reeve " << sink << " m";
+      EXPECT_NEAR(rise, rise_mj, 1e-3 * rise) << "MuJoCo " << rise_mj << " m, Reeve " << rise << " m";
+    } else {
+      EXPECT_NEAR(sink, 0.0, 1e-12);
+      EXPECT_NEAR(sink_mj, 0.0, 5e-4) << "MuJoCo's soft limit's sag";
+    }
   }
 }
 

@@ -11,6 +11,64 @@ TEST(SemanticErrors, UnknownBodyInALink) {
       "/cables/0/links/1/body", "the name of a body (wheel, crate, ball)", "\"wheell\"");
 }
 
+// kBase with a second cable, "tie", and `junctions`.
+std::string withJunction(const std::string& junctions) {
+  return baseWith(R"({"body": "ball", "type": "attachment", "point_m": [0, 0.2, 0]}]}])",
+                  R"({"body": "ball", "type": "attachment", "point_m": [0, 0.2, 0]}]},
+    {"name": "tie", "links": [{"body": "wheel", "type": "attachment", "point_m": [0, -0.5, 0]},
+      {"body": "crate", "type": "attachment", "point_m": [0, 0.2, 0]}]}],
+  "junctions": )" + junctions);
+}
+
+TEST(SemanticErrors, JunctionOfAnUnknownCable) {
+  expectError(withJunction(R"([{"name": "j", "branches": [{"cable": "tie"}, {"cable": "tye", "divisor": 2}]}])"),
+              "/junctions/0/branches/1/cable", "the name of a cable", "\"tye\"");
+}
+
+TEST(SemanticErrors, JunctionOfACableTwice) {
+  expectError(withJunction(R"([{"name": "j", "branches": [{"cable": "tie"}, {"cable": "tie", "divisor": 2}]}])"),
+              "/junctions/0/branches/1/cable", "a cable in no other branch", "already at /junctions/0/branches/0");
+}
+
+TEST(SemanticErrors, JunctionOfACableThatHoldsOnAWheel) {
+  // The rope rolls on the wheel without slipping: two runs, not one.
+  expectError(withJunction(R"([{"name": "j", "branches": [{"cable": "tie"}, {"cable": "rope", "divisor": 2}]}])"),
+              "/junctions/0/branches/1/cable", "a cable that can be a junction's branch", "holds the cable");
+}
+
+TEST(SemanticErrors, JunctionOfACableWithAWinch) {
+  const std::string text = with(withJunction(R"([{"name": "j", "branches": [{"cable": "tie"}, {"cable": "rope"}]}])"),
+                                R"("name": "tie", )",
+                                R"("name": "tie", "winch": {"end": "first", "commands": [{"from_s": 0, "speed_m_per_s": 0.1}]}, )");
+  expectError(text, "/junctions/0/branches/0/cable", "a cable that can be a junction's branch", "has a winch");
+}
+
+// kBase's rope made frictionless over its wheel: one run, a branch.
+std::string sliding(const std::string& text) {
+  return with(text, R"({"body": "wheel", "type": "rolling", "orientation": "cw"})",
+              R"({"body": "wheel", "type": "rolling", "orientation": "cw", "mu": 0})");
+}
+
+TEST(SemanticErrors, CableInTwoJunctions) {
+  expectError(sliding(withJunction(R"([{"name": "j", "branches": [{"cable": "tie"}, {"cable": "rope"}]},
+                                      {"name": "k", "branches": [{"cable": "tie"}, {"cable": "rope"}]}])")),
+              "/junctions/1/branches/0/cable", "a cable in no other branch", "already at /junctions/0/branches/0");
+}
+
+TEST(SemanticErrors, DuplicateJunctionName) {
+  expectError(sliding(withJunction(R"([{"name": "j", "branches": [{"cable": "tie"}, {"cable": "rope"}]},
+                                      {"name": "j", "branches": [{"cable": "tie"}, {"cable": "rope"}]}])")),
+              "/junctions/1/name", "a junction name not already used", "\"j\"");
+}
+
+TEST(SemanticErrors, ASlidingRopeAndATieMakeAJunction) {
+  // The same two cables, once: loads (the error tests' counterpart).
+  Scene scene = parseScene(sliding(withJunction(R"([{"name": "j", "branches": [{"cable": "tie"}, {"cable": "rope", "divisor": 3}]}])")),
+                           "test.json");
+  ASSERT_EQ(scene.cables->junctions().size(), 1u);
+  EXPECT_EQ(scene.cables->junctions()[0].scales, (std::vector<double>{1.0, 1.0 / 3.0}));
+}
+
 TEST(SemanticErrors, UnknownBodyInAHinge) {
   expectError(baseWith(R"({"body": "wheel", "anchor_m")", R"({"body": "whel", "anchor_m")"),
               "/hinges/0/body", "the name of a body (wheel, crate, ball)", "\"whel\"");

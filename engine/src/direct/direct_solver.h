@@ -144,8 +144,9 @@ class DirectSolver {
   /// one (a run through pinholes or sliding wraps). Weighted paths (cable
   /// friction) are not rows: their forces are not along their length's
   /// gradient, which the symmetric system assumes (World::solvePositions).
+  /// Scaled ones are (`scales`: PathConstraint::scales, or null).
   void evaluateSpan(const World& world, int row, const PathPoint& p0, const PathPoint& p1);
-  void evaluateRun(const World& world, int row, const PathPoint* points, std::size_t count);
+  void evaluateRun(const World& world, int row, const PathPoint* points, std::size_t count, const double* scales);
   /// A path point as this solve has it (path_constraint.h: solvePoint), on
   /// the body with index `slot` in bodies_ (-1: a body that does not move).
   SolvePoint endPoint(const World& world, const PathPoint& point, int slot) const;

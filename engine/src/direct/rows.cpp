@@ -115,8 +115,8 @@ void DirectSolver::evaluatePath(const World& world, int r, double h) {
   double compliance, damping, start_length;
   if (row.source == Source::Path) {
     const PathConstraint& p = world.path(row.index);
-    if (p.points.size() == 2) evaluateSpan(world, r, p.points[0], p.points[1]);
-    else evaluateRun(world, r, p.points.data(), p.points.size());
+    if (p.points.size() == 2 && p.scales.empty()) evaluateSpan(world, r, p.points[0], p.points[1]);
+    else evaluateRun(world, r, p.points.data(), p.points.size(), p.scales.empty() ? nullptr : p.scales.data());
     length_[r] = C_[r];
     C_[r] -= p.rest_length;
     compliance = p.compliance, damping = p.damping, start_length = p.start_length - p.rest_length;
@@ -152,9 +152,11 @@ void DirectSolver::evaluatePath(const World& world, int r, double h) {
   alpha_[r] = damped.alpha_tilde;
 }
 
-void DirectSolver::evaluateRun(const World& world, int r, const PathPoint* points, std::size_t count) {
+void DirectSolver::evaluateRun(const World& world, int r, const PathPoint* points, std::size_t count,
+                               const double* scales) {
   // A run through pinholes: a body holding several points gets the sum of
-  // their gradients.
+  // their gradients. Segment i's length and direction count scales[i]
+  // times (PathConstraint::scales; once where there are none).
   const Row& row = rows_[r];
   if (run_.arm.size() < count) {  // grown to the longest path, then kept
     run_.arm.resize(count);
@@ -186,9 +188,9 @@ void DirectSolver::evaluateRun(const World& world, int r, const PathPoint* point
     Vec3 u = Vec3::Zero();
     if (i + 1 < count) {
       const Vec3 d = pos[i + 1] - pos[i];
-      const double l = d.norm();
-      length += l;
-      if (l >= 1e-12) u = d / l;
+      const double l = d.norm(), s = scales ? scales[i] : 1.0;
+      length += s * l;
+      if (l >= 1e-12) u = s * d / l;
     }
     if (entry[i] >= 0) {
       const Vec3 grad = prev_u - u;
@@ -201,8 +203,9 @@ void DirectSolver::evaluateRun(const World& world, int r, const PathPoint* point
   }
   for (int e = row.first_entry; e < row.first_entry + row.entry_count; ++e) weigh(entries_[e]);
   C_[r] = length;  // minus the rest length, by the caller
-  if (ends[0].turn != 0.0) C_[r] += ends[0].payOut(-(pos[1] - pos[0]).normalized());
-  if (ends[1].turn != 0.0) C_[r] += ends[1].payOut((pos[count - 1] - pos[count - 2]).normalized());
+  const double s_first = scales ? scales[0] : 1.0, s_last = scales ? scales[count - 2] : 1.0;
+  if (ends[0].turn != 0.0) C_[r] += s_first * ends[0].payOut(-(pos[1] - pos[0]).normalized());
+  if (ends[1].turn != 0.0) C_[r] += s_last * ends[1].payOut((pos[count - 1] - pos[count - 2]).normalized());
 }
 
 int DirectSolver::evaluateJoint(World& world, int r, double h) {

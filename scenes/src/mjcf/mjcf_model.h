@@ -130,10 +130,20 @@ struct Model {
 /// Reads the model at `path` (throws SceneError as importMjcf does).
 Model readModel(const std::string& path);
 
-/// The scene of `model` (mjcf_scene.cpp), its rest lengths taut. `lengths`:
-/// per tendon, its cable's index in the scene (-1: not a cable) and the
-/// length (m) of cable it is to have in all (NaN: as long as at load).
-MjcfImport mapModel(const Model& model, const MjcfOptions& options, std::vector<std::pair<int, double>>& lengths);
+/// A tendon's cables in the scene: one, or one per pulley branch (joined
+/// by a junction), each with its branch's divisor; none where it is not
+/// imported. `length` (m): the tendon's length in MuJoCo's terms, sum_b
+/// L_b / divisor_b, that its cables are to have in all (NaN: as long as
+/// at load).
+struct TendonCables {
+  std::vector<int> cables;
+  std::vector<double> divisors;
+  double length = 0.0;
+};
+
+/// The scene of `model` (mjcf_scene.cpp), its rest lengths taut, and each
+/// tendon's cables (`lengths`, per tendon).
+MjcfImport mapModel(const Model& model, const MjcfOptions& options, std::vector<TendonCables>& lengths);
 
 /// A geom's volume (m^3) and inertia about its centre in its frame for a
 /// mass of 1 kg (MuJoCo's formulas; a capsule is a cylinder and two

@@ -153,6 +153,7 @@ class Mapper {
     if (!hinges_.empty()) scene_["hinges"] = hinges_;
     if (!joints_.empty()) scene_["joints"] = joints_;
     if (!cables_.empty()) scene_["cables"] = cables_;
+    if (!junctions_.empty()) scene_["junctions"] = junctions_;
     if (ground_) scene_["ground"] = *ground_;
     scene_["camera"] = camera();
     MjcfImport out;
@@ -166,7 +167,7 @@ class Mapper {
   /// The cables' indices in the scene, per tendon (-1: none), and the
   /// rest length (m) each is to have in all: its range's upper end or its
   /// spring length; NaN: as long as it is at load.
-  std::vector<std::pair<int, double>> cableLengths() const { return cable_lengths_; }
+  std::vector<TendonCables> cableLengths() const { return cable_lengths_; }
 
  private:
   // --- bodies -----------------------------------------------------------
@@ -210,11 +211,15 @@ class Mapper {
   // Whether a tendon becomes a cable, and if not, why (into unmapped_ once).
   bool mappable(const Tendon& t, bool report = false) {
     std::string why;
+    const std::vector<Branch> branches = branchesOf(t);
     if (!t.spatial) why = "fixed tendons (joint couplings) are not imported";
-    else if (t.path.size() < 2 || t.path.front().kind != PathElement::Kind::Site || t.path.back().kind != PathElement::Kind::Site)
-      why = "a path that does not start and end at a site";
-    else if (std::any_of(t.path.begin(), t.path.end(), [](const PathElement& p) { return p.kind == PathElement::Kind::Pulley; }))
-      why = "pulley branches are not imported yet";
+    else if (std::any_of(branches.begin(), branches.end(), [&](const Branch& b) {
+               return b.end - b.begin < 2 || t.path[b.begin].kind != PathElement::Kind::Site ||
+                      t.path[b.end - 1].kind != PathElement::Kind::Site;
+             }))
+      why = branches.size() > 1 ? "a pulley branch that does not start and end at a site" : "a path that does not start and end at a site";
+    else if (branches.size() > 1 && pulledBy(t))
+      why = "a motor on a tendon with pulley branches is not imported (a junction's cables have no winch)";
     else if (std::any_of(t.path.begin(), t.path.end(), [&](const PathElement& p) {
                return p.kind == PathElement::Kind::Geom && m_.geoms[p.index].type != GeomType::Cylinder &&
                       m_.geoms[p.index].type != GeomType::Sphere;
@@ -573,16 +578,32 @@ class Mapper {
     return {{"type", type}, {"body", body}, {"point_m", vec(local)}};
   }
 
-  void addCable(const Tendon& t) {
-    if (!mappable(t, true)) {
-      cable_lengths_.emplace_back(-1, 0.0);
-      return;
-    }
-    json links = json::array();
+  // A stretch of a tendon's path: its elements [begin, end), after a
+  // pulley of `divisor` (1 for the first).
+  struct Branch {
+    std::size_t begin = 0, end = 0;
+    double divisor = 1.0;
+  };
+  static std::vector<Branch> branchesOf(const Tendon& t) {
+    std::vector<Branch> branches(1);
     for (std::size_t k = 0; k < t.path.size(); ++k) {
+      if (t.path[k].kind != PathElement::Kind::Pulley) continue;
+      branches.back().end = k;
+      branches.push_back({k + 1, 0, t.path[k].divisor});
+    }
+    branches.back().end = t.path.size();
+    return branches;
+  }
+
+  // The links of a branch's path: its first and last sites tied, the sites
+  // between pinholes, its wraps rolling links (mu 0 where the wheels are
+  // fixed, or where `slides`: a pulley branch, which is one run).
+  json branchLinks(const Tendon& t, const Branch& branch, bool slides) {
+    json links = json::array();
+    for (std::size_t k = branch.begin; k < branch.end; ++k) {
       const PathElement& e = t.path[k];
       if (e.kind == PathElement::Kind::Site) {
-        links.push_back(siteLink(e.index, k == 0 || k + 1 == t.path.size() ? "attachment" : "pinhole"));
+        links.push_back(siteLink(e.index, k == branch.begin || k + 1 == branch.end ? "attachment" : "pinhole"));
         continue;
       }
       // A wrap: which way round, from the path's neighbours (and its
@@ -605,10 +626,21 @@ class Mapper {
       const double t01 = d.squaredNorm() > 0.0 ? std::clamp(-a.dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
       const Vec2 nearest = a + t01 * d;
       if (nearest.norm() >= g.size[0] && !(e.sidesite >= 0 && side_site.dot(nearest) < 0.0)) link["active"] = false;
-      if (options_.wheels == MjcfWheels::Fixed) link["mu"] = 0.0;
+      if (options_.wheels == MjcfWheels::Fixed || slides) link["mu"] = 0.0;
       links.push_back(link);
     }
-    json cable = {{"name", uniqueName(t.name, "tendon" + std::to_string(cables_.size()))}, {"links", links}};
+    return links;
+  }
+
+  void addCable(const Tendon& t) {
+    if (!mappable(t, true)) {
+      cable_lengths_.push_back({});
+      return;
+    }
+    const std::vector<Branch> branches = branchesOf(t);
+    if (branches.size() > 1) return addJunction(t, branches);
+    json cable = {{"name", uniqueName(t.name, "tendon" + std::to_string(cables_.size()))},
+                  {"links", branchLinks(t, branches[0], false)}};
     double length = std::numeric_limits<double>::quiet_NaN();
     if (t.limited) {
       if (t.range[0] > 0.0) unmapped_.push_back(t.origin.where() + ": the range's lower end is not imported (a cable does not push)");
@@ -641,8 +673,55 @@ class Mapper {
       if (t.limited) unmapped_.push_back(t.origin.where() + ": the range of a tendon a motor pulls is not imported");
       length = std::numeric_limits<double>::quiet_NaN();
     }
-    cable_lengths_.emplace_back(static_cast<int>(cables_.size()), length);
+    cable_lengths_.push_back({{static_cast<int>(cables_.size())}, {1.0}, length});
     cables_.push_back(cable);
+  }
+
+  // A tendon of pulley branches: a cable per branch, joined by a junction
+  // (sum_b L_b / divisor_b, MuJoCo's length). Its stiffness k is shared so
+  // that the junction's compliance, sum_b c_b / divisor_b^2, is 1 / k: each
+  // of n branches gets c_b = divisor_b^2 / (n k); its damping d likewise,
+  // the branches' dashpots in series, d_b = n d / divisor_b^2.
+  void addJunction(const Tendon& t, const std::vector<Branch>& branches) {
+    const std::string name = uniqueName(t.name, "tendon" + std::to_string(&t - m_.tendons.data()));
+    const double n = static_cast<double>(branches.size());
+    TendonCables out;
+    out.length = std::numeric_limits<double>::quiet_NaN();
+    if (t.limited) {
+      if (t.range[0] > 0.0) unmapped_.push_back(t.origin.where() + ": the range's lower end is not imported (a cable does not push)");
+      out.length = t.range[1];
+    }
+    if (t.stiffness > 0.0) {
+      if (t.limited) unmapped_.push_back(t.origin.where() + ": the range with a stiffness is not imported (the cable is the spring)");
+      out.length = t.springlength ? *t.springlength : std::numeric_limits<double>::quiet_NaN();
+    } else if (t.damping > 0.0) {
+      unmapped_.push_back(t.origin.where() + ": damping without stiffness is not imported");
+    }
+    if (t.frictionloss > 0.0) unmapped_.push_back(t.origin.where() + ": frictionloss not imported");
+    if (options_.wheels == MjcfWheels::Turning &&
+        std::any_of(t.path.begin(), t.path.end(), [](const PathElement& e) { return e.kind == PathElement::Kind::Geom; }))
+      unmapped_.push_back(t.origin.where() + ": its wraps do not turn its wheels (pulley branches slide over their wraps, mu 0)");
+    json members = json::array();
+    for (std::size_t b = 0; b < branches.size(); ++b) {
+      const double divisor = branches[b].divisor;
+      json cable = {{"name", uniqueName(name + "_branch" + std::to_string(b + 1), "branch")},
+                    {"links", branchLinks(t, branches[b], true)}};
+      if (t.stiffness > 0.0) {
+        cable["compliance_m_per_N"] = divisor * divisor / (n * t.stiffness);
+        if (t.damping > 0.0) cable["damping_N_s_per_m"] = n * t.damping / (divisor * divisor);
+      }
+      members.push_back({{"cable", cable["name"]}, {"divisor", divisor}});
+      out.cables.push_back(static_cast<int>(cables_.size()));
+      out.divisors.push_back(divisor);
+      cables_.push_back(cable);
+    }
+    for (const Actuator& a : m_.actuators)
+      if (a.tendon == static_cast<int>(&t - m_.tendons.data())) {
+        tendon_actuator_done_.insert(&a);
+        notImported(a, "an actuator on a tendon with pulley branches is not imported");
+      }
+    junctions_.push_back({{"name", name}, {"branches", members}});
+    cable_lengths_.push_back(out);
   }
 
   // --- settings ---------------------------------------------------------
@@ -677,7 +756,8 @@ class Mapper {
 
   const Model& m_;
   MjcfOptions options_;
-  json scene_, bodies_ = json::array(), hinges_ = json::array(), joints_ = json::array(), cables_ = json::array();
+  json scene_, bodies_ = json::array(), hinges_ = json::array(), joints_ = json::array(), cables_ = json::array(),
+      junctions_ = json::array();
   std::optional<json> ground_;
   std::vector<char> wrap_;
   std::map<int, Pose> wrap_frame_;  // per wrapped sphere: its cable plane's frame (world)
@@ -689,12 +769,12 @@ class Mapper {
   std::map<int, std::pair<json*, std::size_t>> joint_slot_;
   std::set<const Actuator*> tendon_actuator_done_;  // listed or mapped by addCable  // per MJCF joint: its entry in hinges_ or joints_
   std::vector<std::string> unmapped_;
-  std::vector<std::pair<int, double>> cable_lengths_;
+  std::vector<TendonCables> cable_lengths_;
 };
 
 }  // namespace
 
-MjcfImport mapModel(const Model& model, const MjcfOptions& options, std::vector<std::pair<int, double>>& lengths) {
+MjcfImport mapModel(const Model& model, const MjcfOptions& options, std::vector<TendonCables>& lengths) {
   Mapper mapper(model, options);
   MjcfImport out = mapper.map();
   lengths = mapper.cableLengths();

@@ -266,8 +266,40 @@ struct WinchDef {
   std::vector<WinchCommand> schedule;
 };
 
+/// Cables joined into one length constraint (beyond the paper: MuJoCo's
+/// spatial tendon branches, `<pulley divisor>`, an ideal floating pulley
+/// block): sum_b L_b / divisor_b <= sum_b R_b / divisor_b over the cables'
+/// path lengths L_b and rest lengths R_b, cable b pulling with
+/// T / divisor_b. Divisor 2 on two cables hung from a third: the third
+/// lifts twice what each of them does, and takes in half what they pay
+/// out together. Each cable is one run at all times: open, tied at both
+/// ends (attachments), sliding over every link between (pinholes, and
+/// rolling links with mu 0), without a winch or a breaking tension, in
+/// no other junction, and touching a moving body.
+struct JunctionDef {
+  std::string name;
+  std::vector<int> cables;
+  std::vector<double> divisors;  ///< one per cable, > 0 and finite
+};
+
+/// A junction in the solver: its cables, each one's scale (1 / divisor),
+/// and the path constraint of all their points (PathConstraint::scales).
+/// The cable moves between its cables as they move, each cable keeping
+/// equal strain (their rest lengths in proportion to their lengths): each
+/// cable's total length changes so, sum_b total_b / divisor_b not.
+struct Junction {
+  std::string name;
+  std::vector<int> cables;
+  std::vector<double> scales;
+  PathId path = 0;
+  double total_length = 0.0;  ///< m: sum_b scale_b x total length_b, as made or set
+};
+
 struct Cable {
   std::string name;
+  /// The junction it is a branch of (an index into junctions()), or -1.
+  int junction = -1;
+  double junction_scale = 1.0;  ///< 1 / its divisor there
   bool closed = false;
   double compliance_per_m = 0.0;  // 1/N: span compliance = this x rest length
   double damping_times_m = 0.0;   // N s: span damping (N s/m) = this / rest length
@@ -347,7 +379,18 @@ class CableSystem {
   /// World's threads), endUpdate.
   void update(double time_s = 0.0, double h = 0.0);
 
+  /// Joins cables into one length constraint (JunctionDef). Throws
+  /// std::invalid_argument, leaving the system untouched, for fewer than
+  /// two cables, an unknown or repeated cable, a divisor not > 0 and
+  /// finite, or a cable that cannot be a branch (JunctionDef). Returns its
+  /// index.
+  int addJunction(const JunctionDef& def);
+  /// Why cable c cannot be a junction's branch (JunctionDef: "is closed",
+  /// "has a winch", ...), or "" if it can.
+  std::string branchProblem(int c) const;
+
   const std::vector<Cable>& cables() const { return cables_; }
+  const std::vector<Junction>& junctions() const { return junctions_; }
   const World& world() const { return world_; }
   /// Events since the last takeEvents().
   std::vector<CableEvent> takeEvents();
@@ -388,7 +431,9 @@ class CableSystem {
   /// active span's rest length and no rolling link's stored cable below 0
   /// (a spool's cable running out and a link emptying are events that end
   /// there, Alg. 2), and each cable's total length what it was made with
-  /// or set to (setRestLength). Rounding is allowed 1e-9 of the total.
+  /// or set to (setRestLength); a junction's cables trade theirs, keeping
+  /// the junction's (Junction::total_length). Rounding is allowed 1e-9 of
+  /// the total.
   std::optional<std::string> invariantViolation() const;
   /// The first update() after which invariantViolation() held something
   /// (checked after every update, in every build), or nothing. Reachable
@@ -503,6 +548,11 @@ class CableSystem {
   /// done carried past their bound or slid backwards; true if any.
   bool recheckSlips(double h);
   void buildRuns(Cable& cable);
+  /// The junction's path from its cables' runs (built, then disabled), its
+  /// rest length shared among them at equal strain (cable_junction.cpp).
+  void buildJunction(Junction& junction);
+  /// The path carrying span j's tension, and the span's share of it.
+  PathId tensionPath(const Cable& cable, int j) const;
   /// Rest length (m) of `arc` m of cable (along the surface) winding onto
   /// link k (> 0) from span j, or off it (< 0) into span j: on at span j's
   /// strain as the last solve left it, off at the strain the link's cable
@@ -528,6 +578,7 @@ class CableSystem {
 
   World& world_;
   std::vector<Cable> cables_;
+  std::vector<Junction> junctions_;
   std::vector<CableEvent> events_;
   // What one cable's update gives the whole, kept apart while the cables
   // update on the World's threads: its events and jams added in cable

@@ -87,9 +87,18 @@ SolvePoint solvePoint(const BodyState& body, const PathPoint& point, bool in_sol
 /// symmetric, sweeps weighted paths with solvePathConstraint after each of
 /// its iterations). `compliance` is the stretch of the whole path per unit
 /// T: sum_i w_i c_i for segment compliances c_i.
+///
+/// `scales`: empty (every segment counts once) or one value >= 0 per
+/// segment: the length is sum_i s_i L_i (with the weights, segment i pulls
+/// with s_i w_i T), a conservative constraint whatever the scales. Cables
+/// joined in one length constraint (MuJoCo's pulley branches: s = 1 /
+/// divisor) are one path of all their points, each cable's segments scaled
+/// by its share and the segment from one cable's end to the next cable's
+/// start by 0 (no cable there). Rolling ends only at the path's ends.
 struct PathConstraint {
   std::vector<PathPoint> points;
   std::vector<double> weights;
+  std::vector<double> scales;
   double rest_length = 0.0;
   double compliance = 0.0;
   double damping = 0.0;
@@ -120,7 +129,8 @@ struct BodyTable {
 
 /// One Gauss-Seidel visit. C = sum_i |p_{i+1} - p_i| - rest_length; the
 /// gradient at point i is u_{i-1} - u_i, u_i the unit direction of segment
-/// i (weighted w_{i-1} u_{i-1} - w_i u_i for the force). A body holding
+/// i (weighted w_{i-1} u_{i-1} - w_i u_i for the force; each u_i times its
+/// scale s_i in both, and |p_{i+1} - p_i| in C). A body holding
 /// several points gets the sum of their gradients, and the generalized
 /// inverse mass is J_c M^-1 J_f^T over all of them (SCA 2020 eq. 2-4 for a
 /// general gradient; J_c = J_f without weights). lambda is kept in
@@ -129,7 +139,12 @@ struct BodyTable {
 /// spring does.
 void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double alpha_tilde, double h);
 
-/// The path's length at the substep's start poses (m).
+/// The scale of segment i (PathConstraint::scales; 1 without them).
+inline double segmentScale(const PathConstraint& path, std::size_t i) {
+  return path.scales.empty() ? 1.0 : path.scales[i];
+}
+
+/// The path's length at the substep's start poses (m, its segments scaled).
 double pathStartLength(const PathConstraint& path, const BodyTable& bodies);
 
 }  // namespace reeve

@@ -1,5 +1,7 @@
 // A malformed or unbuildable model is a SceneError naming its file, line
 // and element, never a crash or a silent default.
+#include <fstream>
+
 #include "mjcf_fixture.h"
 
 namespace reeve::test {
@@ -39,6 +41,18 @@ const BadModel kBadModels[] = {
                          "</worldbody>\n</mujoco>\n",
      4, "<joint>", "a range with limited"},
     {"missing_include", "<mujoco>\n<include file=\"nowhere.xml\"/>\n</mujoco>\n", 2, "<include>", "a readable file"},
+    {"missing_mesh", "<mujoco>\n<asset>\n<mesh file=\"nowhere.stl\"/>\n</asset>\n<worldbody>\n<body><freejoint/>"
+                     "<geom type=\"mesh\" mesh=\"nowhere\"/></body>\n</worldbody>\n</mujoco>\n",
+     3, "<mesh>", "a mesh Reeve can read"},
+    {"unknown_mesh", "<mujoco>\n<worldbody>\n<body><freejoint/>\n<geom type=\"mesh\" mesh=\"teapot\"/>\n</body>\n</worldbody>\n"
+                     "</mujoco>\n",
+     4, "<geom>", "the name of a <mesh> asset"},
+    {"fitted_mesh", "<mujoco>\n<asset>\n<mesh file=\"part.stl\"/>\n</asset>\n<worldbody>\n<body><freejoint/>\n"
+                    "<geom mesh=\"part\"/></body>\n</worldbody>\n</mujoco>\n",
+     7, "<geom>", "type=\"mesh\" on a geom that names a mesh"},
+    {"msh_mesh", "<mujoco>\n<asset>\n<mesh file=\"part.msh\"/>\n</asset>\n<worldbody>\n<body><freejoint/>"
+                 "<geom type=\"mesh\" mesh=\"part\"/></body>\n</worldbody>\n</mujoco>\n",
+     3, "<mesh>", "a mesh Reeve can read"},
     {"two_orientations", "<mujoco>\n<worldbody>\n<body euler=\"0 0 0\" quat=\"1 0 0 0\"><freejoint/><geom size=\"1\"/></body>\n"
                          "</worldbody>\n</mujoco>\n",
      3, "<body>", "at most one of quat"},
@@ -57,6 +71,37 @@ TEST(MjcfErrors, EachNamesFileLineAndElement) {
       EXPECT_EQ(what.rfind(path.string() + ":" + std::to_string(bad.line) + ": " + bad.element + ": expected ", 0), 0u)
           << bad.name << ": " << what;
       EXPECT_NE(e.expected().find(bad.expected), std::string::npos) << bad.name << ": " << what;
+    }
+  }
+}
+
+// A mesh file that is wrong says where: its own file and line (a face of a
+// vertex not yet given), or what is wrong with the solid (a mesh inside
+// out, where the compiler is exact; a flat one), at the <mesh> that names it.
+TEST(MjcfErrors, MeshFilesSayWhatIsWrongWithThem) {
+  // Line 3 is the <mesh>; an exact compiler takes the triangles' sense.
+  const auto model = [](const std::string& name, const std::string& obj) {
+    writeModel(name + "_mesh", "");
+    std::ofstream(std::filesystem::temp_directory_path() / "reeve_mjcf_tests" / (name + ".obj")) << obj;
+    return writeModel(name, "<mujoco>\n<compiler exactmeshinertia=\"true\"/><asset>\n<mesh file=\"" + name +
+                                ".obj\"/>\n</asset>\n<worldbody>\n<body><freejoint/>"
+                                "<geom type=\"mesh\" mesh=\"" + name + "\"/></body>\n</worldbody>\n</mujoco>\n");
+  };
+  const std::string tetra = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n";
+  struct Case {
+    std::string name, obj, found;
+  };
+  for (const Case& c : {Case{"bad_face", tetra + "f 1 3 2\nf 1 2 7\n", "bad_face.obj:6: a vertex number of 1 to 4"},
+                        Case{"inside_out", tetra + "f 1 2 3\nf 1 4 2\nf 1 3 4\nf 2 4 3\n", "volume > 0"},
+                        Case{"flat", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 3 2\n", "volume > 0"},
+                        Case{"no_faces", tetra, "a mesh with triangles"}}) {
+    const auto path = model(c.name, c.obj);
+    try {
+      importMjcf(path);
+      ADD_FAILURE() << c.name << ": imported";
+    } catch (const SceneError& e) {
+      EXPECT_EQ(e.line(), 3) << c.name << ": " << e.what();
+      EXPECT_NE(e.found().find(c.found), std::string::npos) << c.name << ": " << e.what();
     }
   }
 }

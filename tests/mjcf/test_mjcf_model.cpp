@@ -1,8 +1,11 @@
 // What the importer reads: mass properties against their closed forms,
 // frames given five ways, defaults and classes, and what it lists as not
 // imported.
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
+#include <sstream>
 
 #include "mjcf_fixture.h"
 #include "reeve/scene/warnings.h"
@@ -177,6 +180,92 @@ TEST(MjcfModel, WhatIsNotImportedIsListedWithItsLine) {
   ASSERT_FALSE(warnings.empty());
   EXPECT_NE(warnings.front().message.find("5 parts of the model are not imported"), std::string::npos);
   EXPECT_TRUE(s.cables->cables().empty());  // a tendon that pulls on nothing is not a cable
+}
+
+}  // namespace
+}  // namespace reeve::test
+
+namespace reeve::test {
+namespace {
+
+// models/meshes.xml: mesh geoms are the solids their meshes bound. The
+// cube (cube.obj, quads with normals and texture coordinates, negative
+// indices) at 0.2 m: 8 kg, I = m a^2 / 6 about its centre, 0.1 m along its
+// turned diagonal from the geom's frame. The corner tetrahedron (tetra.stl,
+// ASCII) at a = 0.3 m: m = 1000 a^3 / 6 = 4.5 kg at a / 4 along each
+// axis, principal moments m a^2 / 16 (twice) and m a^2 / 10 (about the
+// (1, 1, 1) diagonal).
+TEST(MjcfModel, MeshGeomsAreTheSolidsTheirMeshesBound) {
+  Scene s = importedScene("meshes");
+  const BodyState& cube = s.world->body(bodyNamed(s, "cube"));
+  EXPECT_NEAR(1.0 / cube.inv_mass, 8.0, 1e-12);
+  const double c30 = std::cos(std::numbers::pi / 6.0), s30 = 0.5;
+  EXPECT_LT((cube.x - Vec3(0.5 + 0.1 * c30 - 0.1 * s30, 0.1 * s30 + 0.1 * c30, 1.1)).norm(), 1e-12);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(cube.inertia(i, i), 8.0 * 0.04 / 6.0, 1e-12);
+  const BodyState& corner = s.world->body(bodyNamed(s, "corner"));
+  const double m = 4.5, a = 0.3;
+  EXPECT_NEAR(1.0 / corner.inv_mass, m, 1e-12);
+  EXPECT_LT((corner.x - Vec3(1.0, 0.0, 1.0) - Vec3::Constant(a / 4.0)).norm(), 1e-12);
+  Vec3 moments = corner.inertia.diagonal();
+  std::sort(moments.data(), moments.data() + 3);
+  EXPECT_LT((moments - Vec3(m * a * a / 16.0, m * a * a / 16.0, m * a * a / 10.0)).norm(), 1e-12);
+  // Drawn and collided as the hull of the mesh: the cube's 8 corners.
+  const Shape& shape = s.world->bodyDef(bodyNamed(s, "cube")).shape;
+  ASSERT_EQ(shape.type, Shape::Type::Hull);
+  EXPECT_EQ(shape.hull->vertices.size(), 8u);
+  EXPECT_NEAR(shape.hull->bounding_radius, 0.1 * std::sqrt(3.0), 1e-12);
+}
+
+// An ASCII STL ("solid", "vertex" lines), named by a path the compiler's
+// meshdir leads to: the same tetrahedron as models/tetra.stl (binary), the
+// same solid.
+TEST(MjcfModel, AsciiSTLReadsAsItsBinaryTwin) {
+  const std::filesystem::path dir = writeModel("ascii_stl", "").parent_path() / "ascii_meshes";
+  std::filesystem::create_directories(dir);
+  std::ofstream stl(dir / "tetra.stl");
+  stl << "solid tetra\n";
+  for (const char* facet : {"0 0 0  0 1 0  1 0 0", "0 0 0  1 0 0  0 0 1", "0 0 0  0 0 1  0 1 0", "1 0 0  0 1 0  0 0 1"}) {
+    std::istringstream corners(facet);
+    stl << "  facet normal 0 0 0\n    outer loop\n";
+    for (int k = 0; k < 3; ++k) {
+      double x, y, z;
+      corners >> x >> y >> z;
+      stl << "      vertex " << x << " " << y << " " << z << "\n";
+    }
+    stl << "    endloop\n  endfacet\n";
+  }
+  stl << "endsolid tetra\n";
+  stl.close();
+  const auto path = writeModel("ascii_stl", R"(<mujoco>
+  <compiler meshdir="ascii_meshes"/>
+  <asset><mesh file="tetra.stl" scale="0.3 0.3 0.3"/></asset>
+  <worldbody><body name="corner"><freejoint/><geom type="mesh" mesh="tetra" density="2000"/></body></worldbody>
+</mujoco>)");
+  Scene s = parseScene(importMjcf(path).scene_json, path.string());
+  const BodyState& corner = s.world->body(bodyNamed(s, "corner"));
+  EXPECT_NEAR(1.0 / corner.inv_mass, 9.0, 1e-12);
+  EXPECT_LT((corner.x - Vec3::Constant(0.075)).norm(), 1e-12);
+}
+
+// A mesh that is not closed (a unit cube without its top) bounds no solid;
+// the import takes it as MuJoCo's compiler does. Its centre: the five
+// faces' pyramids from their area-weighted centre (0.5, 0.5, 0.4), the
+// bottom's of height 0.4 and the sides' of 0.5, V = 0.8 m^3, each pyramid's
+// centre 3/4 of the way to its face: z = (0.4 / 3 x 0.1 + 4 x 0.5 / 3 x
+// 0.475) / 0.8 = 0.4125. Its volume: the pyramids again from that centre,
+// (0.4125 + 4 x 0.5) / 3 m^3, 804.17 kg at 1000 kg/m^3.
+TEST(MjcfModel, AnOpenMeshWeighsAsMuJoCosCompilerTakesIt) {
+  const std::filesystem::path dir = writeModel("open_box", "").parent_path();
+  std::ofstream(dir / "open_box.obj") << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                                        "f 1 4 3 2\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+  const auto path = writeModel("open_box", R"(<mujoco>
+  <asset><mesh file="open_box.obj"/></asset>
+  <worldbody><body name="box"><freejoint/><geom type="mesh" mesh="open_box"/></body></worldbody>
+</mujoco>)");
+  Scene s = parseScene(importMjcf(path).scene_json, path.string());
+  const BodyState& box = s.world->body(bodyNamed(s, "box"));
+  EXPECT_NEAR(1.0 / box.inv_mass, 1000.0 * (0.4125 + 2.0) / 3.0, 1e-9);
+  EXPECT_LT((box.x - Vec3(0.5, 0.5, 0.4125)).norm(), 1e-12);
 }
 
 }  // namespace

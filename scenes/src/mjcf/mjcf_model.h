@@ -5,7 +5,9 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -43,6 +45,9 @@ struct Geom {
   int contype = 1, conaffinity = 1;
   double friction = 1.0;          // sliding
   int body = 0;
+  /// A mesh geom's hull corners (m) about its centre of mass, in its frame
+  /// (its pose moved to that centre, as MuJoCo's compiler moves it).
+  std::vector<Vec3> vertices;
 };
 
 struct Site {
@@ -126,6 +131,38 @@ struct Model {
   /// What was read but not kept: one line each (Origin::where() and why).
   std::vector<std::string> unmapped;
 };
+
+/// A triangle mesh: vertices (m) and triangles of vertex indices.
+struct TriangleMesh {
+  std::vector<Vec3> vertices;
+  std::vector<std::array<int, 3>> triangles;
+};
+
+/// A mesh file that cannot be read: "FILE[:LINE]: what was expected".
+struct MeshError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// The largest mesh file read (bytes).
+inline constexpr std::uintmax_t kMaxMeshFileBytes = 256u << 20;
+
+/// Reads an OBJ (`v` and `f` records, polygons fanned) or STL (binary or
+/// ASCII) file (mjcf_mesh.cpp), a regular file of at most
+/// kMaxMeshFileBytes. Throws MeshError.
+TriangleMesh readMeshFile(const std::string& path);
+
+/// The solid a mesh bounds as MuJoCo's compiler takes it (mjcf_mesh.cpp):
+/// its volume (m^3; <= 0 for one that bounds none, and then nothing else
+/// is set), centre of mass (m) and inertia about it at density 1 (kg m^2
+/// per kg/m^3). Exact for a closed mesh of outward triangles; `legacy`
+/// (MuJoCo's default, `<compiler exactmeshinertia="false">`) counts every
+/// pyramid of a triangle and the centre as positive.
+struct MeshMassProperties {
+  double volume = 0.0;
+  Vec3 centroid = Vec3::Zero();
+  Mat3 inertia_unit_density = Mat3::Zero();
+};
+MeshMassProperties meshMassProperties(const TriangleMesh& mesh, bool legacy);
 
 /// Reads the model at `path` (throws SceneError as importMjcf does).
 Model readModel(const std::string& path);

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "mjcf_model.h"
+#include "reeve/engine/convex_hull.h"
 #include "reeve/scene/scene.h"
 #include "reeve/scene/scene_file.h"
 
@@ -106,6 +107,8 @@ class Reader {
       else if (tag == "option") readOption(n);
       else if (tag == "default") readDefaults(n, "main", "");
     }
+    for (const Node& n : sections)  // before the geoms that use them
+      if (std::string(n.xml.name()) == "asset") readAssets(n);
     for (const Node& n : sections)
       if (std::string(n.xml.name()) == "worldbody") readBodyChildren(n, 0, "main");
     for (const Node& n : sections)  // before the actuators that name them
@@ -114,7 +117,7 @@ class Reader {
       const std::string tag = n.xml.name();
       if (tag == "actuator") readActuators(n);
       else if (tag == "compiler" || tag == "option" || tag == "default" || tag == "worldbody" || tag == "tendon") continue;
-      else if (tag == "visual" || tag == "asset" || tag == "size" || tag == "statistic") continue;  // drawing, memory
+      else if (tag == "visual" || tag == "asset" || tag == "size" || tag == "statistic") continue;  // drawing, memory; meshes read
       else unmapped(n, "not imported (Reeve has no " + tag + " section)");
     }
     listAttributes();
@@ -331,6 +334,68 @@ class Reader {
       fail(n, "coordinate=\"local\" (global coordinates were removed from MJCF)", a.value());
     for (const char* name : {"boundmass", "boundinertia", "settotalmass", "balanceinertia", "fitaabb"})
       if (n.xml.attribute(name)) unmapped(n, std::string(name) + " not imported");
+    if (const auto a = n.xml.attribute("exactmeshinertia")) exact_mesh_inertia_ = std::string(a.value()) == "true";
+    if (const auto a = n.xml.attribute("assetdir")) mesh_dir_ = a.value();
+    if (const auto a = n.xml.attribute("meshdir")) mesh_dir_ = a.value();  // wins over assetdir, as in MuJoCo
+  }
+
+  // <asset>'s meshes: each read when a geom first uses it. The others
+  // (textures, materials, heightfields, skins) are drawing or not imported.
+  void readAssets(const Node& assets) {
+    for (const Node& n : children(assets)) {
+      const std::string tag = n.xml.name();
+      if (tag == "hfield" || tag == "skin") unmapped(n, "not imported (Reeve has no " + tag + ")");
+      if (tag != "mesh") continue;
+      MeshAsset mesh;
+      mesh.origin = originOf(n);
+      const std::string cls = n.xml.attribute("class") ? n.xml.attribute("class").value() : "main";
+      if (n.xml.attribute("vertex")) fail(n, "a mesh from a file (vertex lists are not imported)", "vertex=\"...\"");
+      const std::string file = text(n, "file");
+      std::filesystem::path dir = std::filesystem::path(model_.file).parent_path() / mesh_dir_;
+      mesh.path = (std::filesystem::path(file).is_absolute() ? std::filesystem::path(file) : dir / file).string();
+      if (const auto scale = lookup(n, "mesh", cls, "scale")) {
+        const auto v = numbers(n, scale, 3, 3);
+        mesh.scale = Vec3(v[0], v[1], v[2]);
+      }
+      unmappedAttributes(n, "mesh", cls, {"refpos", "refquat", "smoothnormal"});
+      std::string name = n.xml.attribute("name") ? n.xml.attribute("name").value() : std::filesystem::path(file).stem().string();
+      if (!meshes_.emplace(name, std::move(mesh)).second) fail(n, "a mesh name not already used", "\"" + name + "\"");
+    }
+  }
+
+  // A mesh geom: the mesh's solid, scaled, moved to its centre of mass as
+  // MuJoCo's compiler moves a mesh (the geom's frame follows, so nothing
+  // moves in the world); its hull's corners for the shape.
+  void readMeshGeom(const Node& n, const std::string& cls, Geom& g, double density, bool mass_given) {
+    const auto attribute = lookup(n, "geom", cls, "mesh");
+    if (!attribute) fail(n, "a mesh attribute on a mesh geom", "none");
+    const auto it = meshes_.find(attribute.value());
+    if (it == meshes_.end()) fail(n, "the name of a <mesh> asset", "\"" + std::string(attribute.value()) + "\"");
+    MeshAsset& asset = it->second;
+    if (!asset.loaded) {
+      try {
+        TriangleMesh mesh = readMeshFile(asset.path);
+        for (Vec3& v : mesh.vertices) v = v.cwiseProduct(asset.scale);
+        if (asset.scale.prod() < 0.0)  // mirrored: the triangles turn inside out, as MuJoCo turns them back
+          for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
+        asset.mass = meshMassProperties(mesh, !exact_mesh_inertia_);
+        if (!(asset.mass.volume > 0.0))
+          throw MeshError(asset.path + ": a mesh that bounds a solid (volume > 0" +
+                          (exact_mesh_inertia_ ? ", its triangles outward" : "") + "), got a volume of " +
+                          std::to_string(asset.mass.volume) + " m^3");
+        asset.corners = makeConvexHull(mesh.vertices, true)->vertices;
+        for (Vec3& v : asset.corners) v -= asset.mass.centroid;
+      } catch (const MeshError& e) {
+        throw SceneError::atLine(asset.origin.file, asset.origin.line, asset.origin.element, "a mesh Reeve can read", e.what());
+      } catch (const std::invalid_argument& e) {
+        throw SceneError::atLine(asset.origin.file, asset.origin.line, asset.origin.element, "a mesh that spans a volume", e.what());
+      }
+      asset.loaded = true;
+    }
+    g.pose = g.pose.then(Pose{asset.mass.centroid, Quat::Identity()});
+    g.vertices = asset.corners;
+    g.mass = mass_given ? g.mass : density * asset.mass.volume;
+    g.inertia = g.mass / asset.mass.volume * asset.mass.inertia_unit_density;
   }
 
   void readOption(const Node& n) {
@@ -448,6 +513,8 @@ class Reader {
     const auto it = kTypes.find(t);
     if (it == kTypes.end()) fail(n, "a geom type of plane, sphere, capsule, ellipsoid, cylinder, box or mesh", "\"" + t + "\"");
     g.type = it->second;
+    if (g.type != GeomType::Mesh && lookup(n, "geom", cls, "mesh"))
+      fail(n, "type=\"mesh\" on a geom that names a mesh (a primitive fitted to a mesh is not imported)", "type \"" + t + "\"");
     if (const auto size = lookup(n, "geom", cls, "size")) {
       const auto v = numbers(n, size, 1, 3);
       for (std::size_t i = 0; i < v.size(); ++i) g.size[static_cast<int>(i)] = v[i];
@@ -469,14 +536,12 @@ class Reader {
                      : g.type == GeomType::Plane || g.type == GeomType::Mesh ? 0 : 3;
     for (int i = 0; i < needed; ++i)
       if (!(g.size[i] > 0.0)) fail(n, "a " + t + " size of " + std::to_string(needed) + " positive numbers", "size " + std::to_string(i) + " = " + std::to_string(g.size[i]));
-    if (g.type == GeomType::Mesh) {
-      unmapped(n, "mesh geoms are not imported yet: no mass, no collision, not drawn");
-    }
     const auto mass = lookup(n, "geom", cls, "mass");
     const double density = number(n, "geom", cls, "density", 1000.0);
     g.mass = mass ? numbers(n, mass, 1, 1)[0] : density * geomVolume(g.type, g.size);
     if (g.mass < 0.0) fail(n, "a geom mass >= 0", std::to_string(g.mass));
     g.inertia = g.mass * geomUnitInertia(g.type, g.size);
+    if (g.type == GeomType::Mesh) readMeshGeom(n, cls, g, density, static_cast<bool>(mass));
     g.contype = static_cast<int>(number(n, "geom", cls, "contype", 1.0));
     g.conaffinity = static_cast<int>(number(n, "geom", cls, "conaffinity", 1.0));
     if (const auto f = lookup(n, "geom", cls, "friction")) g.friction = numbers(n, f, 1, 3)[0];
@@ -638,8 +703,20 @@ class Reader {
     std::map<std::string, std::vector<pugi::xml_node>> defaults;  // per tag, in the order given
   };
 
+  struct MeshAsset {
+    Origin origin;
+    std::string path;  // the file, found as MuJoCo finds it (the model's folder, meshdir)
+    Vec3 scale = Vec3::Ones();
+    bool loaded = false;
+    MeshMassProperties mass;   // scaled
+    std::vector<Vec3> corners;  // its hull's, about its centre of mass
+  };
+
   Model model_;
   std::vector<std::unique_ptr<Source>> sources_;
+  std::map<std::string, MeshAsset> meshes_;
+  std::string mesh_dir_;  // <compiler meshdir> (or assetdir), relative to the model's folder
+  bool exact_mesh_inertia_ = false;  // <compiler exactmeshinertia>
   std::map<std::string, DefaultClass> classes_;
   std::map<std::pair<std::string, std::string>, std::vector<Origin>> unmapped_attributes_;  // per tag and attribute
   bool degrees_ = true;

@@ -89,8 +89,8 @@ std::vector<Vec3> surfacePoints(const Geom& g) {
       points.emplace_back(0, 0, -radii.z() - half);
       break;
     }
-    case GeomType::Plane:
-    case GeomType::Mesh: break;
+    case GeomType::Mesh: points = g.vertices; break;
+    case GeomType::Plane: break;
   }
   return points;
 }
@@ -270,7 +270,6 @@ class Mapper {
           unmapped_.push_back(g.origin.where() + ": a plane on a moving body is not imported");
           continue;
         }
-        if (g.type == GeomType::Mesh) continue;  // listed by the reader
         if (!(wrap_[gi] && options_.wheels == MjcfWheels::Turning)) geoms.push_back(&g);
         if (inertial || m_.inertia_from_geom == "false") continue;
         if (wrap_[gi] && options_.wheels == MjcfWheels::Turning) continue;  // the wheel's own
@@ -374,7 +373,7 @@ class Mapper {
         ground_ = json{{"normal", vec(n)}, {"height_m", n.dot(p.pos)}};
         continue;
       }
-      if (g.type == GeomType::Mesh || (wrap_[gi] && options_.wheels == MjcfWheels::Turning)) continue;
+      if (wrap_[gi] && options_.wheels == MjcfWheels::Turning) continue;
       json body = {{"name", uniqueName(g.name, "geom" + std::to_string(gi))},
                    {"shape", shapeOf(g)}, {"static", true}, {"position_m", vec(p.pos)}};
       if (p.quat.angularDistance(Quat::Identity()) > 0.0) body["orientation"] = orientationJson(p.quat);

@@ -51,8 +51,25 @@ double CableSystem::winchWork() const {
   double work = 0.0;
   for (const CableUpdate& u : updates_) work += u.winch_total;
   for (int c = 0; c < static_cast<int>(cables_.size()); ++c) {
+    const Cable& cable = cables_[c];
     const double pull = winchPull(c);
-    work += cables_[c].reeled * pull * (1.0 + cables_[c].compliance_per_m * std::max(0.0, pull));
+    work += cable.reeled * pull * (1.0 + cable.compliance_per_m * std::max(0.0, pull));
+    // Stalled, it pays out at its next update what the solve could not
+    // pull in (reel(): its slip), booked there against what it reeled:
+    // counted now too. (Without it, a winch reeling in far more than its
+    // load follows, a constant pull as an MJCF tendon motor or muscle is,
+    // showed its whole reel as work between updates: 56 J for 25.6 J done,
+    // and the ledger's balance rising frame by frame.)
+    if (!cable.winch || !std::isfinite(cable.winch->max_pull) || world_.lastSubstep() == 0.0) continue;
+    const auto [k, j] = winchSpan(cable);
+    if (cable.joints[j].parted) continue;
+    const PathId id = cable.joints[cable.joints[j].run].path;
+    const PathConstraint& path = world_.path(id);
+    const double h = world_.lastSubstep();
+    if (!(-path.lambda >= cable.winch->max_pull * h * h * (1.0 - 1e-9))) continue;
+    const double elastic = path.compliance * -path.lambda / (h * h);
+    const double slip = std::min(std::max(0.0, world_.pathLength(id) - path.rest_length - elastic), cable.links[k].stored);
+    work -= pull * slip;
   }
   return work;
 }

@@ -95,8 +95,10 @@ def import_mjcf(path, wheels="fixed", controls=None):
     wheels="turning" a wheel hinged on its axis with the geom's mass, the
     tendon rolling on it. controls: {actuator name: its control (MuJoCo's
     ctrl)}, held constant while the scene runs (others 0, at rest): motors
-    and servos on joints become drives, a motor pulling a tendon a winch.
-    scenes/README.md ("MuJoCo models") lists the mapping. What the scene does not carry of the model is given in one
+    and servos on joints become drives, a motor pulling a tendon a winch,
+    a muscle a winch pulling with its control times its peak force, and
+    pulley branches a junction of cables. scenes/README.md ("MuJoCo
+    models") lists the mapping. What the scene does not carry of the model is given in one
     UserWarning, a line for each element with its file and line. Raises
     reeve.SceneError ("FILE:LINE: <element>: expected ..., got ...") for a
     malformed model or one Reeve cannot build. reeve.load(d) builds the dict.

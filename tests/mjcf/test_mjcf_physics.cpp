@@ -93,6 +93,68 @@ TEST(MjcfPhysics, PulleyBranchesShareTheTendonsLength) {
   EXPECT_EQ(junction.scales, (std::vector<double>{1.0, 0.5, 0.5}));
 }
 
+// A muscle is a winch pulling with its control times its peak force F0:
+// its `force`, or MuJoCo's scale / acc0, acc0 the joint acceleration a
+// unit tendon force gives at load. A 2 kg box on a vertical slide hung
+// from a tendon: acc0 = 1 / 2 kg, F0 = 200 / 0.5 = 400 N, and at control
+// 0.1 it rises at 40 / 2 - g; with force="60" at control 0.5, at
+// 30 / 2 - g. A 1 kg rod of 0.5 m on a hinge at its end, its tendon 0.2 m
+// from the axle: acc0 = 0.2 / I = 2.4 rad/s^2 per N, F0 = 83.4 N, and at
+// control 0.05 the rod turns at 0.05 F0 x 0.2 / I.
+TEST(MjcfPhysics, MusclesPullWithControlTimesPeakForce) {
+  const auto slide = [](const std::string& muscle) {
+    return R"(<mujoco>
+  <worldbody>
+    <site name="top" pos="0 0 2"/>
+    <body name="box" pos="0 0 0">
+      <joint name="lift" type="slide" axis="0 0 1"/>
+      <geom type="box" size="0.1 0.1 0.1" mass="2"/>
+      <site name="hook" pos="0 0 0.1"/>
+    </body>
+  </worldbody>
+  <tendon><spatial name="rope"><site site="top"/><site site="hook"/></spatial></tendon>
+  <actuator>)" + muscle + R"(</actuator>
+</mujoco>)";
+  };
+  struct Case {
+    std::string muscle;
+    double control, pull;
+  };
+  for (const Case& c : {Case{R"(<muscle name="m" tendon="rope"/>)", 0.1, 40.0},
+                        Case{R"(<muscle name="m" tendon="rope" force="60"/>)", 0.5, 30.0}}) {
+    const auto path = writeModel("muscle_slide", slide(c.muscle));
+    MjcfOptions options;
+    options.controls["m"] = c.control;
+    Scene s = parseScene(importMjcf(path, options).scene_json, path.string());
+    ASSERT_EQ(s.cables->cables().size(), 1u);
+    EXPECT_NEAR(s.cables->cables()[0].winch->max_pull, c.pull, 1e-6 * c.pull) << c.muscle;
+    const double t = stepFrames(s, 12), a = c.pull / 2.0 - g;
+    EXPECT_NEAR(s.world->body(bodyNamed(s, "box")).v.z(), a * t, 1e-6 * a * t) << c.muscle;
+  }
+  const auto path = writeModel("muscle_hinge", R"(<mujoco>
+  <option gravity="0 0 0"/>
+  <worldbody>
+    <site name="anchor" pos="0.2 0 1"/>
+    <body name="rod">
+      <joint name="pivot" type="hinge" axis="0 1 0"/>
+      <geom type="box" size="0.25 0.01 0.01" pos="0.25 0 0" mass="1"/>
+      <site name="hook" pos="0.2 0 0"/>
+    </body>
+  </worldbody>
+  <tendon><spatial name="rope"><site site="anchor"/><site site="hook"/></spatial></tendon>
+  <actuator><muscle name="m" tendon="rope"/></actuator>
+</mujoco>)");
+  MjcfOptions options;
+  options.controls["m"] = 0.05;
+  Scene s = parseScene(importMjcf(path, options).scene_json, path.string());
+  const double inertia = 1.0 / 12.0 * (0.5 * 0.5 + 0.02 * 0.02) + 1.0 * 0.25 * 0.25;  // about the axle
+  const double f0 = 200.0 / (0.2 / inertia);
+  ASSERT_EQ(s.cables->cables().size(), 1u);
+  EXPECT_NEAR(s.cables->cables()[0].winch->max_pull, 0.05 * f0, 1e-6 * f0);
+  const double t = stepFrames(s, 2), alpha = 0.05 * f0 * 0.2 / inertia;  // 0.005 rad turned: the arm stays 0.2 m
+  EXPECT_NEAR(std::abs(s.world->body(bodyNamed(s, "rod")).omega.y()), alpha * t, 1e-4 * alpha * t);
+}
+
 // models/lever.xml: a 2 kg link and a welded 1 kg tip held level by a
 // tendon whose line of action passes r = 0.05 m from the hinge: at rest
 // T = g (2 x 0.25 + 1 x 0.5) / r = 196.2 N, and the link stays level.

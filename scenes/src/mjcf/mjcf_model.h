@@ -114,6 +114,9 @@ struct Actuator {
   double kp = 1.0, kv = 0.0;  // a position servo's gains (kv also a velocity servo's)
   bool ctrllimited = false, forcelimited = false;
   std::array<double, 2> ctrlrange{0.0, 0.0}, forcerange{0.0, 0.0};
+  /// A muscle's peak active force F0 (N; < 0: scale / acc0, MuJoCo's
+  /// default) and its scale.
+  double force = -1.0, scale = 200.0;
 };
 
 struct Model {
@@ -178,9 +181,38 @@ struct TendonCables {
   double length = 0.0;
 };
 
-/// The scene of `model` (mjcf_scene.cpp), its rest lengths taut, and each
-/// tendon's cables (`lengths`, per tendon).
-MjcfImport mapModel(const Model& model, const MjcfOptions& options, std::vector<TendonCables>& lengths);
+/// A degree of freedom of the model as the scene has it: an MJCF joint
+/// between two Reeve bodies (`own` moves on `other`; a free joint's body
+/// on nothing), at `anchor` (m, world) along or about `axis` (world, unit);
+/// a free joint's `anchor` is its MJCF body's origin, where MuJoCo
+/// measures its velocity.
+struct Dof {
+  JointType type = JointType::Hinge;
+  std::string own, other;
+  Vec3 anchor = Vec3::Zero(), axis = Vec3::UnitZ();
+};
+
+/// A winch pulling with MuJoCo's default muscle force, scale / acc0
+/// (acc0: the norm of the joint accelerations a pull of 1 N along the
+/// tendon gives at load, mjcf_import.cpp), times `times` (the control).
+struct MusclePull {
+  int cable = -1;
+  double times = 0.0;  // ctrl x scale
+  Origin origin;       // the muscle's
+};
+
+/// What mapModel makes: the scene JSON and the unmapped list (`import`),
+/// each tendon's cables, the model's degrees of freedom, and the muscle
+/// pulls left to set.
+struct Mapping {
+  MjcfImport import;
+  std::vector<TendonCables> tendons;
+  std::vector<Dof> dofs;
+  std::vector<MusclePull> muscle_pulls;
+};
+
+/// The scene of `model` (mjcf_scene.cpp), its rest lengths taut.
+Mapping mapModel(const Model& model, const MjcfOptions& options);
 
 /// A geom's volume (m^3) and inertia about its centre in its frame for a
 /// mass of 1 kg (MuJoCo's formulas; a capsule is a cylinder and two

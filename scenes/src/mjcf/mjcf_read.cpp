@@ -694,6 +694,11 @@ class Reader {
       };
       range("ctrllimited", "ctrlrange", a.ctrllimited, a.ctrlrange);
       range("forcelimited", "forcerange", a.forcelimited, a.forcerange);
+      if (a.kind == "muscle") {
+        a.force = number(n, a.kind, cls, "force", -1.0);
+        a.scale = number(n, a.kind, cls, "scale", 200.0);
+        unmappedAttributes(n, a.kind, cls, {"lengthrange", "range", "lmin", "lmax", "vmax", "fpmax", "fvmax", "timeconst"});
+      }
       model_.actuators.push_back(a);
     }
   }

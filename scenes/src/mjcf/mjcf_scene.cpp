@@ -130,7 +130,7 @@ class Mapper {
  public:
   Mapper(const Model& model, const MjcfOptions& options) : m_(model), options_(options) {}
 
-  MjcfImport map() {
+  Mapping map() {
     groupBodies();
     findWraps();  // which tendons are cables: their winch ends need the groups
     for (std::size_t b = 0; b < m_.bodies.size(); ++b)
@@ -156,18 +156,16 @@ class Mapper {
     if (!junctions_.empty()) scene_["junctions"] = junctions_;
     if (ground_) scene_["ground"] = *ground_;
     scene_["camera"] = camera();
-    MjcfImport out;
+    Mapping out;
     // Replace what is not UTF-8: the model's path may hold such bytes (its text may not).
-    out.scene_json = scene_.dump(2, ' ', false, json::error_handler_t::replace);
-    out.unmapped = m_.unmapped;
-    out.unmapped.insert(out.unmapped.end(), unmapped_.begin(), unmapped_.end());
+    out.import.scene_json = scene_.dump(2, ' ', false, json::error_handler_t::replace);
+    out.import.unmapped = m_.unmapped;
+    out.import.unmapped.insert(out.import.unmapped.end(), unmapped_.begin(), unmapped_.end());
+    out.tendons = cable_lengths_;
+    out.dofs = dofs_;
+    out.muscle_pulls = muscle_pulls_;
     return out;
   }
-
-  /// The cables' indices in the scene, per tendon (-1: none), and the
-  /// rest length (m) each is to have in all: its range's upper end or its
-  /// spring length; NaN: as long as it is at load.
-  std::vector<TendonCables> cableLengths() const { return cable_lengths_; }
 
  private:
   // --- bodies -----------------------------------------------------------
@@ -219,7 +217,7 @@ class Mapper {
              }))
       why = branches.size() > 1 ? "a pulley branch that does not start and end at a site" : "a path that does not start and end at a site";
     else if (branches.size() > 1 && pulledBy(t))
-      why = "a motor on a tendon with pulley branches is not imported (a junction's cables have no winch)";
+      why = "an actuator pulling a tendon with pulley branches is not imported (a junction's cables have no winch)";
     else if (std::any_of(t.path.begin(), t.path.end(), [&](const PathElement& p) {
                return p.kind == PathElement::Kind::Geom && m_.geoms[p.index].type != GeomType::Cylinder &&
                       m_.geoms[p.index].type != GeomType::Sphere;
@@ -412,9 +410,11 @@ class Mapper {
     const Joint& j = m_.joints[index];
     if (j.type == JointType::Free) {
       if (body.joints.size() > 1) unmapped_.push_back(j.origin.where() + ": a free joint beside other joints is not imported");
+      else dofs_.push_back({JointType::Free, own, "", body.world.pos, Vec3::UnitZ()});
       return;
     }
     const Vec3 anchor = body.world.apply(j.pos), axis = body.world.quat * j.axis;
+    dofs_.push_back({j.type, own, other, anchor, axis.normalized()});
     if (j.frictionloss > 0.0) unmapped_.push_back(j.origin.where() + ": frictionloss not imported");
     if (j.type == JointType::Ball) {
       if (j.limited) unmapped_.push_back(j.origin.where() + ": a ball joint's range (a cone on its whole rotation) is not imported");
@@ -502,20 +502,30 @@ class Mapper {
 
   // The motor pulling tendon t, if one does (MuJoCo's tendon force is
   // negative where it shortens it), else null.
-  const Actuator* tendonMotor(const Tendon& t) const {
+  // Whether actuator a pulls its tendon with its control held: a motor
+  // whose force shortens it (MuJoCo's tendon force is negative then), a
+  // muscle with a control above 0 (and a gear that pulls).
+  bool pulls(const Actuator& a) const {
+    if (a.kind == "motor") return motorForce(a) < 0.0;
+    return a.kind == "muscle" && control(a) > 0.0 && a.gear > 0.0;
+  }
+  // The first actuator that pulls tendon t (tendonPull), or null.
+  const Actuator* tendonPull(const Tendon& t) const {
     const int index = static_cast<int>(&t - m_.tendons.data());
     for (const Actuator& a : m_.actuators)
-      if (a.tendon == index && a.kind == "motor" && motorForce(a) < 0.0 && winchEnd(t)) return &a;
+      if (a.tendon == index && pulls(a)) return &a;
     return nullptr;
   }
-  // The end of tendon t tied to the world, where a winch's drum can be.
+  // The end of tendon t where a winch's drum is: one tied to the world,
+  // else its first site's body (the pull is between the tendon's ends all
+  // the same: MuJoCo's tendon force acts on every body along it).
   const char* winchEnd(const Tendon& t) const {
     const auto onWorld = [&](const PathElement& e) {
       return e.kind == PathElement::Kind::Site && group_[m_.sites[e.index].body] == 0;
     };
-    return t.path.empty() ? nullptr : onWorld(t.path.front()) ? "first" : onWorld(t.path.back()) ? "last" : nullptr;
+    return t.path.empty() || onWorld(t.path.front()) ? "first" : onWorld(t.path.back()) ? "last" : "first";
   }
-  bool pulledBy(const Tendon& t) const { return tendonMotor(t) != nullptr; }
+  bool pulledBy(const Tendon& t) const { return tendonPull(t) != nullptr; }
 
   // --- wrap cylinders ---------------------------------------------------
 
@@ -654,22 +664,32 @@ class Mapper {
       unmapped_.push_back(t.origin.where() + ": damping without stiffness is not imported");
     }
     if (t.frictionloss > 0.0) unmapped_.push_back(t.origin.where() + ": frictionloss not imported");
-    const Actuator* motor = tendonMotor(t);
+    const Actuator* puller = tendonPull(t);
     for (const Actuator& a : m_.actuators) {
       if (a.tendon != static_cast<int>(&t - m_.tendons.data())) continue;
       tendon_actuator_done_.insert(&a);
-      if (&a == motor) continue;
-      if (a.kind != "motor") notImported(a, "<" + a.kind + "> actuators are not imported yet");
-      else if (motorForce(a) > 0.0) notImported(a, "a motor pushing along a tendon is not imported (a cable pulls only)");
-      else if (motorForce(a) < 0.0 && !winchEnd(t)) notImported(a, "a motor on a tendon with neither end on the world is not imported (its winch needs a drum)");
-      else if (motorForce(a) < 0.0) notImported(a, "a second motor on a tendon is not imported");
+      if (a.kind == "muscle")
+        notImported(a, "a muscle is a constant pull, control x peak force: its force-length and force-velocity curves, "
+                       "passive force and activation are not imported");
+      if (&a == puller) continue;
+      if (a.kind != "motor" && a.kind != "muscle") notImported(a, "<" + a.kind + "> actuators are not imported yet");
+      else if (a.kind == "motor" && motorForce(a) > 0.0) notImported(a, "a motor pushing along a tendon is not imported (a cable pulls only)");
+      else if (a.kind == "muscle" && a.gear < 0.0) notImported(a, "a muscle with a negative gear pushes: not imported (a cable pulls only)");
+      else if (pulls(a)) notImported(a, "a second actuator pulling a tendon is not imported");
     }
-    if (motor) {
-      // A winch at the end tied to the world, hauling in faster than
-      // anything moves, stalled at the motor's pull: a constant tension.
-      cable["winch"] = {{"end", winchEnd(t)}, {"max_speed_m_per_s", kMotorSpeed}, {"max_pull_N", -motorForce(*motor)},
+    if (puller) {
+      // A winch at one end, hauling in faster than anything moves, stalled
+      // at the actuator's pull: a constant tension. A muscle pulls with its
+      // control times its peak force F0: `force`, or MuJoCo's scale / acc0,
+      // set once the scene is built (mjcf_import.cpp).
+      double pull = puller->kind == "motor" ? -motorForce(*puller) : control(*puller) * puller->force * puller->gear;
+      if (puller->kind == "muscle" && !(puller->force > 0.0)) {
+        muscle_pulls_.push_back({static_cast<int>(cables_.size()), control(*puller) * puller->scale, puller->origin});
+        pull = 1.0;  // for now
+      }
+      cable["winch"] = {{"end", winchEnd(t)}, {"max_speed_m_per_s", kMotorSpeed}, {"max_pull_N", pull},
                         {"commands", json::array({{{"from_s", 0.0}, {"speed_m_per_s", kMotorSpeed}}})}};
-      if (t.limited) unmapped_.push_back(t.origin.where() + ": the range of a tendon a motor pulls is not imported");
+      if (t.limited) unmapped_.push_back(t.origin.where() + ": the range of a tendon an actuator pulls is not imported");
       length = std::numeric_limits<double>::quiet_NaN();
     }
     cable_lengths_.push_back({{static_cast<int>(cables_.size())}, {1.0}, length});
@@ -769,15 +789,12 @@ class Mapper {
   std::set<const Actuator*> tendon_actuator_done_;  // listed or mapped by addCable  // per MJCF joint: its entry in hinges_ or joints_
   std::vector<std::string> unmapped_;
   std::vector<TendonCables> cable_lengths_;
+  std::vector<Dof> dofs_;
+  std::vector<MusclePull> muscle_pulls_;
 };
 
 }  // namespace
 
-MjcfImport mapModel(const Model& model, const MjcfOptions& options, std::vector<TendonCables>& lengths) {
-  Mapper mapper(model, options);
-  MjcfImport out = mapper.map();
-  lengths = mapper.cableLengths();
-  return out;
-}
+Mapping mapModel(const Model& model, const MjcfOptions& options) { return Mapper(model, options).map(); }
 
 }  // namespace reeve::mjcf

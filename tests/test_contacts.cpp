@@ -10,7 +10,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <stdexcept>
+#include <string>
+#include <utility>
 #include <numbers>
 
 #include "contact_fixture.h"
@@ -361,6 +365,58 @@ TEST(Contacts, ThinRodRestsOnAWheelWithoutSpinningOrSlidingAlongTheAxle) {
           EXPECT_LT((world.body(rod).x - 0.31 * radial).norm(), 2e-4);
         }
       }
+}
+
+}  // namespace
+}  // namespace reeve
+
+namespace reeve {
+namespace {
+
+using namespace test;
+
+// Which colliding bodies touch (MuJoCo's contype and conaffinity, and
+// excluded pairs): a 0.2 m box dropped 0.05 m onto another resting on the
+// ground comes to rest on it, its centre 0.3 m up, where the pair's bits
+// meet; where they do not, or the pair is excluded, it falls through onto
+// the ground, its centre at 0.1 m. One side is enough: the top's type
+// against the bottom's affinity.
+TEST(Contacts, ContactBitsAndExcludedPairsChooseWhichBodiesTouch) {
+  struct Case {
+    const char* what;
+    std::uint32_t top_type, top_affinity, bottom_type, bottom_affinity;
+    bool excluded;
+    double rest_height;
+  };
+  for (const Case& c : {Case{"default bits", 1, 1, 1, 1, false, 0.3}, Case{"bits apart", 1, 1, 2, 2, false, 0.1},
+                        Case{"one side", 2, 0, 0, 2, false, 0.3}, Case{"neither side", 2, 0, 2, 0, false, 0.1},
+                        Case{"excluded", 1, 1, 1, 1, true, 0.1}})
+    for (const auto& [substeps, iterations] : {std::pair{10, 2}, std::pair{1, 10}}) {
+      SCOPED_TRACE(std::string(c.what) + ", " + std::to_string(substeps) + " x " + std::to_string(iterations));
+      World world = makeWorld(substeps, iterations);
+      world.setGround(ground(Vec3::UnitY(), ContactMaterial{}));
+      const auto box = [&](double y, std::uint32_t type, std::uint32_t affinity) {
+        BodyDef def;
+        def.shape = Shape::box(Vec3::Constant(0.1));
+        def.mass = 1.0;
+        def.position = Vec3(0.0, y, 0.0);
+        def.collides = true;
+        def.contact_type = type;
+        def.contact_affinity = affinity;
+        return world.addBody(def);
+      };
+      const BodyId bottom = box(0.1, c.bottom_type, c.bottom_affinity), top = box(0.35, c.top_type, c.top_affinity);
+      if (c.excluded) world.excludeContact(top, bottom);
+      EXPECT_EQ(world.contactAllowed(top, bottom), c.rest_height > 0.2);
+      EXPECT_EQ(world.contactAllowed(bottom, top), c.rest_height > 0.2);
+      for (int f = 0; f < 120; ++f) world.step(kFrame);
+      EXPECT_NEAR(world.body(top).x.y(), c.rest_height, 2e-3);
+      EXPECT_NEAR(world.body(bottom).x.y(), 0.1, 2e-3);
+    }
+  World world = makeWorld(10, 2);
+  const BodyId a = add(world, Shape::box(Vec3::Constant(0.1)), 1.0, Vec3::Zero(), ContactMaterial{}, true);
+  EXPECT_THROW(world.excludeContact(a, a), std::invalid_argument);
+  EXPECT_THROW(world.excludeContact(a, 7), std::invalid_argument);
 }
 
 }  // namespace

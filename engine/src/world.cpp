@@ -193,6 +193,7 @@ void World::findContacts() {
       const BodyId b = colliders_[j];
       const BodyState &sa = bodies_[a], &sb = bodies_[b];
       if (!sa.moves() && !sb.moves()) continue;
+      if (!contactAllowed(a, b)) continue;
       const double reach = grow * (bound_radius_[a] + bound_radius_[b]);
       if ((sb.x - sa.x).squaredNorm() > reach * reach) continue;
       const std::size_t first = contacts_.size();
@@ -201,6 +202,21 @@ void World::findContacts() {
       group(first);
     }
   }
+}
+
+void World::excludeContact(BodyId a, BodyId b) {
+  if (a < 0 || b < 0 || a >= bodyCount() || b >= bodyCount() || a == b)
+    throw std::invalid_argument("excludeContact: needs two different bodies of this world");
+  const std::pair<BodyId, BodyId> pair{std::min(a, b), std::max(a, b)};
+  const auto at = std::lower_bound(excluded_contacts_.begin(), excluded_contacts_.end(), pair);
+  if (at == excluded_contacts_.end() || *at != pair) excluded_contacts_.insert(at, pair);
+}
+
+bool World::contactAllowed(BodyId a, BodyId b) const {
+  const BodyDef &da = defs_[a], &db = defs_[b];
+  if (((da.contact_type & db.contact_affinity) | (db.contact_type & da.contact_affinity)) == 0) return false;
+  const std::pair<BodyId, BodyId> pair{std::min(a, b), std::max(a, b)};
+  return excluded_contacts_.empty() || !std::binary_search(excluded_contacts_.begin(), excluded_contacts_.end(), pair);
 }
 
 void World::setMass(BodyId id, double mass) {

@@ -87,6 +87,8 @@ Scene buildScene(const nlohmann::json& document, const std::string& source) {
   scene.world = std::make_unique<World>(solverOf(solver, source));
   scene.cables = std::make_unique<CableSystem>(*scene.world);
   const BodyNames names = addBodies(document.at("bodies"), *scene.world, source);
+  if (const auto pairs = document.find("contact_exclusions"); pairs != document.end())
+    excludeContacts(*pairs, names, *scene.world, source);
   if (const auto ground = document.find("ground"); ground != document.end())
     scene.world->setGround(groundOf(*ground, source));
   if (const auto hinges = document.find("hinges"); hinges != document.end())

@@ -37,6 +37,10 @@ Vec3 hullOrigin(const Shape& shape);
 /// velocity or damping when static, non-zero orientation axes.
 BodyNames addBodies(const nlohmann::json& bodies, World& world, const std::string& source);
 
+/// Excludes "contact_exclusions" (build_bodies.cpp): pairs of two
+/// different known bodies (not "world").
+void excludeContacts(const nlohmann::json& pairs, const BodyNames& names, World& world, const std::string& source);
+
 /// Adds "hinges" (build_hinges.cpp): known bodies, two different ones,
 /// non-zero axes, limits and drives as angleLimit and hingeDrive check them.
 void addHinges(const nlohmann::json& hinges, const BodyNames& names, World& world,

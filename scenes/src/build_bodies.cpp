@@ -86,6 +86,8 @@ BodyNames addBodies(const nlohmann::json& bodies, World& world, const std::strin
     def.material.dynamic_friction = b.value("dynamic_friction", def.material.dynamic_friction);
     def.material.restitution = b.value("restitution", def.material.restitution);
     def.collides = b.value("collides", false);
+    def.contact_type = b.value("contact_type", def.contact_type);
+    def.contact_affinity = b.value("contact_affinity", def.contact_affinity);
     const bool has_density = b.contains("density_kg_per_m3");
     const bool has_mass = b.contains("mass_kg");
     const auto motion = b.find("motion");
@@ -163,6 +165,16 @@ BodyNames addBodies(const nlohmann::json& bodies, World& world, const std::strin
     names.ordered.push_back(def.name);
   }
   return names;
+}
+
+void excludeContacts(const nlohmann::json& pairs, const BodyNames& names, World& world, const std::string& source) {
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    const std::string path = "/contact_exclusions/" + std::to_string(i);
+    const BodyId a = names.find(pairs[i][0], path + "/0", source, false);
+    const BodyId b = names.find(pairs[i][1], path + "/1", source, false);
+    if (a == b) throw SceneError(source, path + "/1", "a body other than the first", quote(pairs[i][1].get<std::string>()));
+    world.excludeContact(a, b);
+  }
 }
 
 }  // namespace reeve::scene_detail

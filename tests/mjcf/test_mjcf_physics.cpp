@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 
 #include "mjcf_fixture.h"
 #include "reeve/scene/energy.h"
@@ -153,6 +154,56 @@ TEST(MjcfPhysics, MusclesPullWithControlTimesPeakForce) {
   EXPECT_NEAR(s.cables->cables()[0].winch->max_pull, 0.05 * f0, 1e-6 * f0);
   const double t = stepFrames(s, 2), alpha = 0.05 * f0 * 0.2 / inertia;  // 0.005 rad turned: the arm stays 0.2 m
   EXPECT_NEAR(std::abs(s.world->body(bodyNamed(s, "rod")).omega.y()), alpha * t, 1e-4 * alpha * t);
+}
+
+// Contacts between bodies from the geoms' contype and conaffinity: a
+// 0.2 m box dropped 0.05 m onto another on the floor rests on it (centre at
+// 0.3 m); with contype and conaffinity 0 on the top box, or the pair in a
+// <contact><exclude>, it falls through onto the floor (0.1 m). A link
+// hinged inside its parent's box never touches it (MuJoCo's filterparent)
+// and swings freely through it.
+TEST(MjcfPhysics, ContactsBetweenBodiesFollowTheGeomsBits) {
+  const auto model = [](const std::string& top_geom, const std::string& contact) {
+    return R"(<mujoco>
+  <worldbody>
+    <geom type="plane" size="5 5 0.1"/>
+    <body name="bottom" pos="0 0 0.1"><freejoint/><geom type="box" size="0.1 0.1 0.1" mass="1"/></body>
+    <body name="top" pos="0 0 0.35"><freejoint/><geom type="box" size="0.1 0.1 0.1" mass="1" )" + top_geom + R"(/></body>
+    <body name="frame" pos="2 0 1">
+      <joint type="slide" axis="0 0 1" range="-0.01 0.01"/>
+      <geom type="box" size="0.3 0.3 0.3" mass="5"/>
+      <body name="swing">
+        <joint name="pivot" type="hinge" axis="0 1 0"/>
+        <geom type="capsule" fromto="0 0 0 0.25 0 0" size="0.02" mass="0.5"/>
+      </body>
+    </body>
+  </worldbody>)" + contact + R"(
+</mujoco>)";
+  };
+  struct Case {
+    const char* what;
+    std::string top_geom, contact;
+    double height;
+  };
+  for (const Case& c : {Case{"default bits", "", "", 0.3}, Case{"contype 0", R"(contype="0" conaffinity="0")", "", 0.1},
+                        Case{"excluded", "", R"(<contact><exclude body1="bottom" body2="top"/></contact>)", 0.1}}) {
+    const auto path = writeModel("contacts", model(c.top_geom, c.contact));
+    const MjcfImport imported = importMjcf(path);
+    for (const std::string& u : imported.unmapped) EXPECT_EQ(u.find("contacts between bodies"), std::string::npos) << u;
+    Scene s = parseScene(imported.scene_json, path.string());
+    const BodyId top = bodyNamed(s, "top"), bottom = bodyNamed(s, "bottom");
+    EXPECT_FALSE(s.world->contactAllowed(bodyNamed(s, "swing"), bodyNamed(s, "frame"))) << c.what;
+    double lowest = std::numeric_limits<double>::infinity();  // the link's centre below the pivot
+    for (int f = 0; f < 90; ++f) {
+      stepFrames(s, 1);
+      lowest = std::min(lowest, s.world->body(bodyNamed(s, "swing")).x.z() - s.world->body(bodyNamed(s, "frame")).x.z());
+    }
+    EXPECT_NEAR(s.world->body(top).x.z(), c.height, 2e-3) << c.what;
+    EXPECT_NEAR(s.world->body(bottom).x.z(), 0.1, 2e-3) << c.what;
+    // The link, level at the start, swings down through its frame's box
+    // to hang straight, its centre 0.125 m below the pivot.
+    EXPECT_NEAR(lowest, -0.125, 2e-3) << c.what;
+  }
 }
 
 // models/lever.xml: a 2 kg link and a welded 1 kg tip held level by a

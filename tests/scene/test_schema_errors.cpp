@@ -19,7 +19,7 @@ TEST(SchemaErrors, UnknownFieldListsTheAllowedOnes) {
               "no property \"colour\" (allowed: name, shape, density_kg_per_m3, mass_kg, inertia_kg_m2, "
               "position_m, orientation, static, linear_velocity_m_per_s, "
               "angular_velocity_rad_per_s, linear_damping_per_s, angular_damping_per_s, "
-              "static_friction, dynamic_friction, restitution, collides, motion)",
+              "static_friction, dynamic_friction, restitution, collides, contact_type, contact_affinity, motion)",
               "\"colour\"");
 }
 

@@ -69,6 +69,33 @@ TEST(SemanticErrors, ASlidingRopeAndATieMakeAJunction) {
   EXPECT_EQ(scene.cables->junctions()[0].scales, (std::vector<double>{1.0, 1.0 / 3.0}));
 }
 
+// kBase with `pairs` as its contact_exclusions.
+std::string withExclusions(const std::string& pairs) {
+  return baseWith(R"("name": "base",)", R"("name": "base", "contact_exclusions": )" + pairs + ",");
+}
+
+TEST(SemanticErrors, ContactExclusionOfAnUnknownBody) {
+  expectError(withExclusions(R"([["crate", "ball"], ["crate", "bal"]])"), "/contact_exclusions/1/1",
+              "the name of a body (wheel, crate, ball)", "\"bal\"");
+  expectError(withExclusions(R"([["world", "ball"]])"), "/contact_exclusions/0/0", "the name of a body", "\"world\"");
+}
+
+TEST(SemanticErrors, ContactExclusionOfABodyWithItself) {
+  expectError(withExclusions(R"([["crate", "crate"]])"), "/contact_exclusions/0/1", "a body other than the first",
+              "\"crate\"");
+}
+
+TEST(SemanticErrors, ContactBitsAndExclusionsLoad) {
+  Scene scene = parseScene(
+      with(withExclusions(R"([["ball", "crate"]])"), R"("mass_kg": 2,)", R"("mass_kg": 2, "collides": true, "contact_type": 6, "contact_affinity": 4294967295,)"),
+      "test.json");
+  const BodyId crate = *scene.world->findBody("crate"), ball = *scene.world->findBody("ball"), wheel = *scene.world->findBody("wheel");
+  EXPECT_EQ(scene.world->bodyDef(crate).contact_type, 6u);
+  EXPECT_EQ(scene.world->bodyDef(crate).contact_affinity, 4294967295u);
+  EXPECT_FALSE(scene.world->contactAllowed(crate, ball));
+  EXPECT_TRUE(scene.world->contactAllowed(crate, wheel));
+}
+
 TEST(SemanticErrors, UnknownBodyInAHinge) {
   expectError(baseWith(R"({"body": "wheel", "anchor_m")", R"({"body": "whel", "anchor_m")"),
               "/hinges/0/body", "the name of a body (wheel, crate, ball)", "\"whel\"");

@@ -9,6 +9,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "reeve/engine/math.h"
@@ -131,6 +132,8 @@ struct Model {
   std::vector<Joint> joints;
   std::vector<Tendon> tendons;
   std::vector<Actuator> actuators;
+  /// <contact><exclude body1 body2>: pairs of bodies that never touch.
+  std::vector<std::pair<int, int>> contact_exclusions;
   /// What was read but not kept: one line each (Origin::where() and why).
   std::vector<std::string> unmapped;
 };

@@ -116,6 +116,7 @@ class Reader {
     for (const Node& n : sections) {
       const std::string tag = n.xml.name();
       if (tag == "actuator") readActuators(n);
+      else if (tag == "contact") readContacts(n);
       else if (tag == "compiler" || tag == "option" || tag == "default" || tag == "worldbody" || tag == "tendon") continue;
       else if (tag == "visual" || tag == "asset" || tag == "size" || tag == "statistic") continue;  // drawing, memory; meshes read
       else unmapped(n, "not imported (Reeve has no " + tag + " section)");
@@ -616,6 +617,18 @@ class Reader {
     for (std::size_t i = 0; i < items.size(); ++i)
       if (items[i].name == name) return static_cast<int>(i);
     fail(n, "the name of a " + kind, "\"" + name + "\"");
+  }
+
+  // <contact>: its <exclude> pairs; explicit <pair>s are listed (Reeve
+  // finds every pair the bodies' bits allow).
+  void readContacts(const Node& section) {
+    for (const Node& n : children(section)) {
+      const std::string tag = n.xml.name();
+      if (tag == "exclude")
+        model_.contact_exclusions.emplace_back(find(n, "body1", "body", model_.bodies), find(n, "body2", "body", model_.bodies));
+      else
+        unmapped(n, "not imported (contacts come from the geoms' contype and conaffinity)");
+    }
   }
 
   void readTendons(const Node& section) {

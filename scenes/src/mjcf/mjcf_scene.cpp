@@ -10,6 +10,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <iterator>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <numbers>
@@ -133,10 +135,10 @@ class Mapper {
   Mapping map() {
     groupBodies();
     findWraps();  // which tendons are cables: their winch ends need the groups
+    findContacts();
     for (std::size_t b = 0; b < m_.bodies.size(); ++b)
       if (group_[b] == static_cast<int>(b) && b != 0) addMovingBody(static_cast<int>(b));
     addStaticGeoms();
-    listContacts();
     for (std::size_t b = 1; b < m_.bodies.size(); ++b)
       if (group_[b] == static_cast<int>(b)) addJoint(static_cast<int>(b));
     for (const Actuator& a : m_.actuators) addJointActuator(a);
@@ -154,6 +156,8 @@ class Mapper {
     if (!joints_.empty()) scene_["joints"] = joints_;
     if (!cables_.empty()) scene_["cables"] = cables_;
     if (!junctions_.empty()) scene_["junctions"] = junctions_;
+    excludeContacts();
+    if (!exclusions_.empty()) scene_["contact_exclusions"] = exclusions_;
     if (ground_) scene_["ground"] = *ground_;
     scene_["camera"] = camera();
     Mapping out;
@@ -252,7 +256,7 @@ class Mapper {
       return Pose{r.world.quat.conjugate() * (body.world.pos - r.world.pos), r.world.quat.conjugate() * body.world.quat};
     };
     MassProperties mp;  // in the root's frame
-    std::vector<const Geom*> geoms;
+    std::vector<const Geom*> all;  // its geoms; its shape is theirs, or where some touch others (bodies_collide_), those
     for (std::size_t b = 0; b < m_.bodies.size(); ++b) {
       if (group_[b] != root) continue;
       const Body& body = m_.bodies[b];
@@ -268,7 +272,7 @@ class Mapper {
           unmapped_.push_back(g.origin.where() + ": a plane on a moving body is not imported");
           continue;
         }
-        if (!(wrap_[gi] && options_.wheels == MjcfWheels::Turning)) geoms.push_back(&g);
+        if (!(wrap_[gi] && options_.wheels == MjcfWheels::Turning)) all.push_back(&g);
         if (inertial || m_.inertia_from_geom == "false") continue;
         if (wrap_[gi] && options_.wheels == MjcfWheels::Turning) continue;  // the wheel's own
         const Pose p = to_root.then(g.pose);
@@ -282,6 +286,9 @@ class Mapper {
         if (joint.type == JointType::Hinge) mp.second += joint.armature * joint.axis * joint.axis.transpose();
         else unmapped_.push_back(joint.origin.where() + ": armature on a joint that is not a hinge is not imported");
       }
+    std::vector<const Geom*> geoms;
+    if (bodies_collide_) std::copy_if(all.begin(), all.end(), std::back_inserter(geoms), [](const Geom* g) { return touches(*g); });
+    if (geoms.empty()) geoms = all;
     if (!(mp.mass > 0.0))
       fail(r.origin, "a moving body with mass (from <inertial> or its geoms, with the bodies welded to it)", "0 kg");
     const Vec3 c = mp.centre();
@@ -339,21 +346,85 @@ class Mapper {
                  {"inertia_kg_m2", vec(moments)},
                  {"position_m", vec(r.world.apply(c))}};
     if (q.angularDistance(Quat::Identity()) > 0.0) body["orientation"] = orientationJson(q);
+    addContactKeys(body, geoms);
+    if (body.value("collides", false)) colliding_.insert(body["name"].get<std::string>());
     reeve_body_[root] = body["name"];
     frame_[root] = Pose{r.world.apply(c), q.normalized()};
     mass_[root] = mp.mass;
     bodies_.push_back(body);
   }
 
-  // Contacts between bodies are not imported (only the ground touches them):
-  // said once, where two of the model's bodies could touch in MuJoCo.
-  void listContacts() {
-    std::set<int> touching;  // groups with a geom that collides (the world's planes are the ground)
-    for (const Geom& g : m_.geoms)
-      if ((g.contype != 0 || g.conaffinity != 0) && g.type != GeomType::Plane) touching.insert(group_[g.body]);
-    if (touching.size() >= 2)
-      unmapped_.push_back(m_.bodies[0].origin.where() +
-                          ": contacts between bodies (contype, conaffinity) are not imported: only the ground touches them");
+  // --- contacts ---------------------------------------------------------
+
+  // Whether geom g touches other geoms (a plane of the world is the ground,
+  // which touches every body).
+  static bool touches(const Geom& g) { return g.type != GeomType::Plane && (g.contype != 0 || g.conaffinity != 0); }
+
+  // Bodies collide where two of the model's groups (the world's geoms one
+  // of them) have geoms that touch: then each such body collides, with its
+  // geoms' bits (BodyDef::contact_type, contact_affinity).
+  void findContacts() {
+    std::set<int> touching;
+    for (const Geom& g : m_.geoms) {
+      if (touches(g)) touching.insert(group_[g.body]);
+      has_plane_ |= g.type == GeomType::Plane && group_[g.body] == 0;
+    }
+    bodies_collide_ = touching.size() >= 2;
+  }
+
+  // Collision keys of a Reeve body made of `geoms`: collides, the union of
+  // their bits (MuJoCo pairs geoms; Reeve pairs bodies), and their largest
+  // sliding friction (MuJoCo takes a pair's larger friction, Reeve their
+  // mean) as its static and dynamic friction.
+  void addContactKeys(json& body, const std::vector<const Geom*>& geoms) const {
+    double friction = 0.0;
+    std::uint32_t type = 0, affinity = 0;
+    bool any = false;
+    for (const Geom* g : geoms) {
+      friction = std::max(friction, g->friction);
+      if (!touches(*g)) continue;
+      any = true;
+      type |= static_cast<std::uint32_t>(g->contype);
+      affinity |= static_cast<std::uint32_t>(g->conaffinity);
+    }
+    if (!geoms.empty() && (bodies_collide_ || has_plane_)) {
+      body["static_friction"] = friction;
+      body["dynamic_friction"] = friction;
+    }
+    if (!bodies_collide_ || !any) return;
+    body["collides"] = true;
+    if (type != 1) body["contact_type"] = type;
+    if (affinity != 1) body["contact_affinity"] = affinity;
+  }
+
+  // MuJoCo's filterparent (a body never touches its parent, unless that is
+  // the world) and the model's <exclude> pairs, between the Reeve bodies
+  // that collide.
+  void excludeContacts() {
+    if (!bodies_collide_) return;
+    std::set<std::pair<std::string, std::string>> pairs;
+    const auto add = [&](const std::string& a, const std::string& b) {
+      if (a != b && colliding_.count(a) && colliding_.count(b)) pairs.insert(std::minmax(a, b));
+    };
+    for (std::size_t b = 1; b < m_.bodies.size(); ++b) {
+      const int own = group_[b], parent = group_[m_.bodies[b].parent];
+      if (own == static_cast<int>(b) && parent != 0) add(reeve_body_.at(own), reeve_body_.at(parent));
+    }
+    for (const auto& [b1, b2] : m_.contact_exclusions) {
+      const int g1 = group_[b1], g2 = group_[b2];
+      // The world's side is each of its static geoms.
+      std::vector<std::string> side1, side2;
+      for (const auto& [gi, name] : geom_body_) {
+        if (group_[m_.geoms[gi].body] != 0) continue;
+        if (g1 == 0) side1.push_back(name);
+        if (g2 == 0) side2.push_back(name);
+      }
+      if (g1 != 0) side1.push_back(reeve_body_.at(g1));
+      if (g2 != 0) side2.push_back(reeve_body_.at(g2));
+      for (const std::string& a : side1)
+        for (const std::string& b : side2) add(a, b);
+    }
+    for (const auto& [a, b] : pairs) exclusions_.push_back(json::array({a, b}));
   }
 
   // The world's geoms (and those of bodies welded to it), each a static body.
@@ -375,6 +446,8 @@ class Mapper {
       json body = {{"name", uniqueName(g.name, "geom" + std::to_string(gi))},
                    {"shape", shapeOf(g)}, {"static", true}, {"position_m", vec(p.pos)}};
       if (p.quat.angularDistance(Quat::Identity()) > 0.0) body["orientation"] = orientationJson(p.quat);
+      if (!wrap_[gi]) addContactKeys(body, {&g});  // a fixed wrap is a pulley, not a wall
+      if (body.value("collides", false)) colliding_.insert(body["name"].get<std::string>());
       geom_body_[static_cast<int>(gi)] = body["name"];
       bodies_.push_back(body);
     }
@@ -546,6 +619,11 @@ class Mapper {
       }
       json body = {{"name", name}, {"shape", shapeOf(g)}, {"mass_kg", mass}, {"position_m", vec(p.pos)}};
       if (p.quat.angularDistance(Quat::Identity()) > 0.0) body["orientation"] = orientationJson(p.quat);
+      if (turning) addContactKeys(body, {&g});  // fixed: its shape is its owner's already
+      if (body.value("collides", false)) {
+        colliding_.insert(name);
+        if (owner != 0 && colliding_.count(other)) exclusions_.push_back(json::array({std::min(name, other), std::max(name, other)}));
+      }
       bodies_.push_back(body);
       geom_body_[static_cast<int>(gi)] = name;
       if (turning)
@@ -791,6 +869,10 @@ class Mapper {
   std::vector<TendonCables> cable_lengths_;
   std::vector<Dof> dofs_;
   std::vector<MusclePull> muscle_pulls_;
+  bool bodies_collide_ = false;  // findContacts
+  bool has_plane_ = false;       // the world has a plane (findContacts): the ground
+  std::set<std::string> colliding_;  // Reeve bodies that collide
+  json exclusions_ = json::array();
 };
 
 }  // namespace

@@ -2,6 +2,8 @@
 // solver touches every substep.
 #pragma once
 
+#include <cstdint>
+
 #include <string>
 #include <vector>
 
@@ -57,6 +59,11 @@ struct BodyDef {
   /// Contact with the ground plane does not need it: a World's ground
   /// touches every dynamic body.
   bool collides = false;
+  /// Which colliding bodies it touches (MuJoCo's contype and conaffinity):
+  /// bodies a and b touch where (a.contact_type & b.contact_affinity) |
+  /// (b.contact_type & a.contact_affinity) is not 0; every pair by default.
+  /// Pairs that never touch whatever their bits: World::excludeContact.
+  std::uint32_t contact_type = 1, contact_affinity = 1;
   /// Non-empty: a kinematic body, moved along this schedule (times strictly
   /// increasing, values finite) whatever pushes on it: infinite mass to the
   /// solver, its velocity seen by cables, joints and contacts, the work it

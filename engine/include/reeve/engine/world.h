@@ -197,6 +197,13 @@ class World {
   /// 3.5). Throws std::invalid_argument for a zero or non-finite normal, a
   /// non-finite height or an invalid material (contact_material.h).
   void setGround(const GroundPlane& ground);
+  /// Bodies a and b never touch, whatever their contact bits (two links
+  /// of one joint that overlap at it, as MuJoCo filters a parent and its
+  /// child). Throws std::invalid_argument for an unknown body or a = b.
+  void excludeContact(BodyId a, BodyId b);
+  /// Whether colliding bodies a and b may touch (BodyDef::contact_type,
+  /// contact_affinity; excludeContact).
+  bool contactAllowed(BodyId a, BodyId b) const;
   /// Removes the ground plane.
   void removeGround() { ground_.reset(); }
   const std::optional<GroundPlane>& ground() const { return ground_; }
@@ -524,6 +531,7 @@ class World {
   SolveStart solve_start_;
   std::optional<GroundPlane> ground_;
   std::vector<BodyId> colliders_;       // bodies with BodyDef::collides, swept along x
+  std::vector<std::pair<BodyId, BodyId>> excluded_contacts_;  // (lower, higher), sorted: excludeContact
   std::vector<double> bound_radius_;    // m, per body: boundingRadius of its shape
   std::vector<Contact> contacts_;       // this substep's; capacity kept between substeps
   std::vector<ContactManifold> manifolds_;  // ranges of contacts_, one per touching pair

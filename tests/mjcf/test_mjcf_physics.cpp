@@ -5,6 +5,7 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <numbers>
 
 #include "mjcf_fixture.h"
 #include "reeve/scene/energy.h"
@@ -203,6 +204,28 @@ TEST(MjcfPhysics, ContactsBetweenBodiesFollowTheGeomsBits) {
     // The link, level at the start, swings down through its frame's box
     // to hang straight, its centre 0.125 m below the pivot.
     EXPECT_NEAR(lowest, -0.125, 2e-3) << c.what;
+  }
+}
+
+// models/arm.xml: a two-link arm held level by a tendon over each joint's
+// cylinder: at rest T2 = g 1 kg x 0.25 m / 0.04 m = 61.3125 N in the elbow
+// tendon, T1 = g (2 kg x 0.25 m + 1 kg x 0.75 m) / 0.05 m = 245.25 N in the
+// shoulder tendon, and both links stay level, to 1e-6. As turning wheels
+// the massless cylinders weigh 1000 kg/m^3 (listed): the elbow's 0.201 kg
+// on its axle adds its weight at 0.5 m to the shoulder's load, and the
+// free wheel passes the elbow tendon's tension on unchanged.
+TEST(MjcfPhysics, TwoLinkArmOnTendonsOverItsJointCylindersHoldsItsStatics) {
+  for (const MjcfWheels wheels : {MjcfWheels::Fixed, MjcfWheels::Turning}) {
+    Scene s = importedScene("arm", wheels);
+    stepFrames(s, 60);
+    const double wheel = wheels == MjcfWheels::Turning ? 1000.0 * std::numbers::pi * 0.04 * 0.04 * 0.04 : 0.0;
+    const double t1 = g * (2.0 * 0.25 + 1.0 * 0.75 + wheel * 0.5) / 0.05, t2 = g * 0.25 / 0.04;
+    const int shoulder = 0, elbow = 1;
+    EXPECT_NEAR(s.cables->tension(shoulder, 0), t1, 1e-6 * t1) << (wheels == MjcfWheels::Turning ? "turning" : "fixed");
+    EXPECT_NEAR(s.cables->tension(elbow, 0), t2, 1e-6 * t2) << (wheels == MjcfWheels::Turning ? "turning" : "fixed");
+    EXPECT_NEAR(s.world->body(bodyNamed(s, "upper")).x.z(), 0.0, 1e-8);
+    EXPECT_NEAR(s.world->body(bodyNamed(s, "forearm")).x.z(), 0.0, 1e-8);
+    EXPECT_NEAR(s.world->body(bodyNamed(s, "forearm")).x.x(), 0.75, 1e-8);
   }
 }
 

@@ -198,9 +198,8 @@ TEST(JunctionScene, TheCounterweightSinksAndTheLoadsRiseAsItsDescriptionSays) {
 TEST(Junction, CreatesNoEnergyAtAnyBudget) {
   // The uneven loads: the ledger's balance (kinetic + potential) never
   // rises, at every budget and both projections. For 0.5 s: A reaches
-  // the beam's pinhole at 0.61 s, where a tie point drawn into a pinhole
-  // creates energy under the start projection with or without a junction
-  // (a plain cable too: DESIGN.md, "Junctions").
+  // the beam's pinhole at 0.61 s, where a plain cable's tie point jams
+  // and a junction's branch does not yet (DESIGN.md, "Junctions").
   constexpr int kFramesBeforeAReachesTheBeam = 30;
   for (const test::Budget& budget : test::fourBudgetsBothProjections()) {
     Scene s = parseScene(junctionScene(budget, Masses{1.0, 1.0, 3.0}), "junction.json");

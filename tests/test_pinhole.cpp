@@ -6,6 +6,7 @@
 
 #include "reeve/cable/cable.h"
 #include "scene_fixture.h"
+#include "solver_budgets.h"
 
 namespace reeve {
 namespace {
@@ -71,6 +72,60 @@ TEST(Pinhole, CableSlidesThroughTwoHolesLikeAMasslessPulley) {
   const double moved = 0.5 * a * t * t;
   EXPECT_NEAR(cables.restLength(c, 2) - cables.restLength(c, 0), 2.0 * moved, 0.01 * moved);
   EXPECT_NEAR(cables.totalLength(c), total, 1e-9 * total);
+}
+
+TEST(Pinhole, ATiePointHauledIntoItsPinholeJamsThere) {
+  // The two-hole Atwood machine run on: the light box's tie point rises
+  // into its hole (0.1 m up: 1.9 m at a = (m2 - m1) g / (m1 + m2)) and
+  // jams there, a ball joint holding it to the bar (event span_runs_out),
+  // the hole holding the cable from then on: the heavy box hangs still from
+  // the other hole with T = m2 g, and no energy is made by the catch. (A
+  // tie point at a hole had nothing to stop it: it went through, and the
+  // cable pulled it back from the other side; the start projection made
+  // 29 kJ of it in one frame, the end projection let the box rise 2 m past
+  // the bar.) At every budget, both projections, and 1 to 1000 kg below.
+  for (const test::Budget& budget : test::fourBudgetsBothProjections())
+    for (const double m2 : {3.0, 1000.0}) {
+      SCOPED_TRACE(test::name(budget) + ", " + std::to_string(m2) + " kg");
+      const double m1 = 1.0, g = 9.81;
+      World world(test::settings(budget));
+      CableSystem cables(world);
+      BodyDef bar;
+      bar.is_static = true;
+      const BodyId b = world.addBody(bar);
+      BodyDef box;
+      box.shape = Shape::box(Vec3(0.1, 0.1, 0.1));
+      box.mass = m1;
+      box.position = Vec3(-0.5, -2.0, 0);
+      const BodyId light = world.addBody(box);
+      box.mass = m2;
+      box.position = Vec3(0.5, -2.0, 0);
+      const BodyId heavy = world.addBody(box);
+      CableDef def;
+      def.links = {LinkDef::attachment(light, Vec3(0, 0.1, 0)), LinkDef::pinhole(b, Vec3(-0.5, 0, 0)),
+                   LinkDef::pinhole(b, Vec3(0.5, 0, 0)), LinkDef::attachment(heavy, Vec3(0, 0.1, 0))};
+      const int c = cables.addCable(def);
+      const double total = cables.totalLength(c);
+      const auto energy = [&] {
+        const WorldEnergy e = world.energy();
+        return e.kinetic + e.gravity;
+      };
+      const double start = energy();
+      bool jammed = false;
+      for (int f = 0; f < 120; ++f) {
+        world.step(1.0 / 60.0);
+        for (const CableEvent& e : cables.takeEvents()) jammed |= e.kind == CableEvent::Kind::SpanRunsOut && e.link == 0;
+        EXPECT_LE(energy(), start + 1e-9 * m2 * g) << "t = " << world.time();
+      }
+      EXPECT_TRUE(jammed);
+      EXPECT_TRUE(cables.cables()[c].joints[0].jammed);
+      const Vec3 tie = world.body(light).toWorld(Vec3(0, 0.1, 0));
+      EXPECT_LT((tie - Vec3(-0.5, 0, 0)).norm(), 0.1) << tie.transpose();
+      EXPECT_LT(world.body(heavy).v.norm(), 1e-6);
+      EXPECT_NEAR(cables.tension(c, 2), m2 * g, 1e-6 * m2 * g);
+      EXPECT_NEAR(cables.totalLength(c), total, 1e-9 * total);
+      EXPECT_FALSE(cables.firstBreach().has_value());
+    }
 }
 
 }  // namespace

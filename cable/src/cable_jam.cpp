@@ -1,5 +1,6 @@
 // A tie point hauled into its wheel jams there: a crane's two-blocking
-// (issue 29, item 4: hilbert3's load hauled into its last wheel).
+// (issue 29, item 4: hilbert3's load hauled into its last wheel); one
+// hauled into a pinhole, likewise.
 //
 // Nothing in the cable model stops a tie point at its wheel's rim. Once
 // the span between them has run out, the wheel winds on and slips, or
@@ -14,6 +15,7 @@
 // lasts: the wheel and the load move as one from then on, the cable to
 // the wheel pulling on both.
 #include <algorithm>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 
@@ -32,7 +34,44 @@ namespace {
 // the drive and the cable fight there.)
 constexpr double kJamReach = 0.25;
 
+// A tie point jams at a pinhole within this fraction of the cable's total
+// length of it (the knot against the hole), or once it has passed through
+// it within a substep.
+constexpr double kPinholeJamReach = 1e-3;
+
 }  // namespace
+
+bool CableSystem::jamAtPinhole(Cable& cable, int c, int j, double time_s) {
+  // A tie point drawn into a pinhole has nowhere to go: the span between
+  // them ran out, and with nothing to stop it the body went through the
+  // hole and the cable pulled it back from the other side (the direct
+  // solver's start projection made 29 kJ of it in a frame; the end
+  // projection let a load rise 2 m past the beam it hung from). Held as at
+  // a wheel: a ball joint at the hole, the span without a row, and the
+  // pinhole holding the cable from then on (the knot in it), so the run
+  // ends there.
+  CableJoint& span = cable.joints[j];
+  Link& from = cable.links[j];
+  Link& to = cable.links[span.to];
+  const bool hole_first = from.type == LinkType::Pinhole;
+  Link& hole = hole_first ? from : to;
+  const Link& tie = hole_first ? to : from;
+  const bool ties = tie.type == LinkType::Attachment || (tie.type == LinkType::Hybrid && tie.attached);
+  if (cable.junction >= 0 || span.jammed || span.parted || hole.type != LinkType::Pinhole || !hole.active || !ties ||
+      hole.body == tie.body)
+    return false;
+  const Vec3& tie_local = hole_first ? span.local_b : span.local_a;
+  const BodyState &h = world_.body(hole.body), &t = world_.body(tie.body);
+  const Vec3 now = t.toWorld(tie_local) - h.toWorld(hole.point);
+  const Vec3 before = t.toWorldAtSubstepStart(tie_local) - h.toWorldAtSubstepStart(hole.point);
+  if (now.norm() > kPinholeJamReach * cable.total_length && now.dot(before) > 0.0) return false;
+  updates_[c].jams.push_back({j, hole.body, tie.body, h.toWorld(hole.point), static_cast<int>(&hole - cable.links.data()), hole.mu});
+  updates_[c].events.push_back({CableEvent::Kind::SpanRunsOut, time_s, c, j, hole.orientation});
+  span.jammed = true;
+  hole.mu = std::numeric_limits<double>::infinity();
+  hole.slipping = false;
+  return true;
+}
 
 bool CableSystem::jam(Cable& cable, int c, int j) {
   CableJoint& span = cable.joints[j];
@@ -64,6 +103,12 @@ void CableSystem::addJamJoints() {
         world_.addSpherical(ball);
       } catch (const std::invalid_argument&) {  // nothing to hold (a tie point not finite)
         cables_[c].joints[r.joint].jammed = false;
+        if (r.pinhole >= 0) {  // it slides again
+          Link& hole = cables_[c].links[r.pinhole];
+          hole.mu = r.pinhole_mu;
+          hole.slipping = hole.mu == 0.0;
+          buildRuns(cables_[c]);
+        }
         continue;
       }
       jams_.push_back(key);

@@ -107,20 +107,23 @@ void CableSystem::buildJunction(Junction& junction) {
     rest += junction.scales[b] * branchPath(b).rest_length;
     measured += junction.scales[b] * lengthOf(b);
   }
-  if (measured > 0.0) {
-    for (int b = 0; b < count; ++b) {
-      Cable& cable = cables_[junction.cables[b]];
-      PathConstraint& own = branchPath(b);
-      const double share = rest * lengthOf(b) / measured;
-      double spans = 0.0;
-      for (const CableJoint& joint : cable.joints) spans += joint.rest_length;
-      const double change = share - own.rest_length;
-      if (!(spans > 0.0) || !(spans + change >= 0.0)) continue;
-      const double factor = (spans + change) / spans;
-      for (CableJoint& joint : cable.joints) joint.rest_length *= factor;
-      own.rest_length = share;
-      cable.total_length += change;
-    }
+  // All or none: a branch that cannot take its share (no span cable to
+  // scale, or less than it would give) leaves every share as it was, so
+  // the sum stays.
+  const auto spansOf = [&](int b) {
+    double spans = 0.0;
+    for (const CableJoint& joint : cables_[junction.cables[b]].joints) spans += joint.rest_length;
+    return spans;
+  };
+  const auto change = [&](int b) { return rest * lengthOf(b) / measured - branchPath(b).rest_length; };
+  bool shares = measured > 0.0;
+  for (int b = 0; b < count && shares; ++b) shares = spansOf(b) > 0.0 && spansOf(b) + change(b) >= 0.0;
+  for (int b = 0; b < count && shares; ++b) {
+    Cable& cable = cables_[junction.cables[b]];
+    const double moved = change(b), factor = (spansOf(b) + moved) / spansOf(b);
+    for (CableJoint& joint : cable.joints) joint.rest_length *= factor;
+    branchPath(b).rest_length += moved;
+    cable.total_length += moved;
   }
   PathConstraint& path = world_.path(junction.path);
   path.points.clear();

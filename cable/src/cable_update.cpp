@@ -168,7 +168,9 @@ void CableSystem::updateJoint(Cable& cable, int c, int j, double time_s) {
   Link& from = cable.links[j];
   CableJoint& joint = cable.joints[j];
   Link& to = cable.links[joint.to];
-  if (!from.active || joint.parted || joint.jammed || (!from.rolls() && !to.rolls())) return;
+  if (!from.active || joint.parted || joint.jammed) return;
+  if ((from.type == LinkType::Pinhole || to.type == LinkType::Pinhole) && jamAtPinhole(cable, c, j, time_s)) return;
+  if (!from.rolls() && !to.rolls()) return;
   const auto anchors = spanAnchors(from, world_.body(from.body), to, world_.body(to.body), joint.local_b);
   if (!anchors) {  // overlapping sections, or a tie point inside its wheel: keep the old anchors
     // A tie point drawn inside the wheel it is wound onto has run its span

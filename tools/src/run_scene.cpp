@@ -116,8 +116,13 @@ std::string spanRunsOutMessage(const CableEvent& e, const Scene& scene) {
   const World& world = *scene.world;
   char when[32];
   std::snprintf(when, sizeof when, "%.6g", e.time_s);
-  return "cable '" + cable.name + "' ran out between " + bodyName(world, a.body) + " (link " + std::to_string(e.link) +
-         ") and " + bodyName(world, b.body) + " at t = " + when + " s: " + bodyName(world, (a.rolls() ? a : b).body) +
+  const std::string where = "cable '" + cable.name + "' ran out between " + bodyName(world, a.body) + " (link " +
+                            std::to_string(e.link) + ") and " + bodyName(world, b.body) + " at t = " + when + " s: ";
+  if (a.type == LinkType::Pinhole || b.type == LinkType::Pinhole)
+    return where + "a tie point reached the pinhole in " + bodyName(world, (a.type == LinkType::Pinhole ? a : b).body) +
+           " and jammed there: a ball joint holds it to the hole from now on (a knot against it). Stop what hauls it "
+           "before, or give the span more cable";
+  return where + bodyName(world, (a.rolls() ? a : b).body) +
          " wound more cable than the span held (a tie point reached its rim). " +
          (cable.joints[e.link].jammed
               ? "The tie point jammed there: a ball joint holds it to the wheel from now on (a hook block hauled "

@@ -22,7 +22,7 @@ using json = nlohmann::ordered_json;
 // The norm of the joint accelerations (rad/s^2 about hinges and balls,
 // m/s^2 along slides, both for a free joint's body) that a pull of 1 N
 // along cable c gives the model at rest at load, nothing else acting (no
-// gravity, limits, springs, drives, ground or other cables): MuJoCo's
+// gravity, limits, springs, drives, contacts or other cables): MuJoCo's
 // actuator_acc0 for a gear of 1, |M^-1 J^T| (mj_setConst), measured by
 // one substep of 1 us from rest, v = h a, in which the direct solver holds
 // every joint exactly.
@@ -34,6 +34,8 @@ double unitPullAcceleration(const json& scene, int c, const std::vector<mjcf::Do
   probe["solver"]["gravity_m_per_s2"] = json::array({0.0, 0.0, 0.0});
   probe.erase("ground");
   probe.erase("junctions");
+  probe.erase("contact_exclusions");
+  for (json& body : probe["bodies"]) body.erase("collides");
   for (const char* list : {"hinges", "joints"})
     if (probe.contains(list))
       for (json& joint : probe[list]) {

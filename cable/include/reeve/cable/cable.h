@@ -500,6 +500,10 @@ class CableSystem {
   /// there (cable_jam.cpp). Returns whether it jammed; its ball joint is
   /// added after the cables' updates (addJamJoints).
   bool jam(Cable& cable, int c, int j);
+  /// Span j of cable c joins a tie point and a pinhole: where the tie
+  /// point has reached the hole (or passed it within the substep), it
+  /// jams there likewise, and the pinhole holds the cable from then on.
+  bool jamAtPinhole(Cable& cable, int c, int j, double time_s);
   /// The ball joints of this update's jams, in cable order; a span whose
   /// joint the World refuses does not jam.
   void addJamJoints();
@@ -586,8 +590,10 @@ class CableSystem {
   // cable order when asked for. The same bits on any number of threads.
   struct JamRequest {
     int joint;            // the span that ran out
-    BodyId wheel, tie;    // the ball joint's bodies
+    BodyId wheel, tie;    // the ball joint's bodies (the wheel or the pinhole's)
     Vec3 tie_point;       // m, world: its anchor
+    int pinhole = -1;     // a pinhole's link, which holds the cable now, and its mu before
+    double pinhole_mu = 0.0;
   };
   struct CableUpdate {
     std::vector<CableEvent> events;

@@ -178,6 +178,51 @@ TEST(Junction, ADivisorOfThreeCountsAThirdOfTheCable) {
   EXPECT_NEAR(s.world->body(test::body(s, "b")).v.y(), (T / (3.0 * m.b) - kG) * t, 1e-7);
 }
 
+TEST(Junction, ALoadOn1024CablesOfDivisor1024IsAnAtwoodMachine) {
+  // Many rows through one body: a 3 m wide load B hung from the beam by
+  // N = 1024 vertical cables of divisor N, against a counterweight A on one
+  // cable. B rising by d shortens each of them by d, which counts d / N,
+  // N times: d in all, as A's one cable. So T_A = N (T / N) = T and the two
+  // are an Atwood machine: T = 2 m_A m_B g / (m_A + m_B), each of B's
+  // cables pulling with T / N; both solvers, 1 x 1 and 1 x 10, m_A of 1e-3
+  // and 1e3 times m_B.
+  constexpr int n = 1024;
+  for (const test::Budget& budget : {test::Budget{SolverKind::Direct, 1, 1}, test::Budget{SolverKind::Direct, 1, 10},
+                                     test::Budget{SolverKind::GaussSeidel, 1, 1}, test::Budget{SolverKind::GaussSeidel, 1, 10}})
+    for (const double m_a : {2e-3, 2e3}) {
+      SCOPED_TRACE(test::name(budget) + ", " + number(m_a) + " kg");
+      const double m_b = 2.0;
+      std::string cables = R"({"name": "lift", "links": [
+        {"body": "beam", "type": "attachment", "point_m": [-3, 0, 0]},
+        {"body": "a", "type": "attachment", "point_m": [0, 0.1, 0]}]})";
+      std::string branches = R"({"cable": "lift"})";
+      for (int i = 0; i < n; ++i) {
+        const std::string x = number(-1.5 + 3.0 * i / (n - 1)), name = "\"hoist" + std::to_string(i) + "\"";
+        cables += R"(, {"name": )" + name + R"(, "links": [
+          {"body": "beam", "type": "attachment", "point_m": [)" + x + R"(, 0, 0]},
+          {"body": "b", "type": "attachment", "point_m": [)" + x + R"(, 0.1, 0]}]})";
+        branches += R"(, {"cable": )" + name + R"(, "divisor": )" + std::to_string(n) + "}";
+      }
+      Scene s = parseScene(R"({"name": "many rows", )" + test::solverJson(budget) + R"(, "bodies": [
+        {"name": "beam", "shape": {"type": "box", "half_extents_m": [4, 0.1, 0.1]}, "static": true, "position_m": [0, 0.1, 0]},
+        {"name": "a", "shape": {"type": "box", "half_extents_m": [0.1, 0.1, 0.1]}, "mass_kg": )" + number(m_a) +
+                               R"(, "position_m": [-3, -1, 0]},
+        {"name": "b", "shape": {"type": "box", "half_extents_m": [1.5, 0.1, 0.1]}, "mass_kg": )" + number(m_b) +
+                               R"(, "position_m": [0, -1, 0]}],
+        "cables": [)" + cables + R"(], "junctions": [{"name": "block", "branches": [)" + branches + "]}]}",
+                           "many.json");
+      const double T = 2.0 * m_a * m_b * kG / (m_a + m_b), a_b = T / m_b - kG;
+      for (int f = 0; f < 6; ++f) test::frame(s);
+      const double t = 6.0 / 60.0;
+      EXPECT_NEAR(s.world->body(test::body(s, "b")).v.y(), a_b * t, 1e-7 * kG * t);
+      EXPECT_NEAR(s.world->body(test::body(s, "a")).v.y(), -a_b * t, 1e-7 * kG * t);
+      EXPECT_NEAR(s.world->body(test::body(s, "b")).omega.norm(), 0.0, 1e-9);
+      EXPECT_NEAR(s.cables->tension(test::cable(s, "lift"), 0), T, 1e-7 * T);
+      EXPECT_NEAR(s.cables->tension(test::cable(s, "hoist511"), 0), T / n, 1e-7 * T / n);
+      EXPECT_FALSE(s.cables->invariantViolation()) << *s.cables->invariantViolation();
+    }
+}
+
 TEST(JunctionScene, TheCounterweightSinksAndTheLoadsRiseAsItsDescriptionSays) {
   // scenes/junction.json: 2.2 kg against two 1 kg loads, T = 20.55 N,
   // the counterweight sinking at 0.467 m/s^2 and each load rising as fast.

@@ -37,32 +37,46 @@ TEST(Pinhole, ARingOnACableComesToRestWithEqualAnglesAndTensions) {
     EXPECT_NEAR(s.cables->length(0, j), s.cables->restLength(0, j), 1e-5);
 }
 
+// m1 and m2 (kg) hang 2 m below a fixed bar from one cable through two
+// holes in it, 1 m apart (settings: gravity along -y).
+struct TwoHoleAtwood {
+  World world;
+  CableSystem cables{world};
+  BodyId light = 0, heavy = 0;
+  int cable = 0;
+  double total = 0.0;
+  TwoHoleAtwood(const SolverSettings& settings, double m1, double m2) : world(settings) {
+    BodyDef bar;
+    bar.is_static = true;
+    const BodyId b = world.addBody(bar);
+    BodyDef box;
+    box.shape = Shape::box(Vec3(0.1, 0.1, 0.1));
+    box.mass = m1;
+    box.position = Vec3(-0.5, -2.0, 0);
+    light = world.addBody(box);
+    box.mass = m2;
+    box.position = Vec3(0.5, -2.0, 0);
+    heavy = world.addBody(box);
+    CableDef def;
+    def.links = {LinkDef::attachment(light, Vec3(0, 0.1, 0)), LinkDef::pinhole(b, Vec3(-0.5, 0, 0)),
+                 LinkDef::pinhole(b, Vec3(0.5, 0, 0)), LinkDef::attachment(heavy, Vec3(0, 0.1, 0))};
+    cable = cables.addCable(def);
+    total = cables.totalLength(cable);
+  }
+};
+
 TEST(Pinhole, CableSlidesThroughTwoHolesLikeAMasslessPulley) {
-  // m1 and m2 hang from one cable through two holes in a fixed bar: an
-  // Atwood machine with a massless, frictionless pulley:
+  // An Atwood machine with a massless, frictionless pulley:
   // a = (m2 - m1) g / (m1 + m2), T = 2 m1 m2 g / (m1 + m2) on every span.
   const double m1 = 1.0, m2 = 3.0, g = 10.0;
-  World world;
-  world.settings().gravity = Vec3(0, -g, 0);
-  CableSystem cables(world);
-  BodyDef bar;
-  bar.is_static = true;
-  const BodyId b = world.addBody(bar);
-  BodyDef box;
-  box.shape = Shape::box(Vec3(0.1, 0.1, 0.1));
-  box.mass = m1;
-  box.position = Vec3(-0.5, -2.0, 0);
-  const BodyId light = world.addBody(box);
-  box.mass = m2;
-  box.position = Vec3(0.5, -2.0, 0);
-  const BodyId heavy = world.addBody(box);
-  CableDef def;
-  def.links = {LinkDef::attachment(light, Vec3(0, 0.1, 0)),
-               LinkDef::pinhole(b, Vec3(-0.5, 0, 0)),
-               LinkDef::pinhole(b, Vec3(0.5, 0, 0)),
-               LinkDef::attachment(heavy, Vec3(0, 0.1, 0))};
-  const int c = cables.addCable(def);
-  const double total = cables.totalLength(c);
+  SolverSettings settings;
+  settings.gravity = Vec3(0, -g, 0);
+  TwoHoleAtwood m(settings, m1, m2);
+  World& world = m.world;
+  CableSystem& cables = m.cables;
+  const BodyId light = m.light, heavy = m.heavy;
+  const int c = m.cable;
+  const double total = m.total;
   for (int f = 0; f < 30; ++f) world.step(1.0 / 60.0);
   const double t = world.time(), a = (m2 - m1) * g / (m1 + m2), T = 2.0 * m1 * m2 * g / (m1 + m2);
   EXPECT_NEAR(-world.body(heavy).v.y() / t, a, 0.01 * a);
@@ -88,24 +102,12 @@ TEST(Pinhole, ATiePointHauledIntoItsPinholeJamsThere) {
     for (const double m2 : {3.0, 1000.0}) {
       SCOPED_TRACE(test::name(budget) + ", " + std::to_string(m2) + " kg");
       const double m1 = 1.0, g = 9.81;
-      World world(test::settings(budget));
-      CableSystem cables(world);
-      BodyDef bar;
-      bar.is_static = true;
-      const BodyId b = world.addBody(bar);
-      BodyDef box;
-      box.shape = Shape::box(Vec3(0.1, 0.1, 0.1));
-      box.mass = m1;
-      box.position = Vec3(-0.5, -2.0, 0);
-      const BodyId light = world.addBody(box);
-      box.mass = m2;
-      box.position = Vec3(0.5, -2.0, 0);
-      const BodyId heavy = world.addBody(box);
-      CableDef def;
-      def.links = {LinkDef::attachment(light, Vec3(0, 0.1, 0)), LinkDef::pinhole(b, Vec3(-0.5, 0, 0)),
-                   LinkDef::pinhole(b, Vec3(0.5, 0, 0)), LinkDef::attachment(heavy, Vec3(0, 0.1, 0))};
-      const int c = cables.addCable(def);
-      const double total = cables.totalLength(c);
+      TwoHoleAtwood m(test::settings(budget), m1, m2);
+      World& world = m.world;
+      CableSystem& cables = m.cables;
+      const BodyId light = m.light, heavy = m.heavy;
+      const int c = m.cable;
+      const double total = m.total;
       const auto energy = [&] {
         const WorldEnergy e = world.energy();
         return e.kinetic + e.gravity;

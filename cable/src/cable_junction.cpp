@@ -6,6 +6,7 @@
 // C = sum_b s_b L_b - R and dC/dp = sum_b s_b dL_b/dp: cable b pulls with
 // s_b T, the constraint stays conservative and the direct solver takes it
 // as a row like any other (PathConstraint::scales).
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <stdexcept>
@@ -62,6 +63,7 @@ int CableSystem::addJunction(const JunctionDef& def) {
   Junction junction;
   junction.name = def.name;
   junction.cables = def.cables;
+  junction.cables_last = *std::max_element(def.cables.begin(), def.cables.end());
   for (const double d : def.divisors) junction.scales.push_back(1.0 / d);
   PathConstraint path;
   path.points.resize(2);  // filled by buildJunction()

@@ -75,6 +75,7 @@ Vec3 pointAt(const BodyState& body, const Vec3& local, bool now) {
 void CableSystem::syncRuns(Cable& cable) {
   settleRuns(cable, 0.0, true, &cable);
   buildRuns(cable);
+  if (cable.junction >= 0) buildJunction(junctions_[cable.junction]);
 }
 
 double CableSystem::settleRuns(const Cable& cable, double h, bool now, Cable* settle) const {
@@ -297,7 +298,6 @@ void CableSystem::buildRuns(Cable& cable) {
     PathConstraint& reeled = world_.path(cable.joints[cable.joints[winchSpan(cable).second].run].path);
     reeled.max_tension = std::min(reeled.max_tension, cable.winch->max_pull);
   }
-  if (cable.junction >= 0) buildJunction(junctions_[cable.junction]);
 }
 
 double CableSystem::wrapAngle(const Cable& cable, int k) const {

@@ -159,6 +159,11 @@ void CableSystem::updateCable(int c, double time_s, double h) {
   splitAtCrossedLinks(cable, c, time_s);
   if (h > 0.0) switchSlips(cable, h);
   buildRuns(cable);
+  // A junction's path once a substep, from its branches' new runs: its
+  // cables update in cable order on one thread (one island), so after the
+  // last of them.
+  if (cable.junction >= 0 && c == junctions_[cable.junction].cables_last)
+    buildJunction(junctions_[cable.junction]);
   out.winch_total += out.winch_work;
   out.breached = cableBreach(c).has_value();
   if (out.breached || !out.events.empty() || !out.jams.empty()) news_.store(true, std::memory_order_relaxed);

@@ -60,18 +60,24 @@ double CableSystem::winchWork() const {
     // load follows, a constant pull as an MJCF tendon motor or muscle is,
     // showed its whole reel as work between updates: 56 J for 25.6 J done,
     // and the ledger's balance rising frame by frame.)
-    if (!cable.winch || !std::isfinite(cable.winch->max_pull) || world_.lastSubstep() == 0.0) continue;
-    const auto [k, j] = winchSpan(cable);
-    if (cable.joints[j].parted) continue;
-    const PathId id = cable.joints[cable.joints[j].run].path;
-    const PathConstraint& path = world_.path(id);
-    const double h = world_.lastSubstep();
-    if (!(-path.lambda >= cable.winch->max_pull * h * h * (1.0 - 1e-9))) continue;
-    const double elastic = path.compliance * -path.lambda / (h * h);
-    const double slip = std::min(std::max(0.0, world_.pathLength(id) - path.rest_length - elastic), cable.links[k].stored);
-    work -= pull * slip;
+    if (!cable.winch || world_.lastSubstep() == 0.0 || cable.joints[winchSpan(cable).second].parted) continue;
+    const PathId id = cable.joints[cable.joints[winchSpan(cable).second].run].path;
+    if (const auto slip = stallSlip(cable, world_.pathLength(id), world_.lastSubstep())) work -= pull * *slip;
   }
   return work;
+}
+
+std::optional<double> CableSystem::stallSlip(const Cable& cable, double length, double h) const {
+  const auto [k, j] = winchSpan(cable);
+  const PathConstraint& path = world_.path(cable.joints[cable.joints[j].run].path);
+  if (!std::isfinite(cable.winch->max_pull) || !(-path.lambda >= cable.winch->max_pull * h * h * (1.0 - 1e-9)))
+    return std::nullopt;
+  // What the run stretched past its compliance's stretch at that pull: an
+  // elastic cable keeps the stretch its pull holds (paid out too, its
+  // tension fell to nothing and chattered back up, the ledger counting
+  // each drop as energy made).
+  const double elastic = path.compliance * -path.lambda / (h * h);
+  return std::min(std::max(0.0, length - path.rest_length - elastic), cable.links[k].stored);
 }
 
 double CableSystem::winchPull(int c) const {
@@ -109,17 +115,13 @@ void CableSystem::reel(Cable& cable, double start_s, double h) {
   // the solve that takes the stretch up.
   updates_[&cable - cables_.data()].winch_work += pull * cable.reeled * (1.0 + cable.compliance_per_m * std::max(0.0, pull));
   if (pull > 0.0 || length <= path.rest_length) cable.reeled = 0.0;
-  const bool stalled = std::isfinite(winch.max_pull) && -path.lambda >= winch.max_pull * h * h * (1.0 - 1e-9);
+  const std::optional<double> slip = stallSlip(cable, length, h);
+  const bool stalled = slip.has_value();
   if (stalled) {
-    // What the run stretched past its compliance's stretch at that pull:
-    // an elastic cable keeps the stretch its pull holds (paid out too, its
-    // tension fell to nothing and chattered back up, the ledger counting
-    // each drop as energy made).
-    const double elastic = path.compliance * -path.lambda / (h * h);
     // That slip already happened in the last solve (the run is that long
     // now), so it is not fed: the dashpot would read it as this substep's
     // shortening and cut the tension.
-    const double slipped = std::min(std::max(0.0, length - path.rest_length - elastic), drum.stored);
+    const double slipped = *slip;
     double given = slipped;
     // Still stalled, and this substep's motion (the run's length at the
     // poses the integration predicts) takes it past the end of the cable

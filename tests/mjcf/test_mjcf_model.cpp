@@ -192,7 +192,7 @@ namespace {
 // cube (cube.obj, quads with normals and texture coordinates, negative
 // indices) at 0.2 m: 8 kg, I = m a^2 / 6 about its centre, 0.1 m along its
 // turned diagonal from the geom's frame. The corner tetrahedron (tetra.stl,
-// ASCII) at a = 0.3 m: m = 1000 a^3 / 6 = 4.5 kg at a / 4 along each
+// binary) at a = 0.3 m: m = 1000 a^3 / 6 = 4.5 kg at a / 4 along each
 // axis, principal moments m a^2 / 16 (twice) and m a^2 / 10 (about the
 // (1, 1, 1) diagonal).
 TEST(MjcfModel, MeshGeomsAreTheSolidsTheirMeshesBound) {

@@ -187,6 +187,15 @@ TEST(MjcfVsMuJoCo, GimbalSwingsAsInMuJoCo) {
 namespace reeve::test {
 namespace {
 
+// MuJoCo 2.2.2's mass of a mesh geom of 1000 kg/m^3 whose principal
+// moments per kilogram are `per_kg`: that of the box with those moments,
+// of sides sqrt(6 (I_j + I_k - I_i)) (the import weighs the mesh's solid).
+double boxMass(const Vec3& per_kg) {
+  const Vec3 sides(std::sqrt(6.0 * (per_kg[1] + per_kg[2] - per_kg[0])), std::sqrt(6.0 * (per_kg[0] + per_kg[2] - per_kg[1])),
+                   std::sqrt(6.0 * (per_kg[0] + per_kg[1] - per_kg[2])));
+  return 1000.0 * sides.prod();
+}
+
 // Mass properties against MuJoCo's own compiler (mj_loadXML's body_mass,
 // body_inertia, xipos) on the test models and Debian's sample models: each
 // jointed body that nothing is welded to and whose joints have no armature
@@ -230,9 +239,7 @@ TEST(MjcfVsMuJoCo, MassPropertiesAreMuJoCosCompilers) {
       if (mesh) {  // per kilogram, and MuJoCo 2.2.2's mass the box's
         ours /= mass;
         theirs /= m->body_mass[b];
-        const Vec3 box(std::sqrt(6.0 * (ours[1] + ours[2] - ours[0])), std::sqrt(6.0 * (ours[0] + ours[2] - ours[1])),
-                       std::sqrt(6.0 * (ours[0] + ours[1] - ours[2])));
-        EXPECT_NEAR(1000.0 * box.prod(), m->body_mass[b], tol * m->body_mass[b]) << path << ": " << name;
+        EXPECT_NEAR(boxMass(ours), m->body_mass[b], tol * m->body_mass[b]) << path << ": " << name;
       } else {
         EXPECT_NEAR(mass, m->body_mass[b], tol * m->body_mass[b]) << path << ": " << name;
       }
@@ -276,9 +283,7 @@ TEST(MjcfVsMuJoCo, TheMugsOpenMeshIsCentredAndShapedAsInMuJoCo) {
   std::sort(ours.data(), ours.data() + 3);
   std::sort(theirs.data(), theirs.data() + 3);
   EXPECT_LT((ours - theirs).norm(), 1e-6 * theirs.norm()) << ours.transpose() << " vs " << theirs.transpose();
-  const Vec3 box(std::sqrt(6.0 * (ours[1] + ours[2] - ours[0])), std::sqrt(6.0 * (ours[0] + ours[2] - ours[1])),
-                 std::sqrt(6.0 * (ours[0] + ours[1] - ours[2])));
-  EXPECT_NEAR(1000.0 * box.prod(), m->body_mass[b], 1e-6 * m->body_mass[b]);
+  EXPECT_NEAR(boxMass(ours), m->body_mass[b], 1e-6 * m->body_mass[b]);
 }
 
 }  // namespace

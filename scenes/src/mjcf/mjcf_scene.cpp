@@ -719,6 +719,25 @@ class Mapper {
     return links;
   }
 
+  // The length (m) a tendon's cable or cables are to have in all: its
+  // range's upper end, or its spring length; NaN: as long as at load. What
+  // of its range, damping and frictionloss is not imported is listed.
+  double tendonLength(const Tendon& t) {
+    double length = std::numeric_limits<double>::quiet_NaN();
+    if (t.limited) {
+      if (t.range[0] > 0.0) unmapped_.push_back(t.origin.where() + ": the range's lower end is not imported (a cable does not push)");
+      length = t.range[1];
+    }
+    if (t.stiffness > 0.0) {
+      if (t.limited) unmapped_.push_back(t.origin.where() + ": the range with a stiffness is not imported (the cable is the spring)");
+      length = t.springlength ? *t.springlength : std::numeric_limits<double>::quiet_NaN();
+    } else if (t.damping > 0.0) {
+      unmapped_.push_back(t.origin.where() + ": damping without stiffness is not imported");
+    }
+    if (t.frictionloss > 0.0) unmapped_.push_back(t.origin.where() + ": frictionloss not imported");
+    return length;
+  }
+
   void addCable(const Tendon& t) {
     if (!mappable(t, true)) {
       cable_lengths_.push_back({});
@@ -728,20 +747,11 @@ class Mapper {
     if (branches.size() > 1) return addJunction(t, branches);
     json cable = {{"name", uniqueName(t.name, "tendon" + std::to_string(cables_.size()))},
                   {"links", branchLinks(t, branches[0], false)}};
-    double length = std::numeric_limits<double>::quiet_NaN();
-    if (t.limited) {
-      if (t.range[0] > 0.0) unmapped_.push_back(t.origin.where() + ": the range's lower end is not imported (a cable does not push)");
-      length = t.range[1];
-    }
+    double length = tendonLength(t);
     if (t.stiffness > 0.0) {
-      if (t.limited) unmapped_.push_back(t.origin.where() + ": the range with a stiffness is not imported (the cable is the spring)");
-      length = t.springlength ? *t.springlength : std::numeric_limits<double>::quiet_NaN();
       cable["compliance_m_per_N"] = 1.0 / t.stiffness;  // set per metre once its length is known
       if (t.damping > 0.0) cable["damping_N_s_per_m"] = t.damping;
-    } else if (t.damping > 0.0) {
-      unmapped_.push_back(t.origin.where() + ": damping without stiffness is not imported");
     }
-    if (t.frictionloss > 0.0) unmapped_.push_back(t.origin.where() + ": frictionloss not imported");
     const Actuator* puller = tendonPull(t);
     for (const Actuator& a : m_.actuators) {
       if (a.tendon != static_cast<int>(&t - m_.tendons.data())) continue;
@@ -783,18 +793,7 @@ class Mapper {
     const std::string name = uniqueName(t.name, "tendon" + std::to_string(&t - m_.tendons.data()));
     const double n = static_cast<double>(branches.size());
     TendonCables out;
-    out.length = std::numeric_limits<double>::quiet_NaN();
-    if (t.limited) {
-      if (t.range[0] > 0.0) unmapped_.push_back(t.origin.where() + ": the range's lower end is not imported (a cable does not push)");
-      out.length = t.range[1];
-    }
-    if (t.stiffness > 0.0) {
-      if (t.limited) unmapped_.push_back(t.origin.where() + ": the range with a stiffness is not imported (the cable is the spring)");
-      out.length = t.springlength ? *t.springlength : std::numeric_limits<double>::quiet_NaN();
-    } else if (t.damping > 0.0) {
-      unmapped_.push_back(t.origin.where() + ": damping without stiffness is not imported");
-    }
-    if (t.frictionloss > 0.0) unmapped_.push_back(t.origin.where() + ": frictionloss not imported");
+    out.length = tendonLength(t);
     if (options_.wheels == MjcfWheels::Turning &&
         std::any_of(t.path.begin(), t.path.end(), [](const PathElement& e) { return e.kind == PathElement::Kind::Geom; }))
       unmapped_.push_back(t.origin.where() + ": its wraps do not turn its wheels (pulley branches slide over their wraps, mu 0)");

@@ -293,6 +293,7 @@ struct Junction {
   std::vector<double> scales;
   PathId path = 0;
   double total_length = 0.0;  ///< m: sum_b scale_b x total length_b, as made or set
+  int cables_last = -1;       ///< the highest of `cables`: the last to update in a substep
 };
 
 struct Cable {
@@ -515,6 +516,12 @@ class CableSystem {
   void reel(Cable& cable, double start_s, double h);
   /// The winch's link and the joint of the span it reels.
   std::pair<int, int> winchSpan(const Cable& cable) const;
+  /// Where cable's winch is stalled (the last solve held its run at
+  /// max_pull), what it pays out at its next update for a run now `length`
+  /// m long after a substep of `h` s: the stretch past the compliance's at
+  /// that pull, at most what the drum holds (reel()). Nothing where it is
+  /// not stalled. winchWork() counts it before that update books it.
+  std::optional<double> stallSlip(const Cable& cable, double length, double h) const;
   void switchHybrids(Cable& cable, int c, double time_s);
   /// Breaking (cable_break.cpp): parts the span the last solve pulled
   /// hardest past the cable's breaking tension (its lambda over `h`), then
@@ -553,7 +560,9 @@ class CableSystem {
   bool recheckSlips(double h);
   void buildRuns(Cable& cable);
   /// The junction's path from its cables' runs (built, then disabled), its
-  /// rest length shared among them at equal strain (cable_junction.cpp).
+  /// rest length shared among them at equal strain (cable_junction.cpp):
+  /// after a branch's runs are built between steps (syncRuns), and in a
+  /// substep's update after its last branch's.
   void buildJunction(Junction& junction);
   /// The path carrying span j's tension, and the span's share of it.
   PathId tensionPath(const Cable& cable, int j) const;

@@ -314,6 +314,48 @@ TEST(HingeJoint, AngleDriveReachesAndHoldsItsTargetWhenTheTorqueSuffices) {
   EXPECT_NEAR(arm.world.hingeDriveTorque(arm.hinge), hold, 0.01 * hold);
 }
 
+// A wheel on an axle through its centre (a rotor) spun up by a torque
+// from 400 rad/s: 6.7 rad a substep at 1 x 1, more than half a turn. Its
+// angle counts whole turns and is the discrete closed form of the step
+// (integration turns it by h omega, omega += h alpha first), and the poses
+// give the same angle modulo 2 pi. Undamped, the angle is taken from h
+// omega alone (trackHingeAngle); damped, the decay after the turn makes
+// h omega wrong by omega h (1 - e^(-c h)), and the poses must correct it.
+TEST(HingeJoint, ARotorsAngleCountsEveryTurnItMakes) {
+  const double inertia = 0.25, torque = 3.0, alpha = torque / inertia, spin = 400.0, seconds = 3.0;
+  for (const double damping : {0.0, 0.5}) {
+    for (const test::Budget& b : test::kFourBudgets) {
+      World world(test::settings(b));
+      BodyDef def;
+      def.shape = Shape::cylinder(0.5, 0.1);
+      def.mass = 2.0;  // I = m r^2 / 2 = 0.25 kg m^2 about z
+      def.angular_velocity = Vec3(0.0, 0.0, spin);
+      def.angular_damping = damping;
+      const BodyId wheel = world.addBody(def);
+      const HingeId hinge = world.addHinge(HingeDef(wheel, kWorldBody, Vec3::Zero(), Vec3::UnitZ()));
+      world.body(wheel).applied_torque = Vec3(0.0, 0.0, torque);
+      const int frames = static_cast<int>(seconds * 60.0);
+      const double h = 1.0 / 60.0 / b.substeps, decay = std::exp(-damping * h);
+      double angle = 0.0, omega = spin;
+      for (int f = 0; f < frames; ++f) {
+        world.step(1.0 / 60.0);
+        for (int s = 0; s < b.substeps; ++s) {
+          omega += h * alpha;
+          angle += h * omega;
+          omega *= decay;
+        }
+      }
+      ASSERT_TRUE(world.body(wheel).isRotor()) << test::name(b);
+      const double total = world.hingeAngle(hinge);
+      EXPECT_NEAR(total, angle, 1e-12 * angle) << test::name(b) << ", damping " << damping;
+      const HingeJoint& j = world.hinge(hinge);
+      const double posed = hingeAngle(j, world.body(wheel).q, Quat::Identity());
+      EXPECT_NEAR(std::remainder(total - posed, 2.0 * pi), 0.0, 1e-9) << test::name(b) << ", damping " << damping;
+      EXPECT_GT(total, 200.0 * pi) << "whole turns counted";
+    }
+  }
+}
+
 TEST(HingeJoint, AngleDriveTooWeakForTheLoadSagsToTheLimit) {
   HingeDef def;
   Arm probe(def);

@@ -156,6 +156,15 @@ double hingeAngleTotal(const HingeJoint& j, const Quat& q_a, const Quat& q_b) {
 
 void trackHingeAngle(HingeJoint& j, const BodyState& a, const BodyState& b, double h) {
   const double estimate = j.angle_total + h * (a.q * j.frame.axis_a).dot(a.omega - b.omega);
+  // An undamped rotor turned by exactly h omega about its axle: integrate()
+  // turns it by h omega_0, the solve by what updateVelocities added to
+  // omega_0. The poses would correct the estimate by rounding alone (2 ulp
+  // of the angle on every shipped scene), for an atan2 a wheel and substep.
+  const BodyState& rotor = a.isRotor() ? a : b;
+  if (rotor.isRotor() && rotor.angular_damping == 0.0) {
+    j.angle_total = estimate;
+    return;
+  }
   j.angle_total = estimate + wrapAngle(hingeAngle(j, a.q, b.q) - estimate);
 }
 

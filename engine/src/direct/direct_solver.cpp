@@ -85,7 +85,9 @@ bool listed(const World& world, BodyId id) { return direct::listed(world.body(id
 void DirectSolver::describe(World& world, const Island& island, std::vector<int>& sig) const {
   sig.clear();
   const auto joint = [&](Source source, int index, BodyId a, BodyId b, int rows) {
-    if (!moves(world, a) && !moves(world, b)) return;
+    // A rotor's hinge without a drive or limit has no row (its axle is
+    // the rotor's inverse inertia, body.h), and so no place in the layout.
+    if (rows == 0 || (!moves(world, a) && !moves(world, b))) return;
     sig.insert(sig.end(), {static_cast<int>(source), index, rows, listed(world, a) ? a : kWorldBody,
                            listed(world, b) ? b : kWorldBody});
   };
@@ -341,6 +343,8 @@ void DirectSolver::prepare(World& world, const Island& island, double h, bool ag
     f.state = &b;  // the World's bodies stay where they are while it steps
     f.inv_mass = b.inv_mass;
     f.inv_axial = b.isRotor() ? b.rotor_axis.dot(b.inv_inertia * b.rotor_axis) : 0.0;
+    f.axial_inv0 = f.inv_axial;
+    f.axial_inertia = f.inv_axial > 0.0 ? 1.0 / f.inv_axial : 0.0;
     f.axle = b.q * b.rotor_axis;
   }
   for (std::size_t r = 0; r < rows_.size(); ++r) {
@@ -481,8 +485,8 @@ void DirectSolver::newtonShift() {
     const BodyState& b = *f.state;
     moved2 = std::max({moved2, moved_x_[i].squaredNorm(), moved_phi_[i].squaredNorm()});
     if (moved_phi_[i].norm() > kNewtonTurn) {  // XPBD's steps, W and no residual
-      if (f.inv_axial > 0.0) {
-        f.inv_axial = b.rotor_axis.dot(b.inv_inertia * b.rotor_axis);
+      if (f.inv_axial > 0.0 && f.inv_axial != f.axial_inv0) {
+        f.inv_axial = f.axial_inv0;
         reweigh_[i] = 1;
       }
       shift_x_[i].setZero();
@@ -492,14 +496,19 @@ void DirectSolver::newtonShift() {
     Vec3 g_x = shift_x_[i], g_phi = shift_phi_[i];
     if (f.inv_mass > 0.0) g_x += moved_x_[i] / f.inv_mass;
     if (f.inv_axial > 0.0) {  // a rotor: its turn about its axle alone
-      const double inertia = 1.0 / b.rotor_axis.dot(b.inv_inertia * b.rotor_axis);
+      const double inertia = f.axial_inertia;
       const double g_u = f.axle.dot(moved_phi_[i]) * inertia + f.axle.dot(g_phi);
       // A tie point on it (a spool run out) turns with it; a rolling end's
       // tangent point does not, and adds nothing.
       double k = std::abs(f.axle.dot(stiffness_[i] * f.axle));
       if (warm && k <= inertia) k = 0.0;
-      f.inv_axial = 1.0 / (inertia + k);
-      reweigh_[i] = 1;  // evaluate() weighed it with the last iteration's
+      // evaluate() weighed it with the last iteration's W; the start
+      // projection's rows with the substep's (start_).
+      const double inv_axial = 1.0 / (inertia + k);
+      if (inv_axial != f.inv_axial || !start_.empty()) {
+        f.inv_axial = inv_axial;
+        reweigh_[i] = 1;
+      }
       shift_x_[i].setZero();
       shift_phi_[i] = -f.axle * (f.inv_axial * g_u);
     } else {

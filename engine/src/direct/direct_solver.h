@@ -265,6 +265,7 @@ class DirectSolver {
     Mat3 R = Mat3::Identity(), inv_inertia = Mat3::Zero();
     Vec3 axle = Vec3::Zero();
     double inv_mass = 0.0, inv_axial = 0.0;
+    double axial_inv0 = 0.0, axial_inertia = 0.0;  // a rotor's 1 / I_u and I_u, as the substep starts
   };
   std::vector<BodyFrame> frames_;
   std::vector<Vec3> dx_, dphi_;

@@ -147,7 +147,8 @@ double hingeAngle(const HingeJoint& joint, const Quat& q_a, const Quat& q_b);
 /// Brings `joint.angle_total` to the end of a substep of `h` s, after the
 /// velocities are read out: the whole turns from the relative angular
 /// velocity (h omega is the substep's turn, however many turns), the rest
-/// from the poses. Right while the speed changes by less than pi / h in a
+/// from the poses (an undamped rotor's turn is h omega exactly, and takes
+/// no pose). Right while the speed changes by less than pi / h in a
 /// substep.
 void trackHingeAngle(HingeJoint& joint, const BodyState& a, const BodyState& b, double h);
 

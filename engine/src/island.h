@@ -35,9 +35,6 @@ struct Island {
   bool non_finite = false;   // a body state (or tension) not finite after the last pass
   bool driven = false;       // a joint of it has a drive this substep (World::beginSolve)
   bool moved = false;        // the hooks moved a row of it onto other bodies' island (World::rowsMoved)
-  // What stepping it costs (ns a step, smoothed), as its thread's measured
-  // time over the islands it ran (World::balanceIslandRuns); 0 until then.
-  double cost = 0.0;
   // Its work and losses since the islands were built (the flows of
   // WorldEnergy): World::energy adds them to the World's in island order,
   // and buildIslands folds them in, so the sums are the same on any number

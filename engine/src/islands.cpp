@@ -140,7 +140,6 @@ void World::buildIslands() {
       island = count++;
       if (static_cast<int>(islands_.size()) < count) islands_.push_back(std::make_unique<Island>());
       Island& fresh = *islands_[island];
-      fresh.cost = 0.0;  // its bodies may be others now
       fresh.driven = true;  // until its drives are looked at (World::startIsland)
       for (auto* list : {&fresh.bodies, &fresh.hinges, &fresh.prismatics, &fresh.sphericals, &fresh.fixeds,
                          &fresh.distances, &fresh.paths, &fresh.manifolds})
@@ -150,6 +149,8 @@ void World::buildIslands() {
     islands_[island]->bodies.push_back(id);
   }
   islands_.resize(count);
+  island_cost_.assign(count, 0.0);  // an island's bodies may be others now
+  island_manifolds_ = true;         // sortManifolds clears the lists
   // Room for 2 touching pairs a body, as findContacts has.
   for (auto& island : islands_) island->manifolds.reserve(2 * island->bodies.size());
   cutIslandRuns();
@@ -194,25 +195,26 @@ void World::cutIslandRuns() {
   // One run a thread, some empty when there are fewer islands. Work as
   // measured, or else estimated by the bodies and constraints.
   island_runs_.assign(1, 0);
-  run_ns_.assign(threads_, 0.0);
+  run_ns_.assign(threads_, RunTime{});
   serial_ns_ = 0.0;
   timed_runs_ = 0;
   // The islands' news is not known until they run (driven: a drive may be
   // among them).
   news_.assign(threads_, RunNews{.driven = true});
   const int n = static_cast<int>(islands_.size());
-  const bool measured = std::all_of(islands_.begin(), islands_.end(), [](const auto& i) { return i->cost > 0.0; });
-  const auto work = [&](const Island& i) {
-    if (measured) return i.cost;
+  const bool measured = std::all_of(island_cost_.begin(), island_cost_.end(), [](double c) { return c > 0.0; });
+  const auto work = [&](int k) {
+    if (measured) return island_cost_[k];
+    const Island& i = *islands_[k];
     return static_cast<double>(i.bodies.size() + i.hinges.size() + i.prismatics.size() + i.sphericals.size() +
                                i.fixeds.size() + i.distances.size() + i.paths.size());
   };
   double total = 0.0;
-  for (const auto& island : islands_) total += work(*island);
+  for (int i = 0; i < n; ++i) total += work(i);
   const std::size_t runs = threads_;
   double done = 0.0;
   for (int i = 0; i < n; ++i) {
-    done += work(*islands_[i]);
+    done += work(i);
     // Run k ends once the work done reaches k / runs of the total.
     while (island_runs_.size() < runs && done * runs >= island_runs_.size() * total) island_runs_.push_back(i + 1);
   }
@@ -225,7 +227,10 @@ void World::balanceIslandRuns() {
   // on threads costs 1 to 2 us more than its work (its join), and every
   // line the threads share crosses between cores.
   const double work =
-      (share_runs_ ? std::accumulate(run_ns_.begin(), run_ns_.end(), 0.0) : serial_ns_) / timed_runs_;
+      (share_runs_ ? std::accumulate(run_ns_.begin(), run_ns_.end(), 0.0,
+                                     [](double sum, const RunTime& t) { return sum + t.ns; })
+                   : serial_ns_) /
+      timed_runs_;
   const bool shared = share_runs_;
   share_runs_ = work >= (share_runs_ ? 0.5 : 1.0) * min_shared_run_ns_;
   serial_ns_ = 0.0;
@@ -234,8 +239,8 @@ void World::balanceIslandRuns() {
   for (int t = 0; t < threads_; ++t) {
     const int first = island_runs_[t], count = island_runs_[t + 1] - first;
     for (int i = first; i < first + count; ++i) {
-      double& cost = islands_[i]->cost;
-      const double share = run_ns_[t] / count;
+      double& cost = island_cost_[i];
+      const double share = run_ns_[t].ns / count;
       cost = cost > 0.0 ? 0.5 * (cost + share) : share;
     }
   }
@@ -243,9 +248,13 @@ void World::balanceIslandRuns() {
 }
 
 void World::sortManifolds() {
+  // Nothing to hand out and nothing to take back: the islands' lines stay
+  // in their threads' caches (a clear() writes even an empty list).
+  if (manifolds_.empty() && !island_manifolds_) return;
   for (auto& island : islands_) island->manifolds.clear();
   for (int m = 0; m < static_cast<int>(manifolds_.size()); ++m)
     islands_[islandOf(manifolds_[m].a, manifolds_[m].b)]->manifolds.push_back(m);
+  island_manifolds_ = !manifolds_.empty();
 }
 
 }  // namespace reeve

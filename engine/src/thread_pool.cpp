@@ -59,9 +59,10 @@ void ThreadPool::runOne(int i, int n) {
   } catch (...) {
     std::lock_guard lock(mutex_);
     if (!error_) error_ = std::current_exception();
+    failed_.store(true, std::memory_order_relaxed);  // published by done_ below
   }
-  if (done_.fetch_add(1, std::memory_order_acq_rel) + 1 == n) {
-    std::lock_guard lock(mutex_);  // the caller may be waiting on finished_
+  if (done_.fetch_add(1, std::memory_order_seq_cst) + 1 == n && caller_waits_.load(std::memory_order_seq_cst)) {
+    std::lock_guard lock(mutex_);
     finished_.notify_all();
   }
 }
@@ -83,13 +84,15 @@ void ThreadPool::take(std::uint32_t generation) {
 void ThreadPool::work(int id) {
   std::uint32_t seen = 0;
   const auto idle = [&] {
-    return generationOf(ticket_.load(std::memory_order_acquire)) == seen && !stop_.load(std::memory_order_relaxed);
+    return generationOf(ticket_.load(std::memory_order_seq_cst)) == seen && !stop_.load(std::memory_order_relaxed);
   };
   while (true) {
     spinWhile(idle);
     if (idle()) {
       std::unique_lock lock(mutex_);
+      sleepers_.fetch_add(1, std::memory_order_seq_cst);  // before idle() reads the ticket again
       wake_.wait(lock, [&] { return !idle(); });
+      sleepers_.fetch_sub(1, std::memory_order_relaxed);
     }
     if (stop_) return;
     const std::uint64_t ticket = ticket_.load(std::memory_order_acquire);
@@ -112,26 +115,33 @@ void ThreadPool::runIndices(int n, Call call, const void* task, bool each) {
   n_.store(n, std::memory_order_release);
   done_.store(0, std::memory_order_relaxed);
   ++generation_;
-  {
-    std::lock_guard lock(mutex_);  // a worker going to sleep checks the ticket under it
-    ticket_.store(static_cast<std::uint64_t>(generation_) << 32 | (each ? kEach : 0), std::memory_order_release);
+  ticket_.store(static_cast<std::uint64_t>(generation_) << 32 | (each ? kEach : 0), std::memory_order_seq_cst);
+  // A worker counts itself asleep, under the lock, before it reads the
+  // ticket a last time: if it has not seen this one, it is counted here,
+  // and holds the lock until it waits.
+  if (n > 1 && sleepers_.load(std::memory_order_seq_cst) > 0) {
+    std::lock_guard lock(mutex_);
+    wake_.notify_all();
   }
-  if (!workers_.empty() && n > 1) wake_.notify_all();
   if (each) runOne(0, n);
   else take(generation_);
   // Every index is taken; wait for those still running elsewhere.
-  const auto running = [&] { return done_.load(std::memory_order_acquire) < n; };
+  const auto running = [&] { return done_.load(std::memory_order_seq_cst) < n; };
   spinWhile(running);
   if (running()) {
     std::unique_lock lock(mutex_);
+    caller_waits_.store(true, std::memory_order_seq_cst);  // before running() reads done_ again
     finished_.wait(lock, [&] { return !running(); });
+    caller_waits_.store(false, std::memory_order_relaxed);
   }
+  if (!failed_.load(std::memory_order_relaxed)) return;  // done_ read above published it
   std::exception_ptr error;
   {
     std::lock_guard lock(mutex_);
     error = std::exchange(error_, nullptr);
+    failed_.store(false, std::memory_order_relaxed);
   }
-  if (error) std::rethrow_exception(error);
+  std::rethrow_exception(error);
 }
 
 }  // namespace reeve

@@ -528,7 +528,7 @@ void World::forEachIsland(const Fn& fn) {
   pool_->runEach([&](int t) {
     const auto start = std::chrono::steady_clock::now();
     run(news_[t], island_runs_[t], island_runs_[t + 1]);
-    run_ns_[t] += std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start).count();
+    run_ns_[t].ns += std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start).count();
   });
   ++timed_runs_;
 }

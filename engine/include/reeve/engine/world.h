@@ -460,7 +460,7 @@ class World {
   bool rowsMoved(const std::vector<int>& distances, const std::vector<int>& paths) const;
   void buildIslands();
   /// Cuts the islands into island_runs_, one run a thread, of about equal
-  /// cost (Island::cost; counted bodies and constraints until measured).
+  /// cost (island_cost_; counted bodies and constraints until measured).
   void cutIslandRuns();
   /// Shares each thread's measured time (run_ns_) out over the islands it
   /// ran, and cuts the runs again by those costs: which thread steps an
@@ -566,7 +566,19 @@ class World {
   int threads_ = 1;                                 // setThreads
   std::unique_ptr<ThreadPool> pool_;                // threads_ of them, once there are two islands
   std::vector<int> island_runs_;  // thread t's islands: [island_runs_[t], island_runs_[t + 1])
-  std::vector<double> run_ns_;    // per thread: ns spent on its islands since the last balanceIslandRuns
+  // Per thread, on a line of its own (the threads write theirs after every
+  // run): ns spent on its islands since the last balanceIslandRuns.
+  struct alignas(64) RunTime {
+    double ns = 0.0;
+  };
+  std::vector<RunTime> run_ns_;
+  // Per island: what stepping it costs (ns a step, smoothed), as its
+  // thread's measured time over the islands it ran (balanceIslandRuns); 0
+  // until then. Kept here, not on the Island, which its thread writes.
+  std::vector<double> island_cost_;
+  // Some island holds contact manifolds (sortManifolds): without, the
+  // caller's thread touches no island between the runs.
+  bool island_manifolds_ = false;
   bool share_runs_ = false;       // the islands' runs are worth the threads (balanceIslandRuns)
   double min_shared_run_ns_ = 1e3 * kMinSharedRunUs;  // setThreads
   double serial_ns_ = 0.0;        // ns of runs not shared since the last balanceIslandRuns

@@ -176,7 +176,8 @@ void CableSystem::updateJoint(Cable& cable, int c, int j, double time_s) {
   if (!from.active || joint.parted || joint.jammed) return;
   if ((from.type == LinkType::Pinhole || to.type == LinkType::Pinhole) && jamAtPinhole(cable, c, j, time_s)) return;
   if (!from.rolls() && !to.rolls()) return;
-  const auto anchors = spanAnchors(from, world_.body(from.body), to, world_.body(to.body), joint.local_b);
+  const auto anchors =
+      spanAnchors(from, world_.body(from.body), to, world_.body(to.body), joint.local_b, to.rolls() ? turn_[to.body] : 0.0);
   if (!anchors) {  // overlapping sections, or a tie point inside its wheel: keep the old anchors
     // A tie point drawn inside the wheel it is wound onto has run its span
     // out too (a load hauled up into its drum; item 9), and jams there.

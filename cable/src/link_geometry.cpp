@@ -94,7 +94,7 @@ Vec3 fromPlane(const Link& link, const Vec2& p) { return Vec3(p.x(), p.y(), link
 
 std::optional<std::pair<Vec3, Vec3>> spanAnchors(const Link& from, const BodyState& fb,
                                                  const Link& to, const BodyState& tb,
-                                                 const Vec3& warm_to) {
+                                                 const Vec3& warm_to, double warm_turn) {
   const bool from_rolls = from.rolls(), to_rolls = to.rolls();
   if (!from_rolls && !to_rolls) return std::pair{from.point, to.point};
   if (!to_rolls) {
@@ -112,7 +112,15 @@ std::optional<std::pair<Vec3, Vec3>> spanAnchors(const Link& from, const BodySta
   if (from.section.kind == Section::Kind::Circle && to.section.kind == Section::Kind::Circle &&
       coplanar(from, fb, to, tb))
     return coplanarCircles(from, fb, to, tb);
-  if (auto anchors = alternate(from, fb, to, tb, warm_to)) return anchors;
+  // A wheel on a fixed axle turning under a span in space keeps its tangent
+  // point where it was in space: turned back, the start is the answer, and
+  // the alternation settles in two rounds, not seven or eight.
+  Vec3 start = warm_to;
+  if (warm_turn != 0.0) {
+    const double c = std::cos(warm_turn), s = std::sin(warm_turn);
+    start = Vec3(c * warm_to.x() + s * warm_to.y(), c * warm_to.y() - s * warm_to.x(), warm_to.z());
+  }
+  if (auto anchors = alternate(from, fb, to, tb, start)) return anchors;
   if (coplanar(from, fb, to, tb)) return coplanarSearch(from, fb, to, tb);
   return std::nullopt;
 }

@@ -21,11 +21,14 @@ Vec3 fromPlane(const Link& link, const Vec2& p);
 /// the others. Coplanar circles use the closed form of Appendix A; other
 /// pairs of rolling links the alternating iteration of Fig. 6, each point
 /// projected into the other link's plane, started from `warm_to` (a
-/// body-local point of `to`, e.g. its current anchor). nullopt when no
-/// tangent exists (a point inside a section, overlapping sections).
+/// body-local point of `to`, e.g. its current anchor) turned back by
+/// `warm_turn` (rad, about `to`'s plane normal: how far `to` turned since
+/// warm_to was its tangent point, so that a tangent point fixed in space
+/// starts where it is). nullopt when no tangent exists (a point inside a
+/// section, overlapping sections).
 std::optional<std::pair<Vec3, Vec3>> spanAnchors(const Link& from, const BodyState& from_body,
                                                  const Link& to, const BodyState& to_body,
-                                                 const Vec3& warm_to);
+                                                 const Vec3& warm_to, double warm_turn = 0.0);
 
 /// Where the straight span from world point `p` to `q` passes the link's
 /// section centre, seen in the link's plane: {signed distance of the

@@ -119,15 +119,16 @@ void DirectSolver::describe(World& world, const Island& island, std::vector<int>
     const PathConstraint& p = world.path(i);
     if (!p.enabled || !p.weights.empty()) continue;  // weighted paths: World::solvePositions
     const std::size_t head = sig.size();
-    sig.insert(sig.end(), {static_cast<int>(Source::Path), i, 1});
-    for (const PathPoint& point : p.points)
-      if (listed(world, point.body) && std::find(sig.begin() + head + 3, sig.end(), point.body) == sig.end())
-        sig.push_back(point.body);
-    if (std::none_of(sig.begin() + head + 3, sig.end(), [&](int id) { return moves(world, id); })) {
-      sig.resize(head);  // nothing in it moves
-      continue;
+    sig.insert(sig.end(), {static_cast<int>(Source::Path), i, 1, 0});  // 0: the body count, below
+    bool moving = false;
+    for (const PathPoint& point : p.points) {
+      if (!listed(world, point.body) || std::find(sig.begin() + head + 4, sig.end(), point.body) != sig.end())
+        continue;
+      sig.push_back(point.body);
+      moving = moving || moves(world, point.body);
     }
-    sig.insert(sig.begin() + head + 3, static_cast<int>(sig.size() - head - 3));  // body count
+    if (!moving) sig.resize(head);  // nothing in it moves
+    else sig[head + 3] = static_cast<int>(sig.size() - head - 4);
   }
 }
 
@@ -325,6 +326,7 @@ void DirectSolver::build(World& world) {
   dphi_.assign(m, Vec3::Zero());
   for (auto* v : {&moved_x_, &moved_phi_, &shift_x_, &shift_phi_}) v->assign(m, Vec3::Zero());
   stiffness_.assign(m, Mat3::Zero());
+  axial_stiffness_.assign(m, 0.0);
   reweigh_.assign(m, 0);
 }
 
@@ -464,7 +466,8 @@ void DirectSolver::newtonShift() {
   for (std::size_t i = 0; i < m; ++i) {
     shift_x_[i].setZero();
     shift_phi_[i].setZero();
-    stiffness_[i].setZero();
+    if (frames_[i].inv_axial > 0.0) axial_stiffness_[i] = 0.0;
+    else stiffness_[i].setZero();
     reweigh_[i] = 0;
   }
   const bool warm = first_solve_ && last_lambda_.size() == lambda_.size();
@@ -475,7 +478,9 @@ void DirectSolver::newtonShift() {
       shift_x_[e.body] -= l * e.lin;
       shift_phi_[e.body] -= l * e.ang;
     }
-    if (stiff[e.row] != 0.0) stiffness_[e.body] += stiff[e.row] * e.curvature;
+    if (stiff[e.row] == 0.0) continue;
+    if (frames_[e.body].inv_axial > 0.0) axial_stiffness_[e.body] += stiff[e.row] * e.axial;
+    else stiffness_[e.body] += stiff[e.row] * e.curvature;
   }
   // The sizes' squares, and one square root at the end: the same bits, as
   // the root is monotonic and correctly rounded.
@@ -500,7 +505,7 @@ void DirectSolver::newtonShift() {
       const double g_u = f.axle.dot(moved_phi_[i]) * inertia + f.axle.dot(g_phi);
       // A tie point on it (a spool run out) turns with it; a rolling end's
       // tangent point does not, and adds nothing.
-      double k = std::abs(f.axle.dot(stiffness_[i] * f.axle));
+      double k = std::abs(axial_stiffness_[i]);
       if (warm && k <= inertia) k = 0.0;
       // evaluate() weighed it with the last iteration's W; the start
       // projection's rows with the substep's (start_).

@@ -95,8 +95,11 @@ class DirectSolver {
     Vec3 lin = Vec3::Zero(), ang = Vec3::Zero();    // dC / d(position, rotation)
     Vec3 wlin = Vec3::Zero(), wang = Vec3::Zero();  // W times those
     // d2C / d(rotation)^2 (m): sum over the row's points on the body of
-    // sym(g r^T) - (g . r) I, g the point's dC/dp and r its arm.
+    // sym(g r^T) - (g . r) I, g the point's dC/dp and r its arm. A rotor
+    // turns about its axle u alone, so its entries keep u . curvature . u =
+    // (u . g)(u . r) - g . r instead (axial), the only part newtonShift reads.
     Mat3 curvature = Mat3::Zero();
+    double axial = 0.0;
   };
   struct Row {
     Source source;
@@ -134,6 +137,9 @@ class DirectSolver {
   void evaluateBodies();
   /// The entry's W J from its gradient.
   void weigh(Entry& e) const;
+  /// Sets (or, `add`, adds to) the entry's curvature for a point at arm r
+  /// whose dC/dp is g: its axial part on a rotor, else the whole.
+  void curve(Entry& e, const Vec3& g, const Vec3& r, bool add) const;
   /// Every free row meets its equation C + alpha~ lambda = 0 to within
   /// `tolerance` (m or rad), or is held at a bound it presses against.
   bool converged(double tolerance) const;
@@ -275,6 +281,7 @@ class DirectSolver {
   std::vector<double> last_lambda_;  // per row: lambda as the last substep ended
   bool first_solve_ = false;          // this iteration is the substep's first
   std::vector<Mat3> stiffness_;  // per body: sum of lambda d2C/dtheta^2 this iteration
+  std::vector<double> axial_stiffness_;  // per rotor: u . stiffness_ . u (Entry::axial)
   double shift_size_ = 0.0;      // the largest |dx0|, |dphi0| (m, rad) of newtonShift
   double moved_size_ = 0.0;      // the largest |moved_x_|, |moved_phi_| (m, rad) then
   std::vector<char> reweigh_;    // per body: its W changed in newtonShift

@@ -39,6 +39,18 @@ void DirectSolver::evaluateBodies() {
   }
 }
 
+void DirectSolver::curve(Entry& e, const Vec3& g, const Vec3& r, bool add) const {
+  const BodyFrame& f = frames_[e.body];
+  if (f.inv_axial > 0.0) {
+    const double k = f.axle.dot(g) * f.axle.dot(r) - g.dot(r);
+    e.axial = add ? e.axial + k : k;
+  } else if (add) {
+    e.curvature += curvatureAt(g, r);
+  } else {
+    e.curvature = curvatureAt(g, r);
+  }
+}
+
 void DirectSolver::weigh(Entry& e) const {
   // W J: a rotor's angular part is u u^T / I_u (prepare()).
   const BodyFrame& f = frames_[e.body];
@@ -90,18 +102,18 @@ void DirectSolver::evaluateSpan(const World& world, int r, const PathPoint& p0, 
   if (s0 >= 0) {
     entries_[e].lin = -u;
     entries_[e].ang = e0.moment(-u);
-    entries_[e].curvature = curvatureAt(-u, a0);
+    curve(entries_[e], -u, a0, false);
     ++e;
   }
   if (s1 >= 0) {
     if (s1 == s0) {  // both ends on one body
       entries_[e - 1].lin.setZero();
       entries_[e - 1].ang += e1.moment(u);
-      entries_[e - 1].curvature += curvatureAt(u, a1);
+      curve(entries_[e - 1], u, a1, true);
     } else {
       entries_[e].lin = u;
       entries_[e].ang = e1.moment(u);
-      entries_[e].curvature = curvatureAt(u, a1);
+      curve(entries_[e], u, a1, false);
     }
   }
   for (e = row.first_entry; e < row.first_entry + row.entry_count; ++e) weigh(entries_[e]);
@@ -181,6 +193,7 @@ void DirectSolver::evaluateRun(const World& world, int r, const PathPoint* point
     entries_[e].lin.setZero();
     entries_[e].ang.setZero();
     entries_[e].curvature.setZero();
+    entries_[e].axial = 0.0;
   }
   double length = 0.0;
   Vec3 prev_u = Vec3::Zero();
@@ -197,7 +210,7 @@ void DirectSolver::evaluateRun(const World& world, int r, const PathPoint* point
       entries_[entry[i]].lin += grad;
       const bool end = i == 0 || i + 1 == count;  // a rolling end pays out per radian (SolvePoint::moment)
       entries_[entry[i]].ang += end ? ends[i == 0 ? 0 : 1].moment(grad) : Vec3(arm[i].cross(grad));
-      entries_[entry[i]].curvature += curvatureAt(grad, arm[i]);
+      curve(entries_[entry[i]], grad, arm[i], true);
     }
     prev_u = u;
   }
@@ -258,13 +271,13 @@ int DirectSolver::evaluateJoint(World& world, int r, double h) {
     if (a_moves) {
       entries_[e].lin = -sp;
       entries_[e].ang = sw - set.r_a.cross(sp);
-      entries_[e].curvature = curvatureAt(-sp, set.r_a);
+      curve(entries_[e], -sp, set.r_a, false);
       ++e;
     }
     if (b_moves) {
       entries_[e].lin = sp;
       entries_[e].ang = set.r_b.cross(sp) - sw;
-      entries_[e].curvature = curvatureAt(sp, set.r_b);
+      curve(entries_[e], sp, set.r_b, false);
     }
     for (e = rows_[r].first_entry; e < rows_[r].first_entry + rows_[r].entry_count; ++e) weigh(entries_[e]);
     dir_[r] = s;

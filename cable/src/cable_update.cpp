@@ -26,7 +26,7 @@ double CableSystem::turnSinceUpdate(BodyId b, double spin) const {
   const BodyState& body = world_.body(b);
   const Vec3 n = body.q * Vec3::UnitZ();
   const Quat dq = body.q * last_q_[b].conjugate();
-  const double twist = 2.0 * std::atan2(dq.vec().dot(n), dq.w());
+  const double twist = 2.0 * atan2Small(dq.vec().dot(n), dq.w());
   return spin + std::remainder(twist - spin, 2.0 * std::numbers::pi);
 }
 

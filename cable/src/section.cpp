@@ -3,6 +3,8 @@
 // Tangents are in section_tangent.cpp.
 #include "reeve/cable/section.h"
 
+#include "reeve/engine/math.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -121,7 +123,7 @@ double sectionSurfaceDistance(const Section& section, const Vec2& old_point, con
   // Counter-clockwise length from new to old, up to whole perimeters: the
   // one nearest what the turn predicts.
   const double ccw = section.kind == Section::Kind::Circle  // one angle: new to old
-                         ? section.radius * std::atan2(new_point.x() * old_point.y() - new_point.y() * old_point.x(),
+                         ? section.radius * atan2Small(new_point.x() * old_point.y() - new_point.y() * old_point.x(),
                                                        new_point.dot(old_point))
                          : boundaryPosition(section, old_point) - boundaryPosition(section, new_point);
   double predicted = section.radius * turn_rad;

@@ -11,25 +11,32 @@
 namespace reeve {
 namespace {
 
-Vec3 planeNormal(const BodyState& body) { return body.q * Vec3::UnitZ(); }
+// A link's cable plane in world: its normal, the body's local z (the
+// rotation's third column, 2 (xz + wy), 2 (yz - wx), 1 - 2 (x^2 + y^2), for
+// a unit q), and its origin, the body's centre moved along it by the
+// link's plane offset.
+struct Plane {
+  Vec3 normal, origin;
+};
 
-Vec3 planeOrigin(const BodyState& body, const Link& link) {
-  return body.toWorld(Vec3(0.0, 0.0, link.plane_offset));
+Plane planeOf(const BodyState& body, const Link& link) {
+  const Quat& q = body.q;
+  const Vec3 n(2.0 * (q.x() * q.z() + q.w() * q.y()), 2.0 * (q.y() * q.z() - q.w() * q.x()),
+               1.0 - 2.0 * (q.x() * q.x() + q.y() * q.y()));
+  return {n, body.x + link.plane_offset * n};
 }
 
-bool coplanar(const Link& a, const BodyState& ba, const Link& b, const BodyState& bb) {
-  const Vec3 n = planeNormal(ba);
-  return std::abs(n.dot(planeNormal(bb))) > 1.0 - 1e-12 &&
-         std::abs((planeOrigin(bb, b) - planeOrigin(ba, a)).dot(n)) < 1e-9;
+bool coplanar(const Plane& a, const Plane& b) {
+  return std::abs(a.normal.dot(b.normal)) > 1.0 - 1e-12 && std::abs((b.origin - a.origin).dot(a.normal)) < 1e-9;
 }
 
 // Appendix A closed form for two circles in one plane, computed in the
 // plane of `from`; `to`'s orientation flips if its normal points the other way.
-std::optional<std::pair<Vec3, Vec3>> coplanarCircles(const Link& from, const BodyState& fb,
-                                                     const Link& to, const BodyState& tb) {
-  const int flip = planeNormal(fb).dot(planeNormal(tb)) < 0.0 ? -1 : 1;
+std::optional<std::pair<Vec3, Vec3>> coplanarCircles(const Link& from, const BodyState& fb, const Plane& from_plane,
+                                                     const Link& to, const BodyState& tb, const Plane& to_plane) {
+  const int flip = from_plane.normal.dot(to_plane.normal) < 0.0 ? -1 : 1;
   const CableCircle a{Vec2::Zero(), from.section.radius, from.orientation};
-  const CableCircle b{toPlane(fb, planeOrigin(tb, to)), to.section.radius, flip * to.orientation};
+  const CableCircle b{toPlane(fb, to_plane.origin), to.section.radius, flip * to.orientation};
   const auto t = commonTangent(a, b);
   if (!t) return std::nullopt;
   const Vec3 on_to = fb.toWorld(fromPlane(from, t->on_to));
@@ -67,10 +74,10 @@ std::optional<std::pair<Vec3, Vec3>> alternate(const Link& from, const BodyState
 // Two sections in one plane that the iteration could not settle (they
 // overlap): the full search of sectionTangent in the plane of `from`, with
 // `to`'s section carried over point by point. Rare, so it may allocate.
-std::optional<std::pair<Vec3, Vec3>> coplanarSearch(const Link& from, const BodyState& fb, const Link& to,
-                                                    const BodyState& tb) {
-  const int flip = planeNormal(fb).dot(planeNormal(tb)) < 0.0 ? -1 : 1;
-  const Vec2 c_to = toPlane(fb, planeOrigin(tb, to));
+std::optional<std::pair<Vec3, Vec3>> coplanarSearch(const Link& from, const BodyState& fb, const Plane& from_plane,
+                                                    const Link& to, const BodyState& tb, const Plane& to_plane) {
+  const int flip = from_plane.normal.dot(to_plane.normal) < 0.0 ? -1 : 1;
+  const Vec2 c_to = toPlane(fb, to_plane.origin);
   Section carried = to.section;
   if (carried.kind == Section::Kind::Polygon) {
     std::vector<Vec2> points;
@@ -109,9 +116,10 @@ std::optional<std::pair<Vec3, Vec3>> spanAnchors(const Link& from, const BodySta
     if (!b) return std::nullopt;
     return std::pair{from.point, fromPlane(to, *b)};
   }
-  if (from.section.kind == Section::Kind::Circle && to.section.kind == Section::Kind::Circle &&
-      coplanar(from, fb, to, tb))
-    return coplanarCircles(from, fb, to, tb);
+  const Plane from_plane = planeOf(fb, from), to_plane = planeOf(tb, to);
+  const bool same_plane = coplanar(from_plane, to_plane);
+  if (from.section.kind == Section::Kind::Circle && to.section.kind == Section::Kind::Circle && same_plane)
+    return coplanarCircles(from, fb, from_plane, to, tb, to_plane);
   // A wheel on a fixed axle turning under a span in space keeps its tangent
   // point where it was in space: turned back, the start is the answer, and
   // the alternation settles in two rounds, not seven or eight.
@@ -121,7 +129,7 @@ std::optional<std::pair<Vec3, Vec3>> spanAnchors(const Link& from, const BodySta
     start = Vec3(c * warm_to.x() + s * warm_to.y(), c * warm_to.y() - s * warm_to.x(), warm_to.z());
   }
   if (auto anchors = alternate(from, fb, to, tb, start)) return anchors;
-  if (coplanar(from, fb, to, tb)) return coplanarSearch(from, fb, to, tb);
+  if (same_plane) return coplanarSearch(from, fb, from_plane, to, tb, to_plane);
   return std::nullopt;
 }
 

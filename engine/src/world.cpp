@@ -649,11 +649,14 @@ void World::integrate(const Island& island, double h) {
       continue;
     }
     if (!b.moves()) continue;
+    // An applied torque's turn, where there is one (two rotations and a
+    // product a body and substep where there is not).
+    const bool torqued = !b.applied_torque.isZero();
     if (b.isRotor()) {  // no gravity, no gyroscopic torque: it turns about its axle
       b.x_prev = b.x;
       b.q_prev = b.q;
       const Vec3 u = b.q * b.rotor_axis;
-      b.omega = u * u.dot(b.omega + h * b.applyInvInertia(b.applied_torque));
+      b.omega = u * u.dot(torqued ? Vec3(b.omega + h * b.applyInvInertia(b.applied_torque)) : b.omega);
       rotateExactly(b.q, h * b.omega);
       b.q_pred = b.q;
       continue;
@@ -662,7 +665,7 @@ void World::integrate(const Island& island, double h) {
     b.v += h * (g + b.inv_mass * b.applied_force);
     b.x += h * b.v;
     b.q_prev = b.q;
-    b.omega += h * b.applyInvInertia(b.applied_torque);
+    if (torqued) b.omega += h * b.applyInvInertia(b.applied_torque);
     b.omega = b.q * gyroscopicStep(b.inertia, b.q.conjugate() * b.omega, h);
     rotateExactly(b.q, h * b.omega);
     b.q_pred = b.q;

@@ -305,6 +305,7 @@ void DirectSolver::build(World& world) {
     rows_[r].slots_end = static_cast<int>(slots_.size());
   }
   for (std::vector<double>* v : {&C_, &alpha_, &lo_, &hi_, &lambda_, &dlambda_, &delta_, &length_}) v->assign(n, 0.0);
+  linear_.assign(n, 0);
   for (std::vector<double>* v : {&x_, &rhs_}) v->assign(unknowns, 0.0);
   hub_motion_.assign(unknowns - n, 0.0);
   hub_inertia_.assign(hubs_.size(), Mat3::Zero());
@@ -348,7 +349,9 @@ void DirectSolver::prepare(World& world, const Island& island, double h, bool ag
     f.axial_inv0 = f.inv_axial;
     f.axial_inertia = f.inv_axial > 0.0 ? 1.0 / f.inv_axial : 0.0;
     f.axle = b.q * b.rotor_axis;
+    f.evaluated_turn = b.solve_turn;
   }
+  evaluated_ = false;
   for (std::size_t r = 0; r < rows_.size(); ++r) {
     const Row& row = rows_[r];
     if (row.source != Source::Path && row.source != Source::Distance) continue;

@@ -153,6 +153,16 @@ class DirectSolver {
   /// Scaled ones are (`scales`: PathConstraint::scales, or null).
   void evaluateSpan(const World& world, int row, const PathPoint& p0, const PathPoint& p1);
   void evaluateRun(const World& world, int row, const PathPoint* points, std::size_t count, const double* scales);
+  /// Whether a span end keeps its row linear in the solve's motion: on a
+  /// body the solve does not move (`slot` -1), or rolling on a rotor about
+  /// its axle from a circle centred on it. Such an end stays where it is
+  /// as the rotor turns and pays out cable at a fixed rate per radian
+  /// (SolvePoint::perRadian), so its gradient is constant and C changes by
+  /// exactly J dphi (predictSpan).
+  bool linearEnd(const World& world, const PathPoint& point, int slot) const;
+  /// A linear span's length (linear_) after the solve's turns since it was
+  /// last evaluated: length + J dphi, its gradient unchanged.
+  void predictSpan(int row);
   /// A path point as this solve has it (path_constraint.h: solvePoint), on
   /// the body with index `slot` in bodies_ (-1: a body that does not move).
   SolvePoint endPoint(const World& world, const PathPoint& point, int slot) const;
@@ -234,6 +244,10 @@ class DirectSolver {
   std::vector<double> hub_motion_;  // per hub dof: the solve's dx_h
   std::vector<double> delta_;       // per row: its regularization (0 off hubs)
   std::vector<double> length_;      // per path or distance row: its length (m)
+  // Per row: a span both of whose ends are linear (linearEnd), as this
+  // substep's first evaluation found it; and whether that evaluation ran.
+  std::vector<char> linear_;
+  bool evaluated_ = false;
   std::vector<int> leaf_entries_;   // per hub, from first_leaf: its leaves' entries
   std::vector<Mat3> hub_inertia_;   // per hub: world inertia this iteration
   std::vector<BodyId> bodies_;    // moving bodies in some row
@@ -272,6 +286,8 @@ class DirectSolver {
     Vec3 axle = Vec3::Zero();
     double inv_mass = 0.0, inv_axial = 0.0;
     double axial_inv0 = 0.0, axial_inertia = 0.0;  // a rotor's 1 / I_u and I_u, as the substep starts
+    // The body's solve_turn when last evaluated, and its turn since then.
+    Vec3 evaluated_turn = Vec3::Zero(), turned = Vec3::Zero();
   };
   std::vector<BodyFrame> frames_;
   std::vector<Vec3> dx_, dphi_;

@@ -34,6 +34,8 @@ using joint_rows::Vec6;
 void DirectSolver::evaluateBodies() {
   for (BodyFrame& f : frames_) {
     const BodyState& b = *f.state;
+    f.turned = b.solve_turn - f.evaluated_turn;
+    f.evaluated_turn = b.solve_turn;
     f.R = b.q.toRotationMatrix();
     if (f.inv_axial == 0.0) f.inv_inertia = f.R * b.inv_inertia * f.R.transpose();
   }
@@ -118,6 +120,28 @@ void DirectSolver::evaluateSpan(const World& world, int r, const PathPoint& p0, 
   }
   for (e = row.first_entry; e < row.first_entry + row.entry_count; ++e) weigh(entries_[e]);
   C_[r] = l + e0.payOut(-u) + e1.payOut(u);  // minus the rest length, by the caller
+  linear_[r] = linearEnd(world, p0, s0) && linearEnd(world, p1, s1);
+}
+
+bool DirectSolver::linearEnd(const World& world, const PathPoint& point, int slot) const {
+  if (slot < 0) return true;
+  const BodyState& b = world.body(point.body);
+  // |sin| of the axes' angle at most 1e-12: C's second order in a turn
+  // theta is then below 1e-12 theta^2 r.
+  return b.isRotor() && !point.roll_axis.isZero() && point.roll_centre.isZero() &&
+         point.roll_axis.cross(b.rotor_axis).squaredNorm() <= 1e-24 * point.roll_axis.squaredNorm();
+}
+
+void DirectSolver::predictSpan(int r) {
+  // A rotor's turn theta u moves a linear end's cable by perRadian theta,
+  // and its entry's ang . u is perRadian (SolvePoint::moment): so
+  // C(theta) = C + sum ang . turned, exactly, where the evaluation would
+  // turn the lever back by theta and take the same span again.
+  const Row& row = rows_[r];
+  double length = length_[r];
+  for (int e = row.first_entry; e < row.first_entry + row.entry_count; ++e)
+    length += entries_[e].ang.dot(frames_[entries_[e].body].turned);
+  C_[r] = length;
 }
 
 void DirectSolver::evaluatePath(const World& world, int r, double h) {
@@ -127,7 +151,10 @@ void DirectSolver::evaluatePath(const World& world, int r, double h) {
   double compliance, damping, start_length;
   if (row.source == Source::Path) {
     const PathConstraint& p = world.path(row.index);
-    if (p.points.size() == 2 && p.scales.empty()) evaluateSpan(world, r, p.points[0], p.points[1]);
+    // The substep's later evaluations take a linear span's length from the
+    // turns since; Projection::Start replaces gradients (use_start_).
+    if (linear_[r] && evaluated_ && start_.empty()) predictSpan(r);
+    else if (p.points.size() == 2 && p.scales.empty()) evaluateSpan(world, r, p.points[0], p.points[1]);
     else evaluateRun(world, r, p.points.data(), p.points.size(), p.scales.empty() ? nullptr : p.scales.data());
     length_[r] = C_[r];
     C_[r] -= p.rest_length;
@@ -170,6 +197,7 @@ void DirectSolver::evaluateRun(const World& world, int r, const PathPoint* point
   // their gradients. Segment i's length and direction count scales[i]
   // times (PathConstraint::scales; once where there are none).
   const Row& row = rows_[r];
+  linear_[r] = 0;
   if (run_.arm.size() < count) {  // grown to the longest path, then kept
     run_.arm.resize(count);
     run_.pos.resize(count);
@@ -351,6 +379,7 @@ void DirectSolver::evaluate(World& world, double h) {
       r += evaluateJoint(world, r, h);
     }
   }
+  evaluated_ = !at_start_;
 }
 
 }  // namespace reeve

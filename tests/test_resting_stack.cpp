@@ -117,6 +117,24 @@ TEST(RestingStack, PushedBelowStaticFrictionItStaysAboveItSlidesAtTheClosedFormR
   }
 }
 
+TEST(RestingStack, TheDirectSolverStopsIteratingOnceNothingMoves) {
+  // A box resting on the ground under 20 direct iterations a substep: once
+  // a contact visit moves nothing (and there are no rows), another would
+  // start where it did and do the same, so the solve stops
+  // (World::solveDirect). It rests all the same: within g h^2 of its
+  // height, still in the last frame.
+  for (const int substeps : {1, 10}) {
+    SCOPED_TRACE(substeps);
+    Stack stack = makeStack(Budget{SolverKind::Direct, substeps, 20}, {1.0});
+    const Creep c = run(stack, 1.0);
+    const double h = kFrame / substeps;
+    std::printf("  %d x 20: %d iterations in the last frame\n", substeps, stack.world.lastStepIterations());
+    EXPECT_LE(stack.world.lastStepIterations(), 2 * substeps);
+    EXPECT_NEAR(stack.world.body(stack.boxes[0]).x.y(), 0.5, kG * h * h);
+    EXPECT_LT(c.last_frame_m, 1e-7);
+  }
+}
+
 TEST(RestingStack, TenBoxesStand) {
   // Within 0.8 mm in 10 s at 10 x 2 (before: 0.77 m and toppling).
   for (const Budget& b : kFourBudgets) {

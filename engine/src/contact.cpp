@@ -73,9 +73,10 @@ void freshAnchor(ContactManifold& m, const BodyState& a, const BodyState& b) {
 
 }  // namespace
 
-void solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, BodyState& b) {
+bool solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, BodyState& b) {
   constexpr double kSettled = 1e-12;  // m: a sweep moving no row more than this ends the visit
   const int end = m.first + m.count;
+  bool changed = false;  // a correction applied and kept
   for (int sweep = 0; sweep < kManifoldSweeps; ++sweep) {
     double largest = 0.0;
     for (int k = 0; k < m.count; ++k) {
@@ -89,6 +90,7 @@ void solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, 
       if (!(dl > 0.0)) continue;
       c.lambda_n += dl;
       applyPositionalImpulse(a, b, r_a, r_b, dl * c.normal);
+      changed = true;
       largest = std::max(largest, -C);
     }
     if (largest <= kSettled) break;
@@ -97,7 +99,7 @@ void solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, 
   for (int i = m.first; i < end; ++i) lambda_n += contacts[i].lambda_n;
   if (lambda_n <= 0.0) {  // not pressed: nothing holds the anchor
     m.stuck = false;
-    return;
+    return changed;
   }
   // Static friction of the patch: one tangential row at its anchor and one
   // twist row about n, held together or not at all.
@@ -124,8 +126,11 @@ void solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, 
   const Vec3 friction_before = m.friction_impulse;
   const double twist_before = m.twist_impulse;
   // Holds the anchor (local_a, local_b, relative orientation anchor_turn);
-  // false, with everything undone, when that passes the bound.
+  // false, with everything undone, when that passes the bound. `applied`:
+  // it moved a body, and kept the motion.
+  bool applied = false;
   const auto hold = [&](const Vec3& local_a, const Vec3& local_b, const Quat& anchor_turn) {
+    applied = false;
     for (int sweep = 0; sweep < kManifoldSweeps; ++sweep) {
       // Tangential: C = |dp_t| of the anchor, gradient dp_t / |dp_t| wrt b.
       const Vec3 r_a = a.q * local_a, r_b = b.q * local_b;
@@ -137,6 +142,7 @@ void solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, 
         const Vec3 P = positionalDeltaLambda(a, b, r_a, r_b, t, len, 0.0, 0.0) * t;
         m.friction_impulse += P;
         applyPositionalImpulse(a, b, r_a, r_b, P);
+        applied = true;
       }
       // Twist: C = the turn of b relative to a about n since the anchor.
       const double turn = n.dot(rotationVector(b.q * (a.q * anchor_turn).conjugate()));
@@ -144,6 +150,7 @@ void solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, 
         const double dl = angularDeltaLambda(a, b, n, turn, 0.0, 0.0);
         m.twist_impulse += dl;
         applyAngularImpulse(a, b, dl * n);
+        applied = true;
       }
       if (len <= kSettled && std::abs(turn) * radius <= kSettled) break;
     }
@@ -154,10 +161,12 @@ void solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, 
     undo(b, before_b);
     m.friction_impulse = friction_before;
     m.twist_impulse = twist_before;
+    applied = false;
     return false;
   };
   m.stuck = hold(m.anchor_a, m.anchor_b, m.anchor_turn);
-  if (m.stuck || !m.anchor_kept) return;
+  changed |= applied;
+  if (m.stuck || !m.anchor_kept) return changed;
   // Pulling back what earlier substeps let slip passes the bound (in an
   // early iteration, before the normal rows carry the whole load, or
   // under a load near it): hold this substep's motion alone, as a fresh
@@ -166,6 +175,7 @@ void solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, 
   ContactManifold fresh = m;
   freshAnchor(fresh, a, b);
   hold(fresh.anchor_a, fresh.anchor_b, fresh.anchor_turn);
+  return changed || applied;
 }
 
 void anchorFriction(ContactManifold& m, const Contact* contacts, const ContactManifold* previous,

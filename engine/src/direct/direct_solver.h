@@ -159,7 +159,7 @@ class DirectSolver {
   /// as the rotor turns and pays out cable at a fixed rate per radian
   /// (SolvePoint::perRadian), so its gradient is constant and C changes by
   /// exactly J dphi (predictSpan).
-  bool linearEnd(const World& world, const PathPoint& point, int slot) const;
+  bool linearEnd(const SolvePoint& end, const PathPoint& point, int slot) const;
   /// A linear span's length (linear_) after the solve's turns since it was
   /// last evaluated: length + J dphi, its gradient unchanged.
   void predictSpan(int row);

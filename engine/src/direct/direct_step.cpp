@@ -39,14 +39,18 @@ void World::solveDirect(Island& island, double h, bool again) {
     const bool moved = island.direct.iterate(*this, h);
     if (!moved && island.manifolds.empty() && !weighted) break;  // converged: the rest would do nothing
     ++island.iterations;
+    bool contacts_moved = false;
     for (const int i : island.manifolds) {
       ContactManifold& m = manifolds_[i];
       const Contact& c = contacts_[m.first];
-      solveContactPositions(m, contacts_.data(), body(c.a), body(c.b));
+      contacts_moved |= solveContactPositions(m, contacts_.data(), body(c.a), body(c.b));
     }
     if (weighted)
       for (const int i : island.paths)
         if (PathConstraint& p = paths_[i]; !p.weights.empty()) solvePathConstraint(p, table, p.compliance * inv_h2, h);
+    // Neither the rows nor the contacts moved a body: the next iteration
+    // would start where this one did, and do the same.
+    if (!moved && !contacts_moved && !weighted) break;
     if (it + 1 < settings_.iterations && interruptRequested()) {  // the substep ends here
       island.interrupted = true;
       break;

@@ -120,16 +120,16 @@ void DirectSolver::evaluateSpan(const World& world, int r, const PathPoint& p0, 
   }
   for (e = row.first_entry; e < row.first_entry + row.entry_count; ++e) weigh(entries_[e]);
   C_[r] = l + e0.payOut(-u) + e1.payOut(u);  // minus the rest length, by the caller
-  linear_[r] = linearEnd(world, p0, s0) && linearEnd(world, p1, s1);
+  if (!evaluated_) linear_[r] = linearEnd(e0, p0, s0) && linearEnd(e1, p1, s1);
 }
 
-bool DirectSolver::linearEnd(const World& world, const PathPoint& point, int slot) const {
+bool DirectSolver::linearEnd(const SolvePoint& end, const PathPoint& point, int slot) const {
   if (slot < 0) return true;
-  const BodyState& b = world.body(point.body);
+  const BodyFrame& f = frames_[slot];
   // |sin| of the axes' angle at most 1e-12: C's second order in a turn
   // theta is then below 1e-12 theta^2 r.
-  return b.isRotor() && !point.roll_axis.isZero() && point.roll_centre.isZero() &&
-         point.roll_axis.cross(b.rotor_axis).squaredNorm() <= 1e-24 * point.roll_axis.squaredNorm();
+  return f.axial_inv0 > 0.0 && !end.axis.isZero() && point.roll_centre.isZero() &&
+         end.axis.cross(f.axle).squaredNorm() <= 1e-24;
 }
 
 void DirectSolver::predictSpan(int r) {

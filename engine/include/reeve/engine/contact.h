@@ -123,7 +123,10 @@ inline constexpr int kManifoldSweeps = 8;
 /// budget refuses (a box on an incline slid below the friction angle), and
 /// corner rows brake a spin about n by the corners' distance (48 % too
 /// fast). All points of a manifold share one material.
-void solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, BodyState& b);
+/// Returns whether the visit moved a body (a correction applied and kept):
+/// one that moved none changed nothing, and another at the same poses
+/// would do the same (World::solveDirect stops there).
+bool solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, BodyState& b);
 
 /// The velocity pass of one manifold (SCA 2020, eq. 29-34), after the
 /// velocities were read from the positions. With v = (v_b + w_b x r_b) -

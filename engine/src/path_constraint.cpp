@@ -97,19 +97,9 @@ void solveSpan(PathConstraint& path, BodyState& b0, BodyState& b1, double alpha_
   const double l = d.norm();
   const Vec3 u = l < 1e-12 ? Vec3::Zero() : Vec3(d / l);
   // A rolling end's moment about its axle is the cable it pays out per
-  // radian (SolvePoint::perRadian, here with |g| = 1, or g = 0 where the
-  // span has no length and every moment is 0); a fixed point's, arm x g.
-  const auto end = [](const SolvePoint& p, const Vec3& g, double& length) {
-    const Vec3 m = p.arm.cross(g);
-    if (p.axis.isZero()) return m;
-    const double moment = p.axis.dot(p.lever.cross(g));
-    const double in_plane = (g - p.axis.dot(g) * p.axis).norm();
-    const double per_radian = in_plane > 1e-9 ? moment / in_plane : moment;
-    length += p.turn * per_radian;
-    return Vec3(m + p.axis * (per_radian - moment));
-  };
+  // radian (SolvePoint::spanMoment); a fixed point's, arm x g.
   double length = l;
-  const Vec3 t0 = end(first, -u, length), t1 = end(last, u, length);
+  const Vec3 t0 = first.spanMoment(-u, length), t1 = last.spanMoment(u, length);
   const double C = length - path.rest_length;
   if (C <= 0.0 && path.lambda == 0.0) return;  // slack and never pulled
   const double weight = path.weights.empty() ? 1.0 : path.weights[0];

@@ -305,7 +305,6 @@ void DirectSolver::build(World& world) {
     rows_[r].slots_end = static_cast<int>(slots_.size());
   }
   for (std::vector<double>* v : {&C_, &alpha_, &lo_, &hi_, &lambda_, &dlambda_, &delta_, &length_}) v->assign(n, 0.0);
-  linear_.assign(n, 0);
   for (std::vector<double>* v : {&x_, &rhs_}) v->assign(unknowns, 0.0);
   hub_motion_.assign(unknowns - n, 0.0);
   hub_inertia_.assign(hubs_.size(), Mat3::Zero());

@@ -154,14 +154,15 @@ class DirectSolver {
   void evaluateSpan(const World& world, int row, const PathPoint& p0, const PathPoint& p1);
   void evaluateRun(const World& world, int row, const PathPoint* points, std::size_t count, const double* scales);
   /// Whether a span end keeps its row linear in the solve's motion: on a
-  /// body the solve does not move (`slot` -1), or rolling on a rotor about
+  /// body the solve does not move, or rolling on a rotor about
   /// its axle from a circle centred on it. Such an end stays where it is
   /// as the rotor turns and pays out cable at a fixed rate per radian
   /// (SolvePoint::perRadian), so its gradient is constant and C changes by
   /// exactly J dphi (predictSpan).
-  bool linearEnd(const SolvePoint& end, const PathPoint& point, int slot) const;
-  /// A linear span's length (linear_) after the solve's turns since it was
-  /// last evaluated: length + J dphi, its gradient unchanged.
+  bool linearEnd(const World& world, const PathPoint& point) const;
+  /// A linear span's length (linearEnd at both ends) after the solve's
+  /// turns since it was last evaluated: length + J dphi, its gradient
+  /// unchanged.
   void predictSpan(int row);
   /// A path point as this solve has it (path_constraint.h: solvePoint), on
   /// the body with index `slot` in bodies_ (-1: a body that does not move).
@@ -244,10 +245,7 @@ class DirectSolver {
   std::vector<double> hub_motion_;  // per hub dof: the solve's dx_h
   std::vector<double> delta_;       // per row: its regularization (0 off hubs)
   std::vector<double> length_;      // per path or distance row: its length (m)
-  // Per row: a span both of whose ends are linear (linearEnd), as this
-  // substep's first evaluation found it; and whether that evaluation ran.
-  std::vector<char> linear_;
-  bool evaluated_ = false;
+  bool evaluated_ = false;  // this substep's first evaluation ran (in full)
   std::vector<int> leaf_entries_;   // per hub, from first_leaf: its leaves' entries
   std::vector<Mat3> hub_inertia_;   // per hub: world inertia this iteration
   std::vector<BodyId> bodies_;    // moving bodies in some row

@@ -100,40 +100,45 @@ void DirectSolver::evaluateSpan(const World& world, int r, const PathPoint& p0, 
   const Vec3 d = (x1 + a1) - (x0 + a0);
   const double l = d.norm();
   const Vec3 u = l >= 1e-12 ? Vec3(d / l) : Vec3::Zero();
+  double length = l;  // and the ends' pay-outs
+  const Vec3 m0 = e0.spanMoment(-u, length), m1 = e1.spanMoment(u, length);
   int e = row.first_entry;
   if (s0 >= 0) {
     entries_[e].lin = -u;
-    entries_[e].ang = e0.moment(-u);
+    entries_[e].ang = m0;
     curve(entries_[e], -u, a0, false);
     ++e;
   }
   if (s1 >= 0) {
     if (s1 == s0) {  // both ends on one body
       entries_[e - 1].lin.setZero();
-      entries_[e - 1].ang += e1.moment(u);
+      entries_[e - 1].ang += m1;
       curve(entries_[e - 1], u, a1, true);
     } else {
       entries_[e].lin = u;
-      entries_[e].ang = e1.moment(u);
+      entries_[e].ang = m1;
       curve(entries_[e], u, a1, false);
     }
   }
   for (e = row.first_entry; e < row.first_entry + row.entry_count; ++e) weigh(entries_[e]);
-  C_[r] = l + e0.payOut(-u) + e1.payOut(u);  // minus the rest length, by the caller
-  if (!evaluated_) linear_[r] = linearEnd(e0, p0, s0) && linearEnd(e1, p1, s1);
+  C_[r] = length;  // minus the rest length, by the caller
 }
 
-bool DirectSolver::linearEnd(const SolvePoint& end, const PathPoint& point, int slot) const {
+bool DirectSolver::linearEnd(const World& world, const PathPoint& point) const {
+  const int slot = point.body == kWorldBody ? -1 : body_index_[point.body];
   if (slot < 0) return true;
-  const BodyFrame& f = frames_[slot];
+  const BodyState& b = *frames_[slot].state;
+  if (frames_[slot].axial_inv0 == 0.0 || !point.roll_centre.isZero()) return false;  // not a rotor, or off its axle
+  if (point.roll_axis == b.rotor_axis) return true;  // most often
   // |sin| of the axes' angle at most 1e-12: C's second order in a turn
   // theta is then below 1e-12 theta^2 r.
-  return f.axial_inv0 > 0.0 && !end.axis.isZero() && point.roll_centre.isZero() &&
-         end.axis.cross(f.axle).squaredNorm() <= 1e-24;
+  return !point.roll_axis.isZero() &&
+         point.roll_axis.cross(b.rotor_axis).squaredNorm() <= 1e-24 * point.roll_axis.squaredNorm();
 }
 
 void DirectSolver::predictSpan(int r) {
-  // A rotor's turn theta u moves a linear end's cable by perRadian theta,
+  // The span was evaluated in full at the substep's first evaluation (as
+  // the cable update left it), and since only predicted. A rotor's turn theta u moves a linear end's cable by perRadian theta,
   // and its entry's ang . u is perRadian (SolvePoint::moment): so
   // C(theta) = C + sum ang . turned, exactly, where the evaluation would
   // turn the lever back by theta and take the same span again.
@@ -151,10 +156,12 @@ void DirectSolver::evaluatePath(const World& world, int r, double h) {
   double compliance, damping, start_length;
   if (row.source == Source::Path) {
     const PathConstraint& p = world.path(row.index);
+    const bool span = p.points.size() == 2 && p.scales.empty();
     // The substep's later evaluations take a linear span's length from the
     // turns since; Projection::Start replaces gradients (use_start_).
-    if (linear_[r] && evaluated_ && start_.empty()) predictSpan(r);
-    else if (p.points.size() == 2 && p.scales.empty()) evaluateSpan(world, r, p.points[0], p.points[1]);
+    if (span && evaluated_ && start_.empty() && linearEnd(world, p.points[0]) && linearEnd(world, p.points[1]))
+      predictSpan(r);
+    else if (span) evaluateSpan(world, r, p.points[0], p.points[1]);
     else evaluateRun(world, r, p.points.data(), p.points.size(), p.scales.empty() ? nullptr : p.scales.data());
     length_[r] = C_[r];
     C_[r] -= p.rest_length;
@@ -197,7 +204,6 @@ void DirectSolver::evaluateRun(const World& world, int r, const PathPoint* point
   // their gradients. Segment i's length and direction count scales[i]
   // times (PathConstraint::scales; once where there are none).
   const Row& row = rows_[r];
-  linear_[r] = 0;
   if (run_.arm.size() < count) {  // grown to the longest path, then kept
     run_.arm.resize(count);
     run_.pos.resize(count);

@@ -65,6 +65,18 @@ struct SolvePoint {
     const Vec3 m = arm.cross(grad);
     return axis.isZero() ? m : Vec3(m + axis * (perRadian(grad) - axis.dot(lever.cross(grad))));
   }
+  /// moment(g), with payOut(g) added to `length`, for a span's direction g
+  /// (|g| = 1, or 0 for a span of no length): the lever's moment and g's
+  /// share in the cable plane taken once for both.
+  Vec3 spanMoment(const Vec3& g, double& length) const {
+    const Vec3 m = arm.cross(g);
+    if (axis.isZero()) return m;
+    const double moment = axis.dot(lever.cross(g));
+    const double in_plane = (g - axis.dot(g) * axis).norm();
+    const double per_radian = in_plane > 1e-9 ? moment / in_plane : moment;
+    length += turn * per_radian;
+    return Vec3(m + axis * (per_radian - moment));
+  }
 };
 /// `point` on `body`. `in_solve`: the body's solve_turn is this solve's
 /// (from the start of a position solve until the next substep's

@@ -184,6 +184,8 @@ int CableSystem::addCable(const CableDef& def) {
       turn_.resize(link.body + 1, 0.0);
       last_x_.resize(link.body + 1, Vec3::Zero());
       move_.resize(link.body + 1, 0.0);
+      steady_.resize(link.body + 1, 0);
+      in_place_.resize(link.body + 1, 0);
     }
     last_q_[link.body] = world_.body(link.body).q;
     last_x_[link.body] = world_.body(link.body).x;

@@ -39,6 +39,17 @@ void CableSystem::measureTurns(int island, double h) {
     const BodyState& body = world_.body(b);
     const Vec3 solved = measure_solve_turn_ ? body.solve_turn : Vec3::Zero();
     turn_[b] = turnSinceUpdate(b, (h * body.omega + solved).dot(body.q * Vec3::UnitZ()));
+    // A rotor turns about its axle alone, and its axle stays put; a static
+    // body stays put; unless moved by hand (a pose set between steps), which
+    // this sees: dq = q q_last^-1 has a vector part off the axle.
+    const bool rotor_on_z = body.isRotor() && body.rotor_axis.cross(Vec3::UnitZ()).squaredNorm() <= 1e-30;
+    steady_[b] = rotor_on_z || (!body.moves() && !body.kinematic);
+    in_place_[b] = 0;
+    if (steady_[b] && body.x == last_x_[b]) {
+      const Vec3 n = body.q * Vec3::UnitZ();
+      const Vec3 v = (body.q * last_q_[b].conjugate()).vec();
+      in_place_[b] = (v - v.dot(n) * n).squaredNorm() <= 1e-30;
+    }
     last_q_[b] = body.q;
     move_[b] = (body.x - last_x_[b]).norm();
     last_x_[b] = body.x;
@@ -67,6 +78,7 @@ void groupByIsland(int n, IslandOf island_of, std::vector<int>& order, std::vect
 
 void CableSystem::beginUpdate(double h) {
   poses_predicted_ = h > 0.0;
+  ++update_count_;
   // An update by hand between steps (h = 0) counts the last solve's turn;
   // the next substep's must not count it again.
   measure_solve_turn_ = !solve_turn_counted_;
@@ -146,6 +158,7 @@ void CableSystem::endUpdate(double time_s) {
 void CableSystem::updateCable(int c, double time_s, double h) {
   Cable& cable = cables_[c];
   CableUpdate& out = updates_[c];
+  if (out.fixed.size() != cable.joints.size()) out.fixed.assign(cable.joints.size(), FixedSpan{});
   out.winch_work = 0.0;  // this substep's, added to winch_total below
   if (h > 0.0 && std::isfinite(cable.breaking_tension)) breakOverloaded(cable, c, time_s, h);
   if (cable.winch && h > 0.0) reel(cable, time_s - h, h);
@@ -169,6 +182,19 @@ void CableSystem::updateCable(int c, double time_s, double h) {
   if (out.breached || !out.events.empty() || !out.jams.empty()) news_.store(true, std::memory_order_relaxed);
 }
 
+std::optional<std::pair<Vec3, Vec3>> CableSystem::fixedAnchors(const Cable& cable, int c, int j) const {
+  // Two circles that stayed where they were have the same tangents in the
+  // world (paper App. A; Fig. 6's alternation converges to them), so the
+  // last update's, in the bodies' turned frames, are this one's.
+  const CableJoint& joint = cable.joints[j];
+  const FixedSpan& fixed = updates_[c].fixed[j];
+  const Link &from = cable.links[j], &to = cable.links[joint.to];
+  if (fixed.update != update_count_ - 1 || fixed.to != joint.to || !from.rolls() || !to.rolls() ||
+      fixed.sides != from.orientation * 2 + to.orientation || !in_place_[from.body] || !in_place_[to.body])
+    return std::nullopt;
+  return std::pair{world_.body(from.body).toLocal(fixed.a), world_.body(to.body).toLocal(fixed.b)};
+}
+
 void CableSystem::updateJoint(Cable& cable, int c, int j, double time_s) {
   Link& from = cable.links[j];
   CableJoint& joint = cable.joints[j];
@@ -176,8 +202,23 @@ void CableSystem::updateJoint(Cable& cable, int c, int j, double time_s) {
   if (!from.active || joint.parted || joint.jammed) return;
   if ((from.type == LinkType::Pinhole || to.type == LinkType::Pinhole) && jamAtPinhole(cable, c, j, time_s)) return;
   if (!from.rolls() && !to.rolls()) return;
+  const BodyState &from_body = world_.body(from.body), &to_body = world_.body(to.body);
+  const auto kept = fixedAnchors(cable, c, j);
   const auto anchors =
-      spanAnchors(from, world_.body(from.body), to, world_.body(to.body), joint.local_b, to.rolls() ? turn_[to.body] : 0.0);
+      kept ? kept : spanAnchors(from, from_body, to, to_body, joint.local_b, to.rolls() ? turn_[to.body] : 0.0);
+  FixedSpan& fixed = updates_[c].fixed[j];
+  if (anchors && from.rolls() && to.rolls() && from.section.kind == Section::Kind::Circle &&
+      to.section.kind == Section::Kind::Circle && steady_[from.body] && steady_[to.body]) {
+    if (!kept) {  // found afresh; kept ones stay as they were in the world, not rounded through the poses
+      fixed.a = from_body.toWorld(anchors->first);
+      fixed.b = to_body.toWorld(anchors->second);
+    }
+    fixed.update = update_count_;
+    fixed.to = joint.to;
+    fixed.sides = from.orientation * 2 + to.orientation;
+  } else {
+    fixed.update = -1;
+  }
   if (!anchors) {  // overlapping sections, or a tie point inside its wheel: keep the old anchors
     // A tie point drawn inside the wheel it is wound onto has run its span
     // out too (a load hauled up into its drum; item 9), and jams there.

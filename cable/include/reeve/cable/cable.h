@@ -489,6 +489,10 @@ class CableSystem {
   /// `island` turned about its cable plane's normal (local z) since the
   /// last update.
   void measureTurns(int island, double h);
+  /// Joint j's tangent points, if it can keep those of the last update
+  /// (FixedSpan): its links roll on circles about axles that stay put, and
+  /// both bodies stayed in place since. Body-local, as spanAnchors gives.
+  std::optional<std::pair<Vec3, Vec3>> fixedAnchors(const Cable& cable, int c, int j) const;
   /// Body b's turn (rad, unwrapped) about its cable plane's normal since
   /// the last update, counting `spin` (rad) as known whole turns.
   double turnSinceUpdate(BodyId b, double spin) const;
@@ -604,7 +608,18 @@ class CableSystem {
     int pinhole = -1;     // a pinhole's link, which holds the cable now, and its mu before
     double pinhole_mu = 0.0;
   };
+  // A span's tangent points in the world as an update left them, where both
+  // its links roll on circles about axles that stay put (steady_): the next
+  // update keeps them if its bodies only turned about those axles since
+  // (updateJoint). `update`: update_count_ then, -1 for none; `to` and
+  // `sides` (the links' orientations): the span they were found for.
+  struct FixedSpan {
+    Vec3 a = Vec3::Zero(), b = Vec3::Zero();
+    long long update = -1;
+    int to = -1, sides = 0;
+  };
   struct CableUpdate {
+    std::vector<FixedSpan> fixed;  // per joint
     std::vector<CableEvent> events;
     double friction_loss = 0.0;  // J, since the system was made: its part of frictionLoss()
     double winch_work = 0.0;     // J, this substep's
@@ -619,6 +634,12 @@ class CableSystem {
   std::vector<double> turn_;            // per body, rad (measureTurns)
   std::vector<Vec3> last_x_;            // per body: position at the last update
   std::vector<double> move_;            // per body, m since the last update (measureTurns)
+  // Per body: its cable plane's circles stay where they are as it turns (a
+  // static body, or a rotor whose axle is its local z); and it did, since
+  // the last update (measureTurns: it kept its position and turned about
+  // that axle alone).
+  std::vector<char> steady_, in_place_;
+  long long update_count_ = 0;  // updates begun
   bool solve_turn_counted_ = false;     // the last update was by hand, after the solve
   bool measure_solve_turn_ = true;      // this update counts the last solve's turn (beginUpdate)
   // beginUpdate's sort: cable indices and rolling bodies by island (-1

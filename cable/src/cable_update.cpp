@@ -18,16 +18,25 @@ namespace {
 // that has just merged, grazing its link, does not split straight back.
 constexpr double kSplitMargin = 1e-6;
 
+// The turn (rad) of dq = q q_last^-1 about n, its axle's world direction
+// (local z), with whole turns from `spin` (rad), the turn known otherwise:
+// the geometry gives the turn only up to whole turns.
+double unwrappedTurn(const Quat& dq, const Vec3& n, double spin) {
+  const double twist = 2.0 * atan2Small(dq.vec().dot(n), dq.w());
+  return spin + std::remainder(twist - spin, 2.0 * std::numbers::pi);
+}
+
+// A unit quaternion's local z in the world: the rotation's third column.
+Vec3 localZ(const Quat& q) {
+  return Vec3(2.0 * (q.x() * q.z() + q.w() * q.y()), 2.0 * (q.y() * q.z() - q.w() * q.x()),
+              1.0 - 2.0 * (q.x() * q.x() + q.y() * q.y()));
+}
+
 }  // namespace
 
 double CableSystem::turnSinceUpdate(BodyId b, double spin) const {
-  // The geometric turn since the last update is known only up to whole
-  // turns; the caller's spin supplies them, the geometry the rest.
   const BodyState& body = world_.body(b);
-  const Vec3 n = body.q * Vec3::UnitZ();
-  const Quat dq = body.q * last_q_[b].conjugate();
-  const double twist = 2.0 * atan2Small(dq.vec().dot(n), dq.w());
-  return spin + std::remainder(twist - spin, 2.0 * std::numbers::pi);
+  return unwrappedTurn(body.q * last_q_[b].conjugate(), localZ(body.q), spin);
 }
 
 void CableSystem::measureTurns(int island, double h) {
@@ -38,18 +47,17 @@ void CableSystem::measureTurns(int island, double h) {
     const BodyId b = rolling_by_island_[k];
     const BodyState& body = world_.body(b);
     const Vec3 solved = measure_solve_turn_ ? body.solve_turn : Vec3::Zero();
-    turn_[b] = turnSinceUpdate(b, (h * body.omega + solved).dot(body.q * Vec3::UnitZ()));
+    const Vec3 n = localZ(body.q);
+    const Quat dq = body.q * last_q_[b].conjugate();
+    turn_[b] = unwrappedTurn(dq, n, (h * body.omega + solved).dot(n));
     // A rotor turns about its axle alone, and its axle stays put; a static
     // body stays put; unless moved by hand (a pose set between steps), which
-    // this sees: dq = q q_last^-1 has a vector part off the axle.
-    const bool rotor_on_z = body.isRotor() && body.rotor_axis.cross(Vec3::UnitZ()).squaredNorm() <= 1e-30;
-    steady_[b] = rotor_on_z || (!body.moves() && !body.kinematic);
-    in_place_[b] = 0;
-    if (steady_[b] && body.x == last_x_[b]) {
-      const Vec3 n = body.q * Vec3::UnitZ();
-      const Vec3 v = (body.q * last_q_[b].conjugate()).vec();
-      in_place_[b] = (v - v.dot(n) * n).squaredNorm() <= 1e-30;
-    }
+    // this sees: dq's vector part off the axle, or a new position.
+    const Vec3& axle = body.rotor_axis;
+    steady_[b] = (body.isRotor() && axle.x() * axle.x() + axle.y() * axle.y() <= 1e-30) ||
+                 (!body.moves() && !body.kinematic);
+    const Vec3 v = dq.vec();
+    in_place_[b] = steady_[b] && body.x == last_x_[b] && (v - v.dot(n) * n).squaredNorm() <= 1e-30;
     last_q_[b] = body.q;
     move_[b] = (body.x - last_x_[b]).norm();
     last_x_[b] = body.x;

@@ -159,7 +159,7 @@ class DirectSolver {
   /// as the rotor turns and pays out cable at a fixed rate per radian
   /// (SolvePoint::perRadian), so its gradient is constant and C changes by
   /// exactly J dphi (predictSpan).
-  bool linearEnd(const World& world, const PathPoint& point) const;
+  bool linearEnd(const PathPoint& point) const;
   /// A linear span's length (linearEnd at both ends) after the solve's
   /// turns since it was last evaluated: length + J dphi, its gradient
   /// unchanged.

@@ -124,16 +124,19 @@ void DirectSolver::evaluateSpan(const World& world, int r, const PathPoint& p0, 
   C_[r] = length;  // minus the rest length, by the caller
 }
 
-bool DirectSolver::linearEnd(const World& world, const PathPoint& point) const {
+bool DirectSolver::linearEnd(const PathPoint& point) const {
   const int slot = point.body == kWorldBody ? -1 : body_index_[point.body];
   if (slot < 0) return true;
-  const BodyState& b = *frames_[slot].state;
-  if (frames_[slot].axial_inv0 == 0.0 || !point.roll_centre.isZero()) return false;  // not a rotor, or off its axle
-  if (point.roll_axis == b.rotor_axis) return true;  // most often
+  const BodyFrame& f = frames_[slot];
+  const Vec3& centre = point.roll_centre;
+  if (f.axial_inv0 == 0.0 || centre.x() != 0.0 || centre.y() != 0.0 || centre.z() != 0.0)
+    return false;  // not a rotor, or a circle off its axle
+  const Vec3 &u = point.roll_axis, &axle = f.state->rotor_axis;
+  if (u == axle) return true;  // most often
   // |sin| of the axes' angle at most 1e-12: C's second order in a turn
   // theta is then below 1e-12 theta^2 r.
-  return !point.roll_axis.isZero() &&
-         point.roll_axis.cross(b.rotor_axis).squaredNorm() <= 1e-24 * point.roll_axis.squaredNorm();
+  const double u2 = u.squaredNorm();
+  return u2 > 0.0 && u.cross(axle).squaredNorm() <= 1e-24 * u2;
 }
 
 void DirectSolver::predictSpan(int r) {
@@ -159,7 +162,7 @@ void DirectSolver::evaluatePath(const World& world, int r, double h) {
     const bool span = p.points.size() == 2 && p.scales.empty();
     // The substep's later evaluations take a linear span's length from the
     // turns since; Projection::Start replaces gradients (use_start_).
-    if (span && evaluated_ && start_.empty() && linearEnd(world, p.points[0]) && linearEnd(world, p.points[1]))
+    if (span && evaluated_ && start_.empty() && linearEnd(p.points[0]) && linearEnd(p.points[1]))
       predictSpan(r);
     else if (span) evaluateSpan(world, r, p.points[0], p.points[1]);
     else evaluateRun(world, r, p.points.data(), p.points.size(), p.scales.empty() ? nullptr : p.scales.data());

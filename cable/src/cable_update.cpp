@@ -240,11 +240,16 @@ void CableSystem::updateJoint(Cable& cable, int c, int j, double time_s) {
   // since the last update; the arc from the new tangent point back to the
   // old anchor is cable paid out into the span (leaving side) or taken up
   // from it (arriving side).
+  // Kept tangent points stayed in the world while the wheel turned under
+  // them: its arc is r turn (sectionSurfaceDistance's, with no angle to
+  // take).
+  const auto arc = [&](const Link& link, const Vec3& old_anchor, const Vec3& anchor) {
+    const double turn = turn_[link.body];
+    return kept ? link.orientation * link.section.radius * turn : payOut(link, old_anchor, anchor, turn);
+  };
   double wound_a = 0.0, wound_b = 0.0;  // taken up from the span by each end
-  if (from.rolls())
-    wound_a = std::max(0.0, wind(cable, j, j, -payOut(from, joint.local_a, anchors->first, turn_[from.body])));
-  if (to.rolls())
-    wound_b = std::max(0.0, wind(cable, joint.to, j, payOut(to, joint.local_b, anchors->second, turn_[to.body])));
+  if (from.rolls()) wound_a = std::max(0.0, wind(cable, j, j, -arc(from, joint.local_a, anchors->first)));
+  if (to.rolls()) wound_b = std::max(0.0, wind(cable, joint.to, j, arc(to, joint.local_b, anchors->second)));
   // A span holds no less than no cable. A wheel that turned further than
   // the span could feed it (an unconverged solve: Gauss-Seidel on a wheel
   // 1e-6 of its load) slips on the cable: what it could not wind stays in

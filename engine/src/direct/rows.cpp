@@ -141,10 +141,11 @@ bool DirectSolver::linearEnd(const PathPoint& point) const {
 
 void DirectSolver::predictSpan(int r) {
   // The span was evaluated in full at the substep's first evaluation (as
-  // the cable update left it), and since only predicted. A rotor's turn theta u moves a linear end's cable by perRadian theta,
-  // and its entry's ang . u is perRadian (SolvePoint::moment): so
-  // C(theta) = C + sum ang . turned, exactly, where the evaluation would
-  // turn the lever back by theta and take the same span again.
+  // the cable update left it), and since only predicted. A rotor's turn
+  // theta u moves a linear end's cable by perRadian theta, and its entry's
+  // ang . u is perRadian (SolvePoint::spanMoment): so C(theta) = C + sum
+  // ang . turned, exactly, where the evaluation would turn the lever back
+  // by theta and take the same span again.
   const Row& row = rows_[r];
   double length = length_[r];
   for (int e = row.first_entry; e < row.first_entry + row.entry_count; ++e)

@@ -26,17 +26,11 @@ double unwrappedTurn(const Quat& dq, const Vec3& n, double spin) {
   return spin + std::remainder(twist - spin, 2.0 * std::numbers::pi);
 }
 
-// A unit quaternion's local z in the world: the rotation's third column.
-Vec3 localZ(const Quat& q) {
-  return Vec3(2.0 * (q.x() * q.z() + q.w() * q.y()), 2.0 * (q.y() * q.z() - q.w() * q.x()),
-              1.0 - 2.0 * (q.x() * q.x() + q.y() * q.y()));
-}
-
 }  // namespace
 
 double CableSystem::turnSinceUpdate(BodyId b, double spin) const {
   const BodyState& body = world_.body(b);
-  return unwrappedTurn(body.q * last_q_[b].conjugate(), localZ(body.q), spin);
+  return unwrappedTurn(body.q * last_q_[b].conjugate(), planeNormal(body.q), spin);
 }
 
 void CableSystem::measureTurns(int island, double h) {
@@ -47,7 +41,7 @@ void CableSystem::measureTurns(int island, double h) {
     const BodyId b = rolling_by_island_[k];
     const BodyState& body = world_.body(b);
     const Vec3 solved = measure_solve_turn_ ? body.solve_turn : Vec3::Zero();
-    const Vec3 n = localZ(body.q);
+    const Vec3 n = planeNormal(body.q);
     const Quat dq = body.q * last_q_[b].conjugate();
     turn_[b] = unwrappedTurn(dq, n, (h * body.omega + solved).dot(n));
     // A rotor turns about its axle alone, and its axle stays put; a static

@@ -11,18 +11,14 @@
 namespace reeve {
 namespace {
 
-// A link's cable plane in world: its normal, the body's local z (the
-// rotation's third column, 2 (xz + wy), 2 (yz - wx), 1 - 2 (x^2 + y^2), for
-// a unit q), and its origin, the body's centre moved along it by the
-// link's plane offset.
+// A link's cable plane in world: its normal (planeNormal) and its origin,
+// the body's centre moved along it by the link's plane offset.
 struct Plane {
   Vec3 normal, origin;
 };
 
 Plane planeOf(const BodyState& body, const Link& link) {
-  const Quat& q = body.q;
-  const Vec3 n(2.0 * (q.x() * q.z() + q.w() * q.y()), 2.0 * (q.y() * q.z() - q.w() * q.x()),
-               1.0 - 2.0 * (q.x() * q.x() + q.y() * q.y()));
+  const Vec3 n = planeNormal(body.q);
   return {n, body.x + link.plane_offset * n};
 }
 

@@ -9,6 +9,14 @@
 
 namespace reeve {
 
+/// A body's cable-plane normal in the world: its local z, the third column
+/// of its rotation, 2 (xz + wy), 2 (yz - wx), 1 - 2 (x^2 + y^2) for a unit q
+/// (one product where a rotated vector takes three).
+inline Vec3 planeNormal(const Quat& q) {
+  return Vec3(2.0 * (q.x() * q.z() + q.w() * q.y()), 2.0 * (q.y() * q.z() - q.w() * q.x()),
+              1.0 - 2.0 * (q.x() * q.x() + q.y() * q.y()));
+}
+
 /// Coordinates (m) of the world point `p` in the link's cable plane
 /// (body-local x, y; the out-of-plane part is dropped: paper sec. 3.4).
 Vec2 toPlane(const BodyState& body, const Vec3& p);

@@ -242,6 +242,7 @@ void CableSystem::buildRuns(Cable& cable) {
     PathConstraint& path = world_.path(cable.joints[j].path);
     path.points.clear();
     path.weights.clear();
+    path.placement = 0;  // updateCable's to keep
     path.points.push_back(runEnd(cable.links[j], cable.joints[j].local_a));
     double rest = 0.0, chords = 0.0, w = 1.0, heaviest = 1.0;
     path.fed = 0.0;

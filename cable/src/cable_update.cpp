@@ -162,6 +162,7 @@ void CableSystem::updateCable(int c, double time_s, double h) {
   CableUpdate& out = updates_[c];
   if (out.fixed.size() != cable.joints.size()) out.fixed.assign(cable.joints.size(), FixedSpan{});
   out.winch_work = 0.0;  // this substep's, added to winch_total below
+  const std::size_t events_before = out.events.size();
   if (h > 0.0 && std::isfinite(cable.breaking_tension)) breakOverloaded(cable, c, time_s, h);
   if (cable.winch && h > 0.0) reel(cable, time_s - h, h);
   // Runs' rest lengths as the last solve left them, before this
@@ -174,6 +175,16 @@ void CableSystem::updateCable(int c, double time_s, double h) {
   splitAtCrossedLinks(cable, c, time_s);
   if (h > 0.0) switchSlips(cable, h);
   buildRuns(cable);
+  // A run of one span whose tangent points were kept lies where it lay
+  // (PathConstraint::placement), unless a link switched, merged or split
+  // since updateJoint kept them.
+  if (out.events.size() == events_before && out.fixed.size() == cable.joints.size())
+    for (int j = 0; j < static_cast<int>(cable.joints.size()); ++j) {
+      const CableJoint& joint = cable.joints[j];
+      PathConstraint& path = world_.path(joint.path);
+      if (joint.run == j && path.enabled && path.points.size() == 2 && out.fixed[j].update == update_count_)
+        path.placement = out.fixed[j].found;
+    }
   // A junction's path once a substep, from its branches' new runs: its
   // cables update in cable order on one thread (one island), so after the
   // last of them.
@@ -214,6 +225,7 @@ void CableSystem::updateJoint(Cable& cable, int c, int j, double time_s) {
     if (!kept) {  // found afresh; kept ones stay as they were in the world, not rounded through the poses
       fixed.a = from_body.toWorld(anchors->first);
       fixed.b = to_body.toWorld(anchors->second);
+      fixed.found = update_count_;
     }
     fixed.update = update_count_;
     fixed.to = joint.to;

@@ -304,7 +304,10 @@ void DirectSolver::build(World& world) {
     slots_.insert(slots_.end(), list.begin(), list.end());
     rows_[r].slots_end = static_cast<int>(slots_.size());
   }
-  for (std::vector<double>* v : {&C_, &alpha_, &lo_, &hi_, &lambda_, &dlambda_, &delta_, &length_}) v->assign(n, 0.0);
+  for (std::vector<double>* v : {&C_, &alpha_, &lo_, &hi_, &lambda_, &dlambda_, &delta_, &length_, &placed_length_})
+    v->assign(n, 0.0);
+  linear_.assign(n, 0);
+  placed_.assign(n, 0);
   for (std::vector<double>* v : {&x_, &rhs_}) v->assign(unknowns, 0.0);
   hub_motion_.assign(unknowns - n, 0.0);
   hub_inertia_.assign(hubs_.size(), Mat3::Zero());
@@ -381,8 +384,13 @@ void DirectSolver::prepare(World& world, const Island& island, double h, bool ag
   std::fill(moved_x_.begin(), moved_x_.end(), Vec3::Zero());
   std::fill(moved_phi_.begin(), moved_phi_.end(), Vec3::Zero());
   first_iteration_ = true;
-  if (world.settings().projection == Projection::Start) linearizeAtStart(world, h);
-  else start_.clear();
+  if (world.settings().projection == Projection::Start) {
+    linearizeAtStart(world, h);
+    // The rows take start_'s gradients: none is kept (keepsSpan).
+    std::fill(placed_.begin(), placed_.end(), 0);
+  } else {
+    start_.clear();
+  }
 }
 
 void DirectSolver::linearizeAtStart(World& world, double h) {

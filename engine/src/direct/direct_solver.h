@@ -164,6 +164,12 @@ class DirectSolver {
   /// turns since it was last evaluated: length + J dphi, its gradient
   /// unchanged.
   void predictSpan(int row);
+  /// Whether a linear span keeps its last substep's first evaluation at
+  /// this substep's first: its points lie where they lay then (the same
+  /// PathConstraint::placement), and the bodies it moves stand where they
+  /// stood with their axles as they were (BodyFrame::still). Its length
+  /// and gradient are then the same, and the solve's turns are 0.
+  bool keepsSpan(const PathConstraint& path, int row) const;
   /// A path point as this solve has it (path_constraint.h: solvePoint), on
   /// the body with index `slot` in bodies_ (-1: a body that does not move).
   SolvePoint endPoint(const World& world, const PathPoint& point, int slot) const;
@@ -245,6 +251,12 @@ class DirectSolver {
   std::vector<double> hub_motion_;  // per hub dof: the solve's dx_h
   std::vector<double> delta_;       // per row: its regularization (0 off hubs)
   std::vector<double> length_;      // per path or distance row: its length (m)
+  // Per row, from a span's last evaluation in full at a substep's start
+  // (Projection::End): both its ends linear (linearEnd), its path's
+  // placement then (0: none to keep) and its length then (m).
+  std::vector<char> linear_;
+  std::vector<long long> placed_;
+  std::vector<double> placed_length_;
   bool evaluated_ = false;  // this substep's first evaluation ran (in full)
   std::vector<int> leaf_entries_;   // per hub, from first_leaf: its leaves' entries
   std::vector<Mat3> hub_inertia_;   // per hub: world inertia this iteration
@@ -286,6 +298,11 @@ class DirectSolver {
     double axial_inv0 = 0.0, axial_inertia = 0.0;  // a rotor's 1 / I_u and I_u, as the substep starts
     // The body's solve_turn when last evaluated, and its turn since then.
     Vec3 evaluated_turn = Vec3::Zero(), turned = Vec3::Zero();
+    // Its position and axle at the last substep's first evaluation, and
+    // whether this one's are the same (the axle to 1e-15: it turned about
+    // it): keepsSpan.
+    Vec3 placed_x = Vec3::Zero(), placed_axle = Vec3::Zero();
+    bool still = false;
   };
   std::vector<BodyFrame> frames_;
   std::vector<Vec3> dx_, dphi_;

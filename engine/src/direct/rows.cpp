@@ -32,10 +32,16 @@ using joint_rows::Vec6;
 }  // namespace
 
 void DirectSolver::evaluateBodies() {
+  const bool first = !evaluated_ && !at_start_;  // the substep's first evaluation, at the poses solved
   for (BodyFrame& f : frames_) {
     const BodyState& b = *f.state;
     f.turned = b.solve_turn - f.evaluated_turn;
     f.evaluated_turn = b.solve_turn;
+    if (first) {
+      f.still = b.x == f.placed_x && (f.axle - f.placed_axle).squaredNorm() <= 1e-30;
+      f.placed_x = b.x;
+      f.placed_axle = f.axle;
+    }
     f.R = b.q.toRotationMatrix();
     if (f.inv_axial == 0.0) f.inv_inertia = f.R * b.inv_inertia * f.R.transpose();
   }
@@ -153,6 +159,14 @@ void DirectSolver::predictSpan(int r) {
   C_[r] = length;
 }
 
+bool DirectSolver::keepsSpan(const PathConstraint& path, int r) const {
+  if (!linear_[r] || path.placement == 0 || path.placement != placed_[r]) return false;
+  const Row& row = rows_[r];
+  for (int e = row.first_entry; e < row.first_entry + row.entry_count; ++e)
+    if (!frames_[entries_[e].body].still) return false;
+  return true;
+}
+
 void DirectSolver::evaluatePath(const World& world, int r, double h) {
   // C = sum of segment lengths - rest, dC/dp_i = u_{i-1} - u_i (a distance
   // constraint is a two-point path, pull-only if unilateral).
@@ -161,12 +175,27 @@ void DirectSolver::evaluatePath(const World& world, int r, double h) {
   if (row.source == Source::Path) {
     const PathConstraint& p = world.path(row.index);
     const bool span = p.points.size() == 2 && p.scales.empty();
-    // The substep's later evaluations take a linear span's length from the
-    // turns since; Projection::Start replaces gradients (use_start_).
-    if (span && evaluated_ && start_.empty() && linearEnd(p.points[0]) && linearEnd(p.points[1]))
+    // A linear span (Projection::End; Start replaces gradients, use_start_)
+    // takes its length at the substep's later evaluations from the turns
+    // since, and at its first keeps the last substep's first evaluation
+    // where its points and bodies stayed put: a rotor's tangent points
+    // stay where they are as it turns (CableSystem::fixedAnchors).
+    const bool end_projection = start_.empty() && !at_start_;
+    if (span && end_projection && evaluated_ && linear_[r]) {
       predictSpan(r);
-    else if (span) evaluateSpan(world, r, p.points[0], p.points[1]);
-    else evaluateRun(world, r, p.points.data(), p.points.size(), p.scales.empty() ? nullptr : p.scales.data());
+    } else if (span && end_projection && keepsSpan(p, r)) {
+      C_[r] = placed_length_[r];
+      for (int e = row.first_entry; e < row.first_entry + row.entry_count; ++e) weigh(entries_[e]);
+    } else if (span) {
+      evaluateSpan(world, r, p.points[0], p.points[1]);
+      if (end_projection && !evaluated_) {
+        linear_[r] = linearEnd(p.points[0]) && linearEnd(p.points[1]);
+        placed_[r] = p.placement;
+        placed_length_[r] = C_[r];
+      }
+    } else {
+      evaluateRun(world, r, p.points.data(), p.points.size(), p.scales.empty() ? nullptr : p.scales.data());
+    }
     length_[r] = C_[r];
     C_[r] -= p.rest_length;
     compliance = p.compliance, damping = p.damping, start_length = p.start_length - p.rest_length;

@@ -611,11 +611,13 @@ class CableSystem {
   // A span's tangent points in the world as an update left them, where both
   // its links roll on circles about axles that stay put (steady_): the next
   // update keeps them if its bodies only turned about those axles since
-  // (updateJoint). `update`: update_count_ then, -1 for none; `to` and
-  // `sides` (the links' orientations): the span they were found for.
+  // (updateJoint). `update`: update_count_ then, -1 for none; `found`: the
+  // update that found them afresh (kept since), the span's path's
+  // PathConstraint::placement; `to` and `sides` (the links'
+  // orientations): the span they were found for.
   struct FixedSpan {
     Vec3 a = Vec3::Zero(), b = Vec3::Zero();
-    long long update = -1;
+    long long update = -1, found = 0;
     int to = -1, sides = 0;
   };
   struct CableUpdate {

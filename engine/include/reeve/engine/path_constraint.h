@@ -129,6 +129,14 @@ struct PathConstraint {
   /// `fed` (m), set by the World before each solve: the damping's dC is the
   /// length since.
   double start_length = 0.0;
+  /// Where the points lie in the world, as a version number: whoever sets
+  /// the points gives a new one when they may lie elsewhere, and keeps it
+  /// while they are set again at the same world places, on bodies that
+  /// stayed put or only turned about a rotor's axle. The direct solver
+  /// then keeps a span's length and gradient from its last evaluation
+  /// (DirectSolver::evaluatePath). 0: not known, evaluated every substep.
+  /// The cable update sets it (CableSystem::updateCable); others leave 0.
+  long long placement = 0;
 };
 
 /// The World's bodies as the path kernels see them: id -> state, with

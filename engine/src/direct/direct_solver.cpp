@@ -560,14 +560,14 @@ void DirectSolver::newtonShift() {
   }
   shift_size_ = std::sqrt(shift2);
   moved_size_ = std::sqrt(moved2);
-  for (Entry& e : entries_)
-    if (reweigh_[e.body]) weigh(e);
 }
 
 void DirectSolver::shiftValues() {
-  for (const Entry& e : entries_)
+  for (Entry& e : entries_) {
+    if (reweigh_[e.body]) weigh(e);
     if (!shift_x_[e.body].isZero() || !shift_phi_[e.body].isZero())  // none at the first iteration
       C_[e.row] += e.lin.dot(shift_x_[e.body]) + e.ang.dot(shift_phi_[e.body]);
+  }
 }
 
 bool DirectSolver::iterate(World& world, double h) {

@@ -172,7 +172,9 @@ class DirectSolver {
   bool keepsSpan(const PathConstraint& path, int row) const;
   /// A path point as this solve has it (path_constraint.h: solvePoint), on
   /// the body with index `slot` in bodies_ (-1: a body that does not move).
-  SolvePoint endPoint(const World& world, const PathPoint& point, int slot) const;
+  SolvePoint endPoint(const World& world, const PathPoint& point, int slot);
+  /// The rotation of the body with index `slot` in bodies_ this iteration.
+  const Mat3& rotation(int slot);
   /// Returns the number of rows the joint has.
   int evaluateJoint(World& world, int first_row, double h);
   /// The states of a coordinate's drive and limit rows, which share their
@@ -293,6 +295,7 @@ class DirectSolver {
   struct BodyFrame {
     BodyState* state = nullptr;  // set by prepare()
     Mat3 R = Mat3::Identity(), inv_inertia = Mat3::Zero();
+    bool rotated = false;  // R is this iteration's (a rotor's is taken when read: rotation())
     Vec3 axle = Vec3::Zero();
     double inv_mass = 0.0, inv_axial = 0.0;
     double axial_inv0 = 0.0, axial_inertia = 0.0;  // a rotor's 1 / I_u and I_u, as the substep starts
@@ -318,10 +321,11 @@ class DirectSolver {
   std::vector<char> reweigh_;    // per body: its W changed in newtonShift
   /// Newton's residual g = M (x - x~) - J^T lambda and the rows' geometric
   /// stiffness K (DESIGN "Newton's residual and geometric stiffness"): sets
-  /// each body's W~ = (M + |K|)^-1 in frames_ and the entries, its motion
-  /// dx0 = -W~ g, and shifts C_ by J dx0.
+  /// each body's W~ = (M + |K|)^-1 in frames_ (reweigh_: where it changed)
+  /// and its motion dx0 = -W~ g.
   void newtonShift();
-  /// C_ += J dx0: the rows as the residual's motion leaves them.
+  /// For an iteration that solves: the entries weighed with W~, and C_ +=
+  /// J dx0, the rows as the residual's motion leaves them.
   void shiftValues();
 };
 

@@ -42,9 +42,23 @@ void DirectSolver::evaluateBodies() {
       f.placed_x = b.x;
       f.placed_axle = f.axle;
     }
+    // A rotor's rotation is read only where a span on it is evaluated in
+    // full (endPoint), and taken there, if one is (rotation()); a hub's
+    // and any other body's also by the solve.
+    f.rotated = f.inv_axial == 0.0 || hub_of_[&f - frames_.data()] >= 0;
+    if (!f.rotated) continue;
     f.R = b.q.toRotationMatrix();
     if (f.inv_axial == 0.0) f.inv_inertia = f.R * b.inv_inertia * f.R.transpose();
   }
+}
+
+const Mat3& DirectSolver::rotation(int slot) {
+  BodyFrame& f = frames_[slot];
+  if (!f.rotated) {
+    f.R = f.state->q.toRotationMatrix();
+    f.rotated = true;
+  }
+  return f.R;
 }
 
 void DirectSolver::curve(Entry& e, const Vec3& g, const Vec3& r, bool add) const {
@@ -66,7 +80,7 @@ void DirectSolver::weigh(Entry& e) const {
   e.wang = f.inv_axial > 0.0 ? Vec3(f.axle * (f.inv_axial * f.axle.dot(e.ang))) : Vec3(f.inv_inertia * e.ang);
 }
 
-SolvePoint DirectSolver::endPoint(const World& world, const PathPoint& point, int slot) const {
+SolvePoint DirectSolver::endPoint(const World& world, const PathPoint& point, int slot) {
   // At the start poses a rolling end is where the cable update put it, not
   // turned back with its wheel: the tangent point is geometry, not
   // material (the wheel may have turned a radian under it).
@@ -80,11 +94,11 @@ SolvePoint DirectSolver::endPoint(const World& world, const PathPoint& point, in
   }
   if (point.roll_axis.isZero()) {
     SolvePoint p;
-    p.arm = slot >= 0 ? Vec3(frames_[slot].R * point.local) : Vec3(world.body(point.body).q * point.local);
+    p.arm = slot >= 0 ? Vec3(rotation(slot) * point.local) : Vec3(world.body(point.body).q * point.local);
     return p;
   }
   if (slot >= 0 && world.body(point.body).solve_turn.isZero()) {  // not turned yet: solvePoint's, by R
-    const Mat3& R = frames_[slot].R;
+    const Mat3& R = rotation(slot);
     SolvePoint p;
     p.arm = R * point.local;
     p.axis = R * point.roll_axis;

@@ -23,7 +23,7 @@ constexpr double kSplitMargin = 1e-6;
 // the geometry gives the turn only up to whole turns.
 double unwrappedTurn(const Quat& dq, const Vec3& n, double spin) {
   const double twist = 2.0 * atan2Small(dq.vec().dot(n), dq.w());
-  return spin + std::remainder(twist - spin, 2.0 * std::numbers::pi);
+  return spin + wrapAngle(twist - spin);
 }
 
 }  // namespace

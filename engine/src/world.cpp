@@ -857,7 +857,7 @@ void World::updateVelocities(const Island& island, double h, WorldEnergy& flows)
     if (const double turned = b.solve_turn.norm(); turned > 0.5 * kPi) {
       const Vec3 n = b.solve_turn / turned;
       const double along = correction.dot(n);
-      correction += n * (turned + std::remainder(along - turned, 2.0 * kPi) - along);
+      correction += n * (turned + wrapAngle(along - turned) - along);
     }
     b.omega += correction / h;
     if (b.linear_damping == 0.0 && b.angular_damping == 0.0) continue;

@@ -82,9 +82,6 @@ struct JointCoordinate {
   double drive_compliance = 0.0;
 };
 
-/// `angle` (rad) wrapped to [-pi, pi].
-inline double wrapAngle(double angle) { return std::remainder(angle, 2.0 * std::numbers::pi); }
-
 /// A joint's frame on its two bodies, fixed at creation: body-local anchors
 /// (m), the joint axis and a reference direction normal to it in each body,
 /// so relative angles about the axis start at 0.

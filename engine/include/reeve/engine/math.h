@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cmath>
+#include <numbers>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -50,6 +51,15 @@ inline void rotateExactly(Quat& q, const Vec3& phi) {
     c = std::cos(0.5 * angle);
   }
   q = (Quat(c, s * phi.x(), s * phi.y(), s * phi.z()) * q).normalized();
+}
+
+/// `angle` (rad) wrapped to [-pi, pi]: remainder(angle, 2 pi), which is
+/// the angle itself where |angle| <= pi (the quotient rounds to 0, a tie
+/// to even), as a substep's turn almost always is: the same bits without
+/// the library call.
+inline double wrapAngle(double angle) {
+  constexpr double kTurn = 2.0 * std::numbers::pi;
+  return std::abs(angle) <= 0.5 * kTurn ? angle : std::remainder(angle, kTurn);
 }
 
 /// atan2(y, x) (rad). Where |y| <= x / 8 (the angles a body or a tangent

@@ -384,6 +384,7 @@ void DirectSolver::prepare(World& world, const Island& island, double h, bool ag
   std::fill(moved_x_.begin(), moved_x_.end(), Vec3::Zero());
   std::fill(moved_phi_.begin(), moved_phi_.end(), Vec3::Zero());
   first_iteration_ = true;
+  plain_solve_ = false;
   if (world.settings().projection == Projection::Start) {
     linearizeAtStart(world, h);
     // The rows take start_'s gradients: none is kept (keepsSpan).
@@ -482,6 +483,7 @@ void DirectSolver::newtonShift() {
   }
   const bool warm = first_solve_ && last_lambda_.size() == lambda_.size();
   const std::vector<double>& stiff = warm ? last_lambda_ : lambda_;
+  stiffened_ = false;
   for (const Entry& e : entries_) {  // -J^T lambda and K, per body
     const double l = lambda_[e.row];
     if (l != 0.0) {
@@ -517,6 +519,7 @@ void DirectSolver::newtonShift() {
       // tangent point does not, and adds nothing.
       double k = std::abs(axial_stiffness_[i]);
       if (warm && k <= inertia) k = 0.0;
+      stiffened_ = stiffened_ || k > 0.0;
       // evaluate() weighed it with the last iteration's W; the start
       // projection's rows with the substep's (start_).
       const double inv_axial = 1.0 / (inertia + k);
@@ -538,6 +541,7 @@ void DirectSolver::newtonShift() {
           // inverse, without the eigenvectors.
           f.inv_inertia = inertia.inverse();
         } else if (!warm && (sign = semidefinite(K)) != 0.0) {
+          stiffened_ = true;
           // Later iterations keep all of |K|: K itself where it is positive
           // semidefinite (every principal minor >= 0), -K where negative.
           f.inv_inertia = (inertia + sign * K).inverse();
@@ -549,6 +553,7 @@ void DirectSolver::newtonShift() {
             const Vec3 v = eig.eigenvectors().col(a);
             if (k[a] <= v.dot(inertia * v)) k[a] = 0.0;
           }
+          stiffened_ = stiffened_ || !k.isZero();
           f.inv_inertia = (inertia + eig.eigenvectors() * k.asDiagonal() * eig.eigenvectors().transpose()).inverse();
         }
         reweigh_[i] = 1;
@@ -560,6 +565,21 @@ void DirectSolver::newtonShift() {
   }
   shift_size_ = std::sqrt(shift2);
   moved_size_ = std::sqrt(moved2);
+}
+
+bool DirectSolver::linearRows(const World& world) const {
+  for (std::size_t r = 0; r < rows_.size(); ++r) {
+    const Row& row = rows_[r];
+    if (row.source == Source::Path) {
+      if (!linear_[r]) return false;
+      continue;
+    }
+    if (row.source != Source::Hinge) return false;
+    // A rotor's hinge rows (its drive and limits) turn it about its axle.
+    const HingeJoint& j = world.hinges()[row.index];
+    if (!world.body(j.a).isRotor() && !world.body(j.b).isRotor()) return false;
+  }
+  return true;
 }
 
 void DirectSolver::shiftValues() {
@@ -584,7 +604,6 @@ bool DirectSolver::iterate(World& world, double h) {
   }
   first_solve_ = first_iteration_;
   first_iteration_ = false;
-  newtonShift();
   // A residual C left in a substep h is a force error of about C m / h^2:
   // the tolerance, met at h = 1/600 s (4e-5 N per kg), shrinks with h^2
   // below that, or at 10,000 substeps of a 60 Hz frame a 1:100 Atwood
@@ -593,11 +612,21 @@ bool DirectSolver::iterate(World& world, double h) {
   constexpr double kToleranceStep = 1.0 / 600.0;  // s
   const double scale = std::min(1.0, (h / kToleranceStep) * (h / kToleranceStep));
   const double tolerance = world.settings().tolerance * scale;
+  // After a first solve with every body's plain W (no stiffness, and no
+  // residual yet) and rows whose gradients J do not change as the bodies
+  // move (linearRows), the bodies moved dx = W J^T lambda: Newton's
+  // residual M dx - J^T lambda is 0 to rounding, so met rows end the
+  // substep without computing it.
+  const bool plain = plain_solve_;
+  plain_solve_ = false;
+  if (plain && converged(tolerance)) return false;
+  newtonShift();
   // Met: every row, and Newton's residual to kNewtonRelative of what the
   // solve moved the bodies this substep (to the tolerance, the hand's 4 g
   // knuckles under their tendons took all 20 iterations at rest: with |K|
   // 30 times their inertia the residual halves an iteration).
   if (converged(tolerance) && shift_size_ <= std::max(tolerance, kNewtonRelative * moved_size_)) return false;
+  plain_solve_ = first_solve_ && !stiffened_ && start_.empty() && linearRows(world);
   shiftValues();
   warmStartCaps();
   solveActiveSet(tolerance > 0.0 ? tolerance : 1e-10 * scale);

@@ -317,6 +317,8 @@ class DirectSolver {
   std::vector<Mat3> stiffness_;  // per body: sum of lambda d2C/dtheta^2 this iteration
   std::vector<double> axial_stiffness_;  // per rotor: u . stiffness_ . u (Entry::axial)
   double shift_size_ = 0.0;      // the largest |dx0|, |dphi0| (m, rad) of newtonShift
+  bool stiffened_ = false;       // newtonShift added |K| to some body's W
+  bool plain_solve_ = false;     // the last iteration was the substep's first, solved with every plain W
   double moved_size_ = 0.0;      // the largest |moved_x_|, |moved_phi_| (m, rad) then
   std::vector<char> reweigh_;    // per body: its W changed in newtonShift
   /// Newton's residual g = M (x - x~) - J^T lambda and the rows' geometric
@@ -324,6 +326,9 @@ class DirectSolver {
   /// each body's W~ = (M + |K|)^-1 in frames_ (reweigh_: where it changed)
   /// and its motion dx0 = -W~ g.
   void newtonShift();
+  /// Whether every row's gradient stays as it is while the bodies move:
+  /// spans linear in the solve's turns (linear_) and a rotor's hinge rows.
+  bool linearRows(const World& world) const;
   /// For an iteration that solves: the entries weighed with W~, and C_ +=
   /// J dx0, the rows as the residual's motion leaves them.
   void shiftValues();

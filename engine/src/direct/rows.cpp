@@ -209,6 +209,7 @@ void DirectSolver::evaluatePath(const World& world, int r, double h) {
       }
     } else {
       evaluateRun(world, r, p.points.data(), p.points.size(), p.scales.empty() ? nullptr : p.scales.data());
+      if (end_projection && !evaluated_) linear_[r] = 0;
     }
     length_[r] = C_[r];
     C_[r] -= p.rest_length;

@@ -68,6 +68,11 @@ bool World::distanceMoved(int i) const {
 }
 
 bool World::pathMoved(int i) const {
+  // A path set again where it lay (PathConstraint::placement) is on the
+  // bodies it was on when last found on its island.
+  const long long placement = paths_[i].placement;
+  const bool known = static_cast<std::size_t>(i) < path_placement_.size();
+  if (known && placement != 0 && placement == path_placement_[i]) return false;
   int island = -1;
   for (const PathPoint& p : paths_[i].points)
     if (p.body != kWorldBody && island_of_[p.body] >= 0) {
@@ -77,6 +82,7 @@ bool World::pathMoved(int i) const {
   if (island != path_island_[i]) return true;
   for (const PathPoint& p : paths_[i].points)
     if (p.body != kWorldBody && island_of_[p.body] >= 0 && island_of_[p.body] != island) return true;
+  if (known) path_placement_[i] = placement;
   return false;
 }
 
@@ -180,6 +186,7 @@ void World::buildIslands() {
   }
   loose_paths_.clear();
   path_island_.assign(paths_.size(), -1);
+  path_placement_.assign(paths_.size(), 0);
   for (int i = 0; i < pathCount(); ++i) {
     int& island = path_island_[i];
     for (const PathPoint& p : paths_[i].points)

@@ -131,11 +131,12 @@ struct PathConstraint {
   double start_length = 0.0;
   /// Where the points lie in the world, as a version number: whoever sets
   /// the points gives a new one when they may lie elsewhere, and keeps it
-  /// while they are set again at the same world places, on bodies that
-  /// stayed put or only turned about a rotor's axle. The direct solver
-  /// then keeps a span's length and gradient from its last evaluation
-  /// (DirectSolver::evaluatePath). 0: not known, evaluated every substep.
-  /// The cable update sets it (CableSystem::updateCable); others leave 0.
+  /// while they are set again on the same bodies at the same world places,
+  /// the bodies having stayed put or only turned about a rotor's axle. The
+  /// direct solver then keeps a span's length and gradient from its last
+  /// evaluation (DirectSolver::evaluatePath), and the World its island
+  /// (World::pathMoved). 0: not known, evaluated every substep. The cable
+  /// update sets it (CableSystem::updateCable); others leave 0.
   long long placement = 0;
 };
 

@@ -563,6 +563,9 @@ class World {
   std::vector<int> loose_distances_, loose_paths_;  // on no island (solveLooseRows)
   std::vector<int> loose_hinges_, loose_prismatics_;  // between static bodies: only their drives are kept
   std::vector<int> distance_island_, path_island_;  // per constraint: its island at the build, -1 for none
+  // Per path: its placement when pathMoved last found it on its island (0:
+  // none since the build); each path's is written by its island's thread.
+  mutable std::vector<long long> path_placement_;
   int threads_ = 1;                                 // setThreads
   std::unique_ptr<ThreadPool> pool_;                // threads_ of them, once there are two islands
   std::vector<int> island_runs_;  // thread t's islands: [island_runs_[t], island_runs_[t + 1])

@@ -836,7 +836,8 @@ void World::rotorWrenches(const Island& island, double h) {
     const BodyId id = on_a ? j.a : j.b;
     const BodyState& r = bodies_[id];
     const Vec3 u = r.q * r.rotor_axis;
-    const Vec3 rho = r.q * (on_a ? j.frame.anchor_a : j.frame.anchor_b);
+    const Vec3& anchor = on_a ? j.frame.anchor_a : j.frame.anchor_b;
+    const Vec3 rho = anchor.isZero() ? Vec3::Zero() : Vec3(r.q * anchor);  // most axles pass through the centre
     const Vec3 F = -(r.impulse + mass_[id] * h * h * settings_.gravity);
     Vec3 L = -(r.angular_impulse + rho.cross(F));
     L -= u * u.dot(L);

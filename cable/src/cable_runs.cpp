@@ -16,13 +16,23 @@ namespace {
 // A run's end at `anchor` on `link`: where the cable sticks to a rolling
 // circle it is a rolling end, held on the circle while a solve turns the
 // wheel (path_constraint.h: SolvePoint); elsewhere a point fixed on the
-// body (a tie point, a pinhole, a polygon's vertex).
-PathPoint runEnd(const Link& link, const Vec3& anchor) {
-  PathPoint point{link.body, anchor};
+// body (a tie point, a pinhole, a polygon's vertex). Set in place, so that
+// a run set again every substep copies no more than it changes.
+void setRunEnd(PathPoint& point, const Link& link, const Vec3& anchor) {
+  point.body = link.body;
+  point.local = anchor;
   if (link.rolls() && !link.slides() && link.section.kind == Section::Kind::Circle) {
     point.roll_axis = Vec3::UnitZ();
     point.roll_centre = fromPlane(link, Vec2::Zero());
+  } else {
+    point.roll_axis.setZero();
+    point.roll_centre.setZero();
   }
+}
+
+PathPoint runEnd(const Link& link, const Vec3& anchor) {
+  PathPoint point;
+  setRunEnd(point, link, anchor);
   return point;
 }
 
@@ -240,45 +250,61 @@ void CableSystem::buildRuns(Cable& cable) {
   for (CableJoint& joint : cable.joints) world_.path(joint.path).enabled = false;
   forEachRun(cable, [&](int j, bool loop) {
     PathConstraint& path = world_.path(cable.joints[j].path);
-    path.points.clear();
-    path.weights.clear();
     path.placement = 0;  // updateCable's to keep
-    path.points.push_back(runEnd(cable.links[j], cable.joints[j].local_a));
-    double rest = 0.0, chords = 0.0, w = 1.0, heaviest = 1.0;
     path.fed = 0.0;
-    walkRun(cable, j, loop, [&](int k) {
-      CableJoint& span = cable.joints[k];
-      if (cable.winch && k == winchSpan(cable).second) path.fed = cable.fed;
-      const Link& to = cable.links[span.to];
+    double rest = 0.0, chords = 0.0;
+    double stretch = 0.0;  // sum of weight x rest length: the compliance's
+    if (!loop && endsRun(cable, j, loop, j)) {
+      // A run of one span (most runs): its two ends, weight 1.
+      CableJoint& span = cable.joints[j];
+      if (cable.winch && j == winchSpan(cable).second) path.fed = cable.fed;
       span.run = j;
-      span.weight = w;
-      rest += span.rest_length;
-      path.weights.push_back(w);
-      const bool last = endsRun(cable, j, loop, k);
-      if (to.type == LinkType::Pinhole && !last) {
-        path.points.push_back({to.body, to.point});
-      } else {
-        path.points.push_back(last && !loop ? runEnd(to, span.local_b) : PathPoint{to.body, span.local_b});
-        if (to.rolls() && (!last || loop)) {  // the chord to the departure tangent point
-          const Vec3& departure = cable.joints[span.to].local_a;
-          chords += (departure - span.local_b).norm();
-          path.weights.push_back(w);
-          path.points.push_back({to.body, departure});
-        }
-      }
-      if (!last && hasFriction(to)) w *= std::exp(to.slip_sense * to.mu * wrapAngle(cable, span.to));
-      heaviest = std::max(heaviest, w);
-    });
-    double stretch = rest;  // sum of weight x rest length: the compliance's
-    if (heaviest != 1.0 || std::any_of(path.weights.begin(), path.weights.end(), [](double x) { return x != 1.0; })) {
-      stretch = 0.0;
-      for (double& x : path.weights) x /= heaviest;
-      walkRun(cable, j, loop, [&](int k) {
-        cable.joints[k].weight /= heaviest;
-        stretch += cable.joints[k].weight * cable.joints[k].rest_length;
-      });
-    } else {
+      span.weight = 1.0;
+      path.points.resize(2);
+      setRunEnd(path.points[0], cable.links[j], span.local_a);
+      setRunEnd(path.points[1], cable.links[span.to], span.local_b);
       path.weights.clear();
+      rest = stretch = span.rest_length;
+    } else {
+      path.points.clear();
+      path.weights.clear();
+      path.points.push_back(runEnd(cable.links[j], cable.joints[j].local_a));
+      double w = 1.0, heaviest = 1.0;
+      walkRun(cable, j, loop, [&](int k) {
+        CableJoint& span = cable.joints[k];
+        if (cable.winch && k == winchSpan(cable).second) path.fed = cable.fed;
+        const Link& to = cable.links[span.to];
+        span.run = j;
+        span.weight = w;
+        rest += span.rest_length;
+        path.weights.push_back(w);
+        const bool last = endsRun(cable, j, loop, k);
+        if (to.type == LinkType::Pinhole && !last) {
+          path.points.push_back({to.body, to.point});
+        } else {
+          path.points.push_back(last && !loop ? runEnd(to, span.local_b) : PathPoint{to.body, span.local_b});
+          if (to.rolls() && (!last || loop)) {  // the chord to the departure tangent point
+            const Vec3& departure = cable.joints[span.to].local_a;
+            chords += (departure - span.local_b).norm();
+            path.weights.push_back(w);
+            path.points.push_back({to.body, departure});
+          }
+        }
+        if (!last && hasFriction(to)) w *= std::exp(to.slip_sense * to.mu * wrapAngle(cable, span.to));
+        heaviest = std::max(heaviest, w);
+      });
+      stretch = rest;
+      if (heaviest != 1.0 ||
+          std::any_of(path.weights.begin(), path.weights.end(), [](double x) { return x != 1.0; })) {
+        stretch = 0.0;
+        for (double& x : path.weights) x /= heaviest;
+        walkRun(cable, j, loop, [&](int k) {
+          cable.joints[k].weight /= heaviest;
+          stretch += cable.joints[k].weight * cable.joints[k].rest_length;
+        });
+      } else {
+        path.weights.clear();
+      }
     }
     path.rest_length = rest + chords;
     path.compliance = cable.compliance_per_m * stretch;

@@ -93,8 +93,6 @@ Vec2 toPlane(const BodyState& body, const Vec3& p) {
   return Vec2(local.x(), local.y());
 }
 
-Vec3 fromPlane(const Link& link, const Vec2& p) { return Vec3(p.x(), p.y(), link.plane_offset); }
-
 std::optional<std::pair<Vec3, Vec3>> spanAnchors(const Link& from, const BodyState& fb,
                                                  const Link& to, const BodyState& tb,
                                                  const Vec3& warm_to, double warm_turn) {

@@ -22,7 +22,7 @@ inline Vec3 planeNormal(const Quat& q) {
 Vec2 toPlane(const BodyState& body, const Vec3& p);
 
 /// Body-local point (m) of the plane point `p`.
-Vec3 fromPlane(const Link& link, const Vec2& p);
+inline Vec3 fromPlane(const Link& link, const Vec2& p) { return Vec3(p.x(), p.y(), link.plane_offset); }
 
 /// Body-local anchors (on `from`, on `to`) of the span leaving `from` and
 /// arriving at `to`: tangent points on links that roll, the tie points of

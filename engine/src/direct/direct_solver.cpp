@@ -118,6 +118,15 @@ void DirectSolver::describe(World& world, const Island& island, std::vector<int>
   for (const int i : island.paths) {
     const PathConstraint& p = world.path(i);
     if (!p.enabled || !p.weights.empty()) continue;  // weighted paths: World::solvePositions
+    if (p.points.size() == 2) {  // a span (most paths): the loop below, unrolled
+      const BodyId a = p.points[0].body, b = p.points[1].body;
+      const bool on_a = listed(world, a), on_b = listed(world, b) && !(on_a && b == a);
+      if (!(on_a && moves(world, a)) && !(on_b && moves(world, b))) continue;  // nothing in it moves
+      sig.insert(sig.end(), {static_cast<int>(Source::Path), i, 1, int{on_a} + int{on_b}});
+      if (on_a) sig.push_back(a);
+      if (on_b) sig.push_back(b);
+      continue;
+    }
     const std::size_t head = sig.size();
     sig.insert(sig.end(), {static_cast<int>(Source::Path), i, 1, 0});  // 0: the body count, below
     bool moving = false;

@@ -154,7 +154,7 @@ std::function<int()> addBenchCommand(CLI::App& app, CLI::App*& bench_cmd) {
                    ? "The Atwood machine and chains of pulleys as MuJoCo tendons, next to Reeve."
                    : "(not built: needs Debian's libmujoco-dev when configuring) MuJoCo next to Reeve.");
   addOutput(pe, peers->output, false);
-  pe->add_option("--repeats", peers->repeats, "Timed runs per row (default 5)")->check(CLI::PositiveNumber);
+  pe->add_option("--repeats", peers->repeats, "Timed runs per row (default 25)")->check(CLI::PositiveNumber);
 
   auto batch = std::make_shared<BatchBenchOptions>();
   batch->scenes_dir = scenes;

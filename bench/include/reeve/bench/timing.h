@@ -3,6 +3,7 @@
 #pragma once
 
 #include <functional>
+#include <utility>
 
 #include "reeve/scene/scene.h"
 
@@ -51,8 +52,19 @@ struct FrameTiming {
 };
 
 /// Warms `run` up (reset, options.warmup_frames steps), then times
-/// options.repeats runs of reset + `frames` steps. Exceptions from the
-/// run propagate.
+/// options.repeats runs of reset + `frames` steps: ms per frame of each
+/// run's steps after its first, which holds an engine's one-time work on
+/// a model just built (Reeve's solver layout and symbolic factorization:
+/// the K = 32 chain's first frame costs about 6 of its later ones, 8 % of
+/// a 60-frame run). Exceptions from the run propagate.
 FrameTiming timeFrames(FrameRun& run, int frames, const TimingOptions& options);
+
+/// timeFrames of two runs whose times are compared, their timed runs
+/// taken in turn (a, b, then b, a, ...), so that both see the machine as
+/// it was over the same stretch of time: a ratio of two medians timed one
+/// after the other moved by 5 to 10 % between invocations, as the machine
+/// sped up and slowed down (reeve bench peers).
+std::pair<FrameTiming, FrameTiming> timeFramesInTurn(FrameRun& a, FrameRun& b, int frames,
+                                                     const TimingOptions& options);
 
 }  // namespace reeve::bench

@@ -1,6 +1,6 @@
 // A span between two wheels that turn on axles that stay put keeps its
 // tangent points in the world from one update to the next
-// (CableSystem::fixedAnchors): they must stay tangent points, in a plane
+// (CableSystem::keepsTangents): they must stay tangent points, in a plane
 // (a belt) and between planes (paper Fig. 6), and a wheel moved by hand
 // between steps must have them found afresh; the direct solver keeps such
 // a span's evaluation only while it lies where it lay.

@@ -195,17 +195,15 @@ void CableSystem::updateCable(int c, double time_s, double h) {
   if (out.breached || !out.events.empty() || !out.jams.empty()) news_.store(true, std::memory_order_relaxed);
 }
 
-std::optional<std::pair<Vec3, Vec3>> CableSystem::fixedAnchors(const Cable& cable, int c, int j) const {
+bool CableSystem::keepsTangents(const Cable& cable, int c, int j) const {
   // Two circles that stayed where they were have the same tangents in the
   // world (paper App. A; Fig. 6's alternation converges to them), so the
   // last update's, in the bodies' turned frames, are this one's.
   const CableJoint& joint = cable.joints[j];
   const FixedSpan& fixed = updates_[c].fixed[j];
   const Link &from = cable.links[j], &to = cable.links[joint.to];
-  if (fixed.update != update_count_ - 1 || fixed.to != joint.to || !from.rolls() || !to.rolls() ||
-      fixed.sides != from.orientation * 2 + to.orientation || !in_place_[from.body] || !in_place_[to.body])
-    return std::nullopt;
-  return std::pair{world_.body(from.body).toLocal(fixed.a), world_.body(to.body).toLocal(fixed.b)};
+  return fixed.update == update_count_ - 1 && fixed.to == joint.to && from.rolls() && to.rolls() &&
+         fixed.sides == from.orientation * 2 + to.orientation && in_place_[from.body] && in_place_[to.body];
 }
 
 void CableSystem::updateJoint(Cable& cable, int c, int j, double time_s) {
@@ -216,10 +214,11 @@ void CableSystem::updateJoint(Cable& cable, int c, int j, double time_s) {
   if ((from.type == LinkType::Pinhole || to.type == LinkType::Pinhole) && jamAtPinhole(cable, c, j, time_s)) return;
   if (!from.rolls() && !to.rolls()) return;
   const BodyState &from_body = world_.body(from.body), &to_body = world_.body(to.body);
-  const auto kept = fixedAnchors(cable, c, j);
-  const auto anchors =
-      kept ? kept : spanAnchors(from, from_body, to, to_body, joint.local_b, to.rolls() ? turn_[to.body] : 0.0);
   FixedSpan& fixed = updates_[c].fixed[j];
+  const bool kept = keepsTangents(cable, c, j);
+  const auto anchors =
+      kept ? std::optional{std::pair{from_body.toLocal(fixed.a), to_body.toLocal(fixed.b)}}
+           : spanAnchors(from, from_body, to, to_body, joint.local_b, to.rolls() ? turn_[to.body] : 0.0);
   if (anchors && from.rolls() && to.rolls() && from.section.kind == Section::Kind::Circle &&
       to.section.kind == Section::Kind::Circle && steady_[from.body] && steady_[to.body]) {
     if (!kept) {  // found afresh; kept ones stay as they were in the world, not rounded through the poses

@@ -193,7 +193,7 @@ void DirectSolver::evaluatePath(const World& world, int r, double h) {
     // takes its length at the substep's later evaluations from the turns
     // since, and at its first keeps the last substep's first evaluation
     // where its points and bodies stayed put: a rotor's tangent points
-    // stay where they are as it turns (CableSystem::fixedAnchors).
+    // stay where they are as it turns (CableSystem::keepsTangents).
     const bool end_projection = start_.empty() && !at_start_;
     if (span && end_projection && evaluated_ && linear_[r]) {
       predictSpan(r);

@@ -489,10 +489,10 @@ class CableSystem {
   /// `island` turned about its cable plane's normal (local z) since the
   /// last update.
   void measureTurns(int island, double h);
-  /// Joint j's tangent points, if it can keep those of the last update
-  /// (FixedSpan): its links roll on circles about axles that stay put, and
-  /// both bodies stayed in place since. Body-local, as spanAnchors gives.
-  std::optional<std::pair<Vec3, Vec3>> fixedAnchors(const Cable& cable, int c, int j) const;
+  /// Whether joint j keeps the tangent points of the last update
+  /// (FixedSpan: world points a, b): its links roll on circles about axles
+  /// that stay put, and both bodies stayed in place since.
+  bool keepsTangents(const Cable& cable, int c, int j) const;
   /// Body b's turn (rad, unwrapped) about its cable plane's normal since
   /// the last update, counting `spin` (rad) as known whole turns.
   double turnSinceUpdate(BodyId b, double spin) const;

@@ -18,6 +18,19 @@ namespace {
 // that has just merged, grazing its link, does not split straight back.
 constexpr double kSplitMargin = 1e-6;
 
+// Whether a span passing at body-local depth `z` (m, spanDepth) is near
+// enough the link to wrap it. The split tests see the span projected into
+// the cable plane (sec. 3.4), so a span two radii beside a wheel, parallel
+// to its plane, would wrap it: wheels_3d run on split the light box's span
+// onto the wheel beside its own, then merged and split it between the two
+// until it ran out, 8.8e4 J made in one frame. The span touches the body
+// where it passes within its thickness (a long peg), and the planar
+// section stands for the cable within a section radius of its plane.
+bool spanReaches(const Link& link, const Shape& shape, double z) {
+  const double radius = link.section.perimeter() / (2.0 * std::numbers::pi);
+  return std::abs(z - link.plane_offset) <= radius || std::abs(z) <= halfDepth(shape);
+}
+
 // The turn (rad) of dq = q q_last^-1 about n, its axle's world direction
 // (local z), with whole turns from `spin` (rad), the turn known otherwise:
 // the geometry gives the turn only up to whole turns.
@@ -422,6 +435,9 @@ void CableSystem::splitAtCrossedLinks(Cable& cable, int c, double time_s) {
       const bool swept = !std::isnan(before) && before * side < 0.0 && along > 0.0 && along < 1.0;
       if (!swept && !spanCutsSection(mid, world_.body(mid.body), startPointOf(cable, j), endPointOf(cable, j),
                                      kSplitMargin))
+        continue;
+      if (!spanReaches(mid, world_.bodyDef(mid.body).shape,
+                       spanDepth(world_.body(mid.body), startPointOf(cable, j), endPointOf(cable, j))))
         continue;
       Link& from = cable.links[j];
       Link& to = cable.links[in.to];

@@ -163,6 +163,30 @@ std::pair<double, double> spanSide(const BodyState& body, const Vec3& p, const V
   return {(a.y() * d.x() - a.x() * d.y()) / std::sqrt(len2), -a.dot(d) / len2};
 }
 
+double spanDepth(const BodyState& body, const Vec3& p, const Vec3& q) {
+  const Vec3 a = body.toLocal(p), d = body.toLocal(q) - a;
+  const double len2 = d.head<2>().squaredNorm();
+  const double t = len2 > 0.0 ? std::clamp(-a.head<2>().dot(d.head<2>()) / len2, 0.0, 1.0) : 0.0;
+  return a.z() + t * d.z();
+}
+
+double halfDepth(const Shape& shape) {
+  switch (shape.type) {
+    case Shape::Type::Box:
+      return shape.half_extents.z();
+    case Shape::Type::Cylinder:
+      return shape.half_length;
+    case Shape::Type::Sphere:
+      return shape.radius;
+    case Shape::Type::Hull: {
+      double depth = 0.0;
+      for (const Vec3& v : shape.hull->vertices) depth = std::max(depth, std::abs(v.z()));
+      return depth;
+    }
+  }
+  return 0.0;
+}
+
 double payOut(const Link& link, const Vec3& old_anchor, const Vec3& new_anchor, double turn) {
   return sectionSurfaceDistance(link.section, planePoint(old_anchor), planePoint(new_anchor), link.orientation,
                                 turn);

@@ -45,6 +45,18 @@ std::optional<std::pair<Vec3, Vec3>> spanAnchors(const Link& from, const BodySta
 /// (unclamped)}.
 std::pair<double, double> spanSide(const BodyState& body, const Vec3& p, const Vec3& q);
 
+/// Body-local z (m) of the straight span from world point `p` to `q` at
+/// its point nearest the body's origin seen in the local xy plane (clamped
+/// to the span): where along the body's axis it passes a link's section.
+/// The split tests see the span projected into the cable plane (sec. 3.4);
+/// this says how far out of the plane it really is.
+double spanDepth(const BodyState& body, const Vec3& p, const Vec3& q);
+
+/// How far (m) `shape` reaches either side of its local plane z = 0: a
+/// box's half extent in z, a cylinder's half length, a sphere's radius, a
+/// hull's farthest corner in z.
+double halfDepth(const Shape& shape);
+
 /// Arc (m) paid out into a span when its anchor on a rolling link moves
 /// from `old_anchor` to `new_anchor` (body-local) while the body turns by
 /// `turn` (rad, about the plane normal): Alg. 1 l. 4-5 with the sign of the

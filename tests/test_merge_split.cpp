@@ -112,11 +112,12 @@ TEST(MergeSplit, TotalLengthIsConservedAcrossEventsAndTheBobRegainsItsHeight) {
 }
 
 // Galileo's pendulum (merge_split.json) with its peg, of radius 1 cm and
-// half length `peg_half_length` (m), set `peg_z` (m) out of the swing plane.
-Scene pegOutOfPlane(double peg_half_length, double peg_z) {
+// half length `peg_half_length` (m), set `peg_z` (m) out of the swing plane,
+// at budget `b`.
+Scene pegOutOfPlane(double peg_half_length, double peg_z, const test::Budget& b) {
   const std::string json = R"({
   "name": "peg_out_of_plane", "duration_s": 3,
-  "solver": {"frame_rate_hz": 60, "substeps": 20, "iterations": 2, "gravity_m_per_s2": [0, -9.81, 0]},
+  )" + test::solverJson(b) + R"(,
   "bodies": [
     {"name": "pivot", "shape": {"type": "box", "half_extents_m": [0.05, 0.05, 0.05]}, "static": true,
      "position_m": [0, 0, 0]},
@@ -139,19 +140,21 @@ TEST(MergeSplit, AStringPassingBesideAShortPegMissesItAndOneAlongALongPegWrapsIt
   // peg where it passes within the peg's length, or within a section radius
   // of its plane (how far the planar section stands for the cable); beside
   // that it swings on as a 2 m pendulum: out to x = 2 sin 45 = 1.414 m on
-  // the right, where round the peg on 1 m it stays within 1 m of it. (Met
-  // 9 radii from the peg's plane, the wrap lies in that plane, 8 mm longer
-  // than the string was: DESIGN, "A span wraps only what it passes".)
+  // the right, where round the peg on 1 m it stays within 1 m of it. Met
+  // along the peg 9 radii from its cable plane, the string wraps it where
+  // it met it, in its own swing plane (in the peg's plane the wrap was 8 mm
+  // longer than the string, and the catch made 11.7 J).
   const double t_long = quarterPeriod(2.0, std::numbers::pi / 4, 9.81);
   struct Case {
     double half_length, z;
     bool wraps;
   };
-  for (const Case& c : {Case{0.1, 0.02, true}, Case{0.005, 0.008, true},
+  for (const test::Budget& b : test::kFourBudgets)
+  for (const Case& c : {Case{0.1, 0.02, true}, Case{0.1, -0.09, true}, Case{0.005, 0.008, true},
                         Case{0.005, 0.02, false}, Case{0.005, -0.5, false}}) {
-    SCOPED_TRACE("peg half length " + std::to_string(c.half_length) + " m, " + std::to_string(c.z) +
-                 " m out of plane");
-    Scene s = pegOutOfPlane(c.half_length, c.z);
+    SCOPED_TRACE(test::name(b) + ", peg half length " + std::to_string(c.half_length) + " m, " +
+                 std::to_string(c.z) + " m out of plane");
+    Scene s = pegOutOfPlane(c.half_length, c.z, b);
     const BodyId bob = test::body(s, "bob");
     const double total = s.cables->totalLength(0);
     EnergyWatch watch(s);
@@ -166,12 +169,26 @@ TEST(MergeSplit, AStringPassingBesideAShortPegMissesItAndOneAlongALongPegWrapsIt
     }
     EXPECT_NEAR(s.cables->totalLength(0), total, 1e-9 * total);
     if (c.wraps) {
-      EXPECT_NEAR(split, t_long, 0.02 * t_long);
+      // Within the substep it happened in; at one substep the string passes
+      // the vertical up to a frame late (its O(h)).
+      EXPECT_NEAR(split, t_long, 0.02 * t_long + (b.substeps == 1 ? 1.0 / 60.0 : 0.0));
+      // The wrap lies in the string's plane z = 0 where the peg is long
+      // enough to be met there, in the peg's own plane where it is not.
+      const double wrapped_at = c.half_length > 0.05 ? -c.z : 0.0;
+      EXPECT_EQ(s.cables->cables()[0].links[1].plane_offset, wrapped_at);
       // Round the peg on 1 m: x = sin(a) for the short swing's amplitude a.
       EXPECT_LT(farthest_right, 1.0 + 1e-3);
     } else {
       EXPECT_LT(split, 0.0);
-      EXPECT_NEAR(farthest_right, 2.0 * std::sin(std::numbers::pi / 4), 0.01);
+      // Past the 1 m the peg would allow, never past the release's 1.414 m;
+      // there at ten substeps and more (one substep's end projection
+      // loses a swing's energy: 1.32 m at 1 x 1, README).
+      const double release = 2.0 * std::sin(std::numbers::pi / 4);
+      EXPECT_GT(farthest_right, 1.3);
+      EXPECT_LT(farthest_right, release + 1e-3);
+      if (b.substeps >= 10) {
+        EXPECT_NEAR(farthest_right, release, 0.01);
+      }
     }
   }
 }

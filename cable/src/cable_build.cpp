@@ -108,6 +108,8 @@ int CableSystem::addCable(const CableDef& def) {
         link.section = ld.section;
       } else if (auto own = defaultSection(world_.bodyDef(ld.body).shape, ld.plane_offset)) {
         link.section = *own;
+        const Shape::Type shape = world_.bodyDef(ld.body).shape.type;
+        link.prism = shape == Shape::Type::Box || shape == Shape::Type::Cylinder;
       } else {
         fail(at + "the cable plane misses the body; give the link a section");
       }

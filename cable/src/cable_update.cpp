@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <utility>
 
 #include "link_geometry.h"
@@ -18,17 +19,23 @@ namespace {
 // that has just merged, grazing its link, does not split straight back.
 constexpr double kSplitMargin = 1e-6;
 
-// Whether a span passing at body-local depth `z` (m, spanDepth) is near
-// enough the link to wrap it. The split tests see the span projected into
-// the cable plane (sec. 3.4), so a span two radii beside a wheel, parallel
-// to its plane, would wrap it: wheels_3d run on split the light box's span
-// onto the wheel beside its own, then merged and split it between the two
-// until it ran out, 8.8e4 J made in one frame. The span touches the body
-// where it passes within its thickness (a long peg), and the planar
-// section stands for the cable within a section radius of its plane.
-bool spanReaches(const Link& link, const Shape& shape, double z) {
+// The cable-plane offset (m, body-local z) at which a span passing the
+// link at depth `z` (m, spanDepth) wraps it; nullopt where it passes
+// beside it. The split tests see the span projected into the cable plane
+// (sec. 3.4), so a span two radii beside a wheel, parallel to its plane,
+// would wrap it: wheels_3d run on split the light box's span onto the
+// wheel beside its own, then merged and split it between the two until it
+// ran out, 8.8e4 J made in one frame. Within a section radius of the
+// plane, the section stands for the cable (a wheel's groove; the paper's
+// machines lie there). Farther out, a span passing within the body's
+// thickness meets it there: a prism (a bar, a peg) is wrapped where it
+// was met, other bodies in their plane (the wrap then longer than the
+// span by the detour).
+std::optional<double> wrapPlane(const Link& link, const Shape& shape, double z) {
   const double radius = link.section.perimeter() / (2.0 * std::numbers::pi);
-  return std::abs(z - link.plane_offset) <= radius || std::abs(z) <= halfDepth(shape);
+  if (std::abs(z - link.plane_offset) <= radius) return link.plane_offset;
+  if (std::abs(z) > halfDepth(shape)) return std::nullopt;
+  return link.prism ? z : link.plane_offset;
 }
 
 // The turn (rad) of dq = q q_last^-1 about n, its axle's world direction
@@ -436,9 +443,9 @@ void CableSystem::splitAtCrossedLinks(Cable& cable, int c, double time_s) {
       if (!swept && !spanCutsSection(mid, world_.body(mid.body), startPointOf(cable, j), endPointOf(cable, j),
                                      kSplitMargin))
         continue;
-      if (!spanReaches(mid, world_.bodyDef(mid.body).shape,
-                       spanDepth(world_.body(mid.body), startPointOf(cable, j), endPointOf(cable, j))))
-        continue;
+      const auto plane = wrapPlane(mid, world_.bodyDef(mid.body).shape,
+                                   spanDepth(world_.body(mid.body), startPointOf(cable, j), endPointOf(cable, j)));
+      if (!plane) continue;
       Link& from = cable.links[j];
       Link& to = cable.links[in.to];
       // The cable wraps the section on the side the span met it from, not
@@ -449,13 +456,19 @@ void CableSystem::splitAtCrossedLinks(Cable& cable, int c, double time_s) {
       // it meets it from").
       const double met = !std::isnan(before) && before != 0.0 ? before : side;
       const int given = mid.orientation;
+      const double given_plane = mid.plane_offset;
       if (met != 0.0) mid.orientation = met < 0.0 ? 1 : -1;
+      mid.plane_offset = *plane;
       mid.active = true;  // so that the tangents below see it rolling
+      const auto refuse = [&] {
+        mid.active = false;
+        mid.orientation = given;
+        mid.plane_offset = given_plane;
+      };
       const auto first = spanAnchors(from, world_.body(from.body), mid, world_.body(mid.body), Vec3::Zero());
       const auto second = spanAnchors(mid, world_.body(mid.body), to, world_.body(to.body), in.local_b);
       if (!first || !second) {
-        mid.active = false;
-        mid.orientation = given;
+        refuse();
         continue;
       }
       // Moving the span's ends to the new tangent points pays cable in or
@@ -469,8 +482,7 @@ void CableSystem::splitAtCrossedLinks(Cable& cable, int c, double time_s) {
       const double rest_wrap = restOfArc(cable, k, j, wrap);
       const double rest = in.rest_length - rest_from - rest_to - rest_wrap;
       if (rest < 0.0) {  // a slack span swept deep into the section: not enough cable to wrap it
-        mid.active = false;
-        mid.orientation = given;
+        refuse();
         continue;
       }
       if (from.rolls()) windLink(cable, j, j, onto_from);

@@ -39,7 +39,9 @@ enum class LinkType {
 ///   it is split in when a span crosses its section (paper sec. 4.2),
 ///   wrapped on the side the span met it from: `orientation` is then
 ///   taken from the geometry (a span met with the centre on its left goes
-///   round counter-clockwise), whatever was given.
+///   round counter-clockwise), whatever was given. Only a span passing
+///   within a section radius of the cable plane, or within the body's
+///   thickness, meets it (Link::prism: where it wraps).
 /// - `mu`: friction coefficient between cable and body, on interior rolling
 ///   links and pinholes (beyond the paper). Unset: a rolling link never
 ///   slips (the paper's rolling), a pinhole is frictionless. While the
@@ -134,6 +136,12 @@ struct Link {
   Vec3 point = Vec3::Zero();
   Section section;
   double plane_offset = 0.0;
+  /// The section is the body's own and the same at every depth along its
+  /// axis (a box or cylinder without a given section: a bar, a peg). A
+  /// span split onto it more than a section radius from the cable plane,
+  /// where it passes along the body, is wrapped in the plane where it met
+  /// it: `plane_offset` moves there (CableSystem::update).
+  bool prism = false;
   double stored = 0.0;  // m of rest length
   /// An elastic cable winds on at the strain of the span it comes from and
   /// unwinds last on, first off, each layer at the strain it was wound

@@ -39,6 +39,8 @@ constexpr std::size_t kMaxBacklogBytes = 4u << 20;
 // How long a stream waits for a message before it looks whether its page
 // is still there and the server still running.
 constexpr auto kStreamPoll = std::chrono::milliseconds(200);
+// How long stop() waits for the streams to write their ends.
+constexpr auto kStopWait = std::chrono::seconds(2);
 
 // "localhost", or an address literal of this machine (127.0.0.0/8, ::1);
 // not a name that only starts so ("127.0.0.1.example.com" is anyone's).
@@ -289,6 +291,7 @@ struct ViewServer::Impl {
         [this](bool) {
           std::lock_guard lock(log_mutex);
           --streams;
+          messages.notify_all();  // stop() waits for the last
         });
   }
 
@@ -378,10 +381,15 @@ void ViewServer::stop() {
     m.queue.clear();
   }
   {
-    std::lock_guard lock(m.log_mutex);
+    std::unique_lock lock(m.log_mutex);
     m.closing = true;
+    m.messages.notify_all();
+    // Each stream ends with its last chunk written: the server's stop
+    // stops writing, and a page cut off mid-stream reads an error, not an
+    // end (the four-page test, once in three runs here). A page that reads
+    // nothing is cut off after kStopWait.
+    m.messages.wait_for(lock, kStopWait, [&] { return m.streams == 0; });
   }
-  m.messages.notify_all();
   m.http.stop();
   if (m.server.joinable()) m.server.join();
 }

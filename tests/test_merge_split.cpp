@@ -111,18 +111,16 @@ TEST(MergeSplit, TotalLengthIsConservedAcrossEventsAndTheBobRegainsItsHeight) {
   EXPECT_NEAR(r.highest_right, -2.0 * std::cos(std::numbers::pi / 4), 0.02);
 }
 
-// Galileo's pendulum (merge_split.json) with its peg, of radius 1 cm and
-// half length `peg_half_length` (m), set `peg_z` (m) out of the swing plane,
-// at budget `b`.
-Scene pegOutOfPlane(double peg_half_length, double peg_z, const test::Budget& b) {
+// Galileo's pendulum (merge_split.json) with its peg of shape `shape`
+// (JSON) set `peg_z` (m) out of the swing plane, at budget `b`.
+Scene pendulumPastAPeg(const std::string& shape, double peg_z, const test::Budget& b) {
   const std::string json = R"({
   "name": "peg_out_of_plane", "duration_s": 3,
   )" + test::solverJson(b) + R"(,
   "bodies": [
     {"name": "pivot", "shape": {"type": "box", "half_extents_m": [0.05, 0.05, 0.05]}, "static": true,
      "position_m": [0, 0, 0]},
-    {"name": "peg", "shape": {"type": "cylinder", "radius_m": 0.01, "half_length_m": )" +
-                           std::to_string(peg_half_length) + R"(}, "static": true,
+    {"name": "peg", "shape": )" + shape + R"(, "static": true,
      "position_m": [0, -1.0, )" + std::to_string(peg_z) + R"(]},
     {"name": "bob", "shape": {"type": "sphere", "radius_m": 0.1}, "mass_kg": 1.0,
      "position_m": [-1.4142135623730951, -1.4142135623730951, 0]}],
@@ -132,6 +130,33 @@ Scene pegOutOfPlane(double peg_half_length, double peg_z, const test::Budget& b)
     {"body": "bob", "type": "attachment", "point_m": [0, 0, 0]}]}]
 })";
   return parseScene(json, "peg_out_of_plane");
+}
+
+// The pendulum with a cylindrical peg of radius 1 cm and half length
+// `peg_half_length` (m).
+Scene pegOutOfPlane(double peg_half_length, double peg_z, const test::Budget& b) {
+  return pendulumPastAPeg(R"({"type": "cylinder", "radius_m": 0.01, "half_length_m": )" +
+                              std::to_string(peg_half_length) + "}",
+                          peg_z, b);
+}
+
+// Time (s) for a pendulum of length `L` (m) released from rest at
+// `released` (rad from the vertical) to swing to `reached` (|reached| <
+// |released|), by RK4 on theta'' = -(g / L) sin theta at 10 us steps.
+double timeToSwingTo(double L, double released, double reached, double g) {
+  const double dt = 1e-5;
+  double theta = released, omega = 0.0, t = 0.0;
+  const auto accel = [&](double a) { return -(g / L) * std::sin(a); };
+  while ((theta - reached) * (released - reached) > 0.0) {
+    const double k1t = omega, k1w = accel(theta);
+    const double k2t = omega + 0.5 * dt * k1w, k2w = accel(theta + 0.5 * dt * k1t);
+    const double k3t = omega + 0.5 * dt * k2w, k3w = accel(theta + 0.5 * dt * k2t);
+    const double k4t = omega + dt * k3w, k4w = accel(theta + dt * k3t);
+    theta += dt / 6.0 * (k1t + 2.0 * k2t + 2.0 * k3t + k4t);
+    omega += dt / 6.0 * (k1w + 2.0 * k2w + 2.0 * k3w + k4w);
+    t += dt;
+  }
+  return t;
 }
 
 TEST(MergeSplit, AStringPassingBesideAShortPegMissesItAndOneAlongALongPegWrapsIt) {
@@ -191,6 +216,75 @@ TEST(MergeSplit, AStringPassingBesideAShortPegMissesItAndOneAlongALongPegWrapsIt
       }
     }
   }
+}
+
+TEST(MergeSplit, AStringPassingABallOrAHullOffItsPlaneWrapsItsSectionWhereItMeetsIt) {
+  // A ball's or hull's section shrinks away from its middle. The string,
+  // swinging in z = 0 past a ball of radius R = 10 cm whose centre is z out
+  // of that plane, meets the ball's circle of radius r = sqrt(R^2 - z^2)
+  // there: it touches it at sin theta = r (theta from the vertical; the
+  // ball's centre is 1 m below the pivot) and wraps it in that plane. It
+  // was wrapped in the ball's own plane at its full radius, longer than the
+  // string: 0.28 J made at z = 5 cm, 1.1 J at 7 cm, 3.0 J at 9 cm (10 x 2).
+  // An octahedron of half diagonal a = 10 cm has there a square of half
+  // diagonal d = a - |z|, touched at tan theta = d. Beyond the ball the
+  // string swings on past it.
+  const double g = 9.81, R = 0.1, released = -std::numbers::pi / 4;
+  const std::string ball = R"({"type": "sphere", "radius_m": 0.1})";
+  const std::string octahedron = R"({"type": "hull", "vertices_m": [[0.1, 0, 0], [-0.1, 0, 0], [0, 0.1, 0],
+      [0, -0.1, 0], [0, 0, 0.1], [0, 0, -0.1]]})";
+  struct Case {
+    const std::string* shape;
+    double z;
+    double touch_angle;  // rad; 0 where it passes beside
+  };
+  const Case cases[] = {{&ball, 0.05, std::asin(std::sqrt(R * R - 0.05 * 0.05))},
+                        {&ball, -0.09, std::asin(std::sqrt(R * R - 0.09 * 0.09))},
+                        {&octahedron, 0.06, std::atan(R - 0.06)},
+                        {&ball, 0.12, 0.0}};
+  for (const test::Budget& b : test::kFourBudgets)
+    for (const Case& c : cases) {
+      SCOPED_TRACE(test::name(b) + ", " + (c.shape == &ball ? "ball " : "octahedron ") + std::to_string(c.z) +
+                   " m out of plane");
+      Scene s = pendulumPastAPeg(*c.shape, c.z, b);
+      const BodyId bob = test::body(s, "bob");
+      const double total = s.cables->totalLength(0);
+      EnergyWatch watch(s);
+      double split = -1.0, farthest_right = 0.0;
+      for (int f = 0; f < 90; ++f) {  // to 1.5 s: past the long swing's turn at 2 x 0.73 s
+        test::frame(s);
+        for (const CableEvent& e : s.cables->takeEvents())
+          if (e.kind == CableEvent::Kind::Split && split < 0.0) split = e.time_s;
+        farthest_right = std::max(farthest_right, s.world->body(bob).x.x());
+        const auto created = watch.check(s);
+        ASSERT_FALSE(created) << created->created_J << " J at t = " << created->time_s;
+      }
+      EXPECT_NEAR(s.cables->totalLength(0), total, 1e-9 * total);
+      const Link& peg = s.cables->cables()[0].links[1];
+      if (c.touch_angle == 0.0) {
+        EXPECT_LT(split, 0.0);
+        EXPECT_GT(farthest_right, 1.0 + 1e-3);  // past where round the ball it would turn
+        continue;
+      }
+      // Within the substep it happened in, and up to a frame late at one
+      // substep (the string's O(h)).
+      const double t_touch = timeToSwingTo(2.0, released, -c.touch_angle, g);
+      EXPECT_NEAR(split, t_touch, 0.02 * t_touch + (b.substeps == 1 ? 1.0 / 60.0 : 0.0));
+      // In the string's plane z = 0, by the section the body has there.
+      EXPECT_EQ(peg.plane_offset, -c.z);
+      if (c.shape == &ball) {
+        ASSERT_EQ(peg.section.kind, Section::Kind::Circle);
+        EXPECT_NEAR(peg.section.radius, std::sqrt(R * R - c.z * c.z), 1e-15);
+      } else {
+        ASSERT_EQ(peg.section.kind, Section::Kind::Polygon);
+        double reach = 0.0;
+        for (const Vec2& v : peg.section.vertices) reach = std::max(reach, v.norm());
+        EXPECT_NEAR(reach, R - std::abs(c.z), 1e-12);
+      }
+      // Round the peg on 1 m less what it wraps: no farther right than 1 m
+      // beyond its centre plus the section.
+      EXPECT_LT(farthest_right, 1.0 + R + 1e-3);
+    }
 }
 
 // A free wheel of radius 0.2 m hinged to a carriage (each `wheel_kg`) on a

@@ -12,29 +12,6 @@
 namespace reeve {
 namespace {
 
-// The section a rolling link wraps when the user gives none: the body
-// shape's cross-section in its local plane z = `offset`; nullopt when that
-// plane misses the shape.
-std::optional<Section> defaultSection(const Shape& shape, double offset) {
-  switch (shape.type) {
-    case Shape::Type::Box:
-      if (std::abs(offset) >= shape.half_extents.z()) return std::nullopt;
-      return boxSection(shape.half_extents.x(), shape.half_extents.y());
-    case Shape::Type::Cylinder:
-      if (std::abs(offset) >= shape.half_length) return std::nullopt;
-      return Section::circle(shape.radius);
-    case Shape::Type::Sphere:
-      if (std::abs(offset) >= shape.radius) return std::nullopt;
-      return Section::circle(std::sqrt(shape.radius * shape.radius - offset * offset));
-    case Shape::Type::Hull: {
-      std::vector<Vec2> points = planeSection(*shape.hull, offset);
-      if (points.empty()) return std::nullopt;
-      return Section::polygon(std::move(points));
-    }
-  }
-  return std::nullopt;
-}
-
 bool hasSection(const Section& s) {
   return s.kind == Section::Kind::Polygon || s.radius > 0.0;
 }
@@ -106,10 +83,11 @@ int CableSystem::addCable(const CableDef& def) {
     if (ld.type == LinkType::Rolling || ld.type == LinkType::Hybrid) {
       if (hasSection(ld.section)) {
         link.section = ld.section;
-      } else if (auto own = defaultSection(world_.bodyDef(ld.body).shape, ld.plane_offset)) {
+      } else if (auto own = ownSection(world_.bodyDef(ld.body).shape, ld.plane_offset)) {
         link.section = *own;
         const Shape::Type shape = world_.bodyDef(ld.body).shape.type;
-        link.prism = shape == Shape::Type::Box || shape == Shape::Type::Cylinder;
+        const bool prism = shape == Shape::Type::Box || shape == Shape::Type::Cylinder;
+        link.depth = prism ? Link::Depth::Prism : Link::Depth::Slice;
       } else {
         fail(at + "the cable plane misses the body; give the link a section");
       }

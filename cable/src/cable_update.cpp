@@ -19,23 +19,53 @@ namespace {
 // that has just merged, grazing its link, does not split straight back.
 constexpr double kSplitMargin = 1e-6;
 
-// The cable-plane offset (m, body-local z) at which a span passing the
-// link at depth `z` (m, spanDepth) wraps it; nullopt where it passes
-// beside it. The split tests see the span projected into the cable plane
-// (sec. 3.4), so a span two radii beside a wheel, parallel to its plane,
-// would wrap it: wheels_3d run on split the light box's span onto the
-// wheel beside its own, then merged and split it between the two until it
-// ran out, 8.8e4 J made in one frame. Within a section radius of the
-// plane, the section stands for the cable (a wheel's groove; the paper's
-// machines lie there). Farther out, a span passing within the body's
-// thickness meets it there: a prism (a bar, a peg) is wrapped where it
-// was met, other bodies in their plane (the wrap then longer than the
-// span by the detour).
-std::optional<double> wrapPlane(const Link& link, const Shape& shape, double z) {
-  const double radius = link.section.perimeter() / (2.0 * std::numbers::pi);
-  if (std::abs(z - link.plane_offset) <= radius) return link.plane_offset;
-  if (std::abs(z) > halfDepth(shape)) return std::nullopt;
-  return link.prism ? z : link.plane_offset;
+// A span within this fraction of a sphere's or hull's outer radius of its
+// link's cable plane is in it (rounding off a planar machine's plane).
+constexpr double kSamePlane = 1e-9;
+
+// Where a span from world point `p` to `q` that the split test sees
+// crossing the inactive link (or sweeping past its centre: `swept`) wraps
+// it: the cable-plane offset (m, body-local z) and, for a sphere or hull,
+// the body's section there; nullopt where it passes beside the body. The
+// split tests see the span projected into the cable plane (sec. 3.4), so
+// a span two radii beside a wheel, parallel to its plane, would wrap it:
+// wheels_3d run on split the light box's span onto the wheel beside its
+// own, then merged and split it between the two until it ran out, 8.8e4 J
+// made in one frame. Within a section radius of the plane, the section
+// stands for the cable (a wheel's groove; the paper's machines lie there).
+// Farther out, a span passing within the body's thickness meets it there:
+// a prism (a bar, a peg) is wrapped where it was met, a given section in
+// its plane (the wrap then longer than the span by the detour). A sphere's
+// or hull's section changes with depth: met off the plane, the span wraps
+// the body's section where it met it, if it cuts that (a string passing a
+// ball 7 cm off its plane, wrapped at the ball's full 10 cm radius in the
+// plane, made 1.1 J).
+struct Wrap {
+  double plane_offset;
+  std::optional<Section> section;  // the link's new section, if it changes
+};
+std::optional<Wrap> wrapAt(const Link& link, const Shape& shape, const BodyState& body, const Vec3& p,
+                           const Vec3& q, bool swept) {
+  if (link.depth != Link::Depth::Slice) {
+    if (!swept && !spanCutsSection(link.section, body, p, q, kSplitMargin)) return std::nullopt;
+    const double z = spanDepth(body, p, q);
+    const double radius = link.section.perimeter() / (2.0 * std::numbers::pi);
+    if (std::abs(z - link.plane_offset) <= radius) return Wrap{link.plane_offset, std::nullopt};
+    if (std::abs(z) > halfDepth(shape)) return std::nullopt;
+    return Wrap{link.depth == Link::Depth::Prism ? z : link.plane_offset, std::nullopt};
+  }
+  // Every section lies within the outer circle: most spans stop here.
+  if (!swept && !spanCutsSection(Section{Section::Kind::Circle, outerRadius(shape), {}}, body, p, q, kSplitMargin))
+    return std::nullopt;
+  // In the plane to rounding (a planar machine's): its own section.
+  const double z = spanDepth(body, p, q);
+  if (std::abs(z - link.plane_offset) <= kSamePlane * outerRadius(shape)) {
+    if (!swept && !spanCutsSection(link.section, body, p, q, kSplitMargin)) return std::nullopt;
+    return Wrap{link.plane_offset, std::nullopt};
+  }
+  std::optional<Section> slice = ownSection(shape, z);
+  if (!slice || (!swept && !spanCutsSection(*slice, body, p, q, kSplitMargin))) return std::nullopt;
+  return Wrap{z, std::move(slice)};
 }
 
 // The turn (rad) of dq = q q_last^-1 about n, its axle's world direction
@@ -436,16 +466,14 @@ void CableSystem::splitAtCrossedLinks(Cable& cable, int c, double time_s) {
     for (int k = (j + 1) % n; k != in.to; k = (k + 1) % n) {
       Link& mid = cable.links[k];
       const double before = mid.side;
-      const auto [side, along] = spanSide(world_.body(mid.body), startPointOf(cable, j), endPointOf(cable, j));
+      const BodyState& body = world_.body(mid.body);
+      const Vec3 p = startPointOf(cable, j), q = endPointOf(cable, j);
+      const auto [side, along] = spanSide(body, p, q);
       mid.side = side;
       // isnan first: an ordered comparison with NaN raises FE_INVALID.
       const bool swept = !std::isnan(before) && before * side < 0.0 && along > 0.0 && along < 1.0;
-      if (!swept && !spanCutsSection(mid, world_.body(mid.body), startPointOf(cable, j), endPointOf(cable, j),
-                                     kSplitMargin))
-        continue;
-      const auto plane = wrapPlane(mid, world_.bodyDef(mid.body).shape,
-                                   spanDepth(world_.body(mid.body), startPointOf(cable, j), endPointOf(cable, j)));
-      if (!plane) continue;
+      std::optional<Wrap> met_at = wrapAt(mid, world_.bodyDef(mid.body).shape, body, p, q, swept);
+      if (!met_at) continue;
       Link& from = cable.links[j];
       Link& to = cable.links[in.to];
       // The cable wraps the section on the side the span met it from, not
@@ -458,12 +486,14 @@ void CableSystem::splitAtCrossedLinks(Cable& cable, int c, double time_s) {
       const int given = mid.orientation;
       const double given_plane = mid.plane_offset;
       if (met != 0.0) mid.orientation = met < 0.0 ? 1 : -1;
-      mid.plane_offset = *plane;
+      mid.plane_offset = met_at->plane_offset;
+      if (met_at->section) std::swap(mid.section, *met_at->section);  // which keeps the given one
       mid.active = true;  // so that the tangents below see it rolling
       const auto refuse = [&] {
         mid.active = false;
         mid.orientation = given;
         mid.plane_offset = given_plane;
+        if (met_at->section) std::swap(mid.section, *met_at->section);
       };
       const auto first = spanAnchors(from, world_.body(from.body), mid, world_.body(mid.body), Vec3::Zero());
       const auto second = spanAnchors(mid, world_.body(mid.body), to, world_.body(to.body), in.local_b);

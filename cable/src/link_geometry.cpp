@@ -7,6 +7,7 @@
 
 #include "links.h"
 #include "reeve/cable/tangent.h"
+#include "reeve/engine/convex_hull.h"
 
 namespace reeve {
 namespace {
@@ -127,17 +128,17 @@ std::optional<std::pair<Vec3, Vec3>> spanAnchors(const Link& from, const BodySta
   return std::nullopt;
 }
 
-bool spanCutsSection(const Link& link, const BodyState& body, const Vec3& p, const Vec3& q,
+bool spanCutsSection(const Section& section, const BodyState& body, const Vec3& p, const Vec3& q,
                      double margin) {
   const Vec2 a = toPlane(body, p), b = toPlane(body, q);
   const Vec2 d = b - a;
-  if (link.section.kind == Section::Kind::Circle) {
+  if (section.kind == Section::Kind::Circle) {
     const double len2 = d.squaredNorm();
     const double t = len2 > 0.0 ? std::clamp(-a.dot(d) / len2, 0.0, 1.0) : 0.0;
-    return (a + t * d).norm() < link.section.radius - margin;
+    return (a + t * d).norm() < section.radius - margin;
   }
   // Cyrus-Beck: clip the segment to the polygon shrunk by `margin`.
-  const auto& v = link.section.vertices;
+  const auto& v = section.vertices;
   double t0 = 0.0, t1 = 1.0;
   for (size_t i = 0; i < v.size(); ++i) {
     const Vec2 e = v[(i + 1) % v.size()] - v[i];
@@ -182,6 +183,42 @@ double halfDepth(const Shape& shape) {
       double depth = 0.0;
       for (const Vec3& v : shape.hull->vertices) depth = std::max(depth, std::abs(v.z()));
       return depth;
+    }
+  }
+  return 0.0;
+}
+
+std::optional<Section> ownSection(const Shape& shape, double offset) {
+  switch (shape.type) {
+    case Shape::Type::Box:
+      if (std::abs(offset) >= shape.half_extents.z()) return std::nullopt;
+      return boxSection(shape.half_extents.x(), shape.half_extents.y());
+    case Shape::Type::Cylinder:
+      if (std::abs(offset) >= shape.half_length) return std::nullopt;
+      return Section::circle(shape.radius);
+    case Shape::Type::Sphere:
+      if (std::abs(offset) >= shape.radius) return std::nullopt;
+      return Section::circle(std::sqrt(shape.radius * shape.radius - offset * offset));
+    case Shape::Type::Hull: {
+      std::vector<Vec2> points = planeSection(*shape.hull, offset);
+      if (points.empty()) return std::nullopt;
+      return Section::polygon(std::move(points));
+    }
+  }
+  return std::nullopt;
+}
+
+double outerRadius(const Shape& shape) {
+  switch (shape.type) {
+    case Shape::Type::Box:
+      return shape.half_extents.head<2>().norm();
+    case Shape::Type::Cylinder:
+    case Shape::Type::Sphere:
+      return shape.radius;
+    case Shape::Type::Hull: {
+      double radius = 0.0;
+      for (const Vec3& v : shape.hull->vertices) radius = std::max(radius, v.head<2>().norm());
+      return radius;
     }
   }
   return 0.0;

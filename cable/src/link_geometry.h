@@ -63,10 +63,22 @@ double halfDepth(const Shape& shape);
 /// leaving side; the arriving side uses its negative.
 double payOut(const Link& link, const Vec3& old_anchor, const Vec3& new_anchor, double turn);
 
-/// Whether the straight span from world point `p` to `q` cuts into the
-/// link's section deeper than `margin` (m), seen in the link's plane: the
-/// split test of paper sec. 4.2.
-bool spanCutsSection(const Link& link, const BodyState& body, const Vec3& p, const Vec3& q,
+/// Whether the straight span from world point `p` to `q` cuts into
+/// `section` deeper than `margin` (m), seen in the body's local xy plane:
+/// the split test of paper sec. 4.2.
+bool spanCutsSection(const Section& section, const BodyState& body, const Vec3& p, const Vec3& q,
                      double margin);
+
+/// The body shape's own section in its local plane z = `offset` (m): what
+/// a rolling link wraps when the user gives no section, and where a span
+/// meets a sphere or hull off its link's plane (Link::Depth::Slice).
+/// nullopt where that plane misses the shape. A hull's allocates.
+std::optional<Section> ownSection(const Shape& shape, double offset);
+
+/// Radius (m) of a circle about the body's local z axis that holds the
+/// shape's section at every depth, seen along z: a sphere's radius, a
+/// hull's farthest corner from the axis (a cylinder's radius, a box's
+/// corner). A span that misses it misses every section.
+double outerRadius(const Shape& shape);
 
 }  // namespace reeve

@@ -40,6 +40,10 @@ def endless(scene):
 def interrupt_latency(call, after_s=0.5):
     """Sends this process SIGINT after `after_s` and runs `call`, which must raise KeyboardInterrupt; returns
     how long after the signal it did (s)."""
+    # Python leaves SIGINT ignored where its parent did (a background job of
+    # a script): the signal would never arrive, and an endless call step for
+    # hours. Python's own handler, as in a terminal.
+    signal.signal(signal.SIGINT, signal.default_int_handler)
     timer = threading.Timer(after_s, lambda: os.kill(os.getpid(), signal.SIGINT))
     start = time.monotonic()
     timer.start()

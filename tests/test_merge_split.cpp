@@ -112,8 +112,10 @@ TEST(MergeSplit, TotalLengthIsConservedAcrossEventsAndTheBobRegainsItsHeight) {
 }
 
 // Galileo's pendulum (merge_split.json) with its peg of shape `shape`
-// (JSON) set `peg_z` (m) out of the swing plane, at budget `b`.
-Scene pendulumPastAPeg(const std::string& shape, double peg_z, const test::Budget& b) {
+// (JSON) set `peg_z` (m) out of the swing plane, at budget `b`; the peg's
+// link wraps `section` (JSON), or the peg's own where empty.
+Scene pendulumPastAPeg(const std::string& shape, double peg_z, const test::Budget& b,
+                       const std::string& section = "") {
   const std::string json = R"({
   "name": "peg_out_of_plane", "duration_s": 3,
   )" + test::solverJson(b) + R"(,
@@ -126,7 +128,8 @@ Scene pendulumPastAPeg(const std::string& shape, double peg_z, const test::Budge
      "position_m": [-1.4142135623730951, -1.4142135623730951, 0]}],
   "cables": [{"name": "string", "links": [
     {"body": "pivot", "type": "attachment", "point_m": [0, 0, 0]},
-    {"body": "peg", "type": "rolling", "orientation": "ccw", "active": false},
+    {"body": "peg", "type": "rolling", "orientation": "ccw", "active": false)" +
+                           (section.empty() ? "" : ", \"section\": " + section) + R"(},
     {"body": "bob", "type": "attachment", "point_m": [0, 0, 0]}]}]
 })";
   return parseScene(json, "peg_out_of_plane");
@@ -218,7 +221,7 @@ TEST(MergeSplit, AStringPassingBesideAShortPegMissesItAndOneAlongALongPegWrapsIt
   }
 }
 
-TEST(MergeSplit, AStringPassingABallOrAHullOffItsPlaneWrapsItsSectionWhereItMeetsIt) {
+TEST(MergeSplit, AStringPassingABallAHullOrAGrooveOffItsPlaneWrapsTheSectionWhereItMeetsIt) {
   // A ball's or hull's section shrinks away from its middle. The string,
   // swinging in z = 0 past a ball of radius R = 10 cm whose centre is z out
   // of that plane, meets the ball's circle of radius r = sqrt(R^2 - z^2)
@@ -227,26 +230,34 @@ TEST(MergeSplit, AStringPassingABallOrAHullOffItsPlaneWrapsItsSectionWhereItMeet
   // was wrapped in the ball's own plane at its full radius, longer than the
   // string: 0.28 J made at z = 5 cm, 1.1 J at 7 cm, 3.0 J at 9 cm (10 x 2).
   // An octahedron of half diagonal a = 10 cm has there a square of half
-  // diagonal d = a - |z|, touched at tan theta = d. Beyond the ball the
-  // string swings on past it.
+  // diagonal d = a - |z|, touched at tan theta = d. A 10 cm cylinder whose
+  // link wraps a given 3 cm groove is met there by the groove's circle
+  // (sin theta = 0.03), and wrapped there: in the groove's plane the wrap
+  // was longer than the string, 0.27 J made at 5 cm, 1.8 J at 8 cm.
+  // Beyond the ball the string swings on past it.
   const double g = 9.81, R = 0.1, released = -std::numbers::pi / 4;
   const std::string ball = R"({"type": "sphere", "radius_m": 0.1})";
   const std::string octahedron = R"({"type": "hull", "vertices_m": [[0.1, 0, 0], [-0.1, 0, 0], [0, 0.1, 0],
       [0, -0.1, 0], [0, 0, 0.1], [0, 0, -0.1]]})";
+  const std::string cylinder = R"({"type": "cylinder", "radius_m": 0.1, "half_length_m": 0.1})";
+  const std::string groove = R"({"radius_m": 0.03})";
   struct Case {
     const std::string* shape;
     double z;
     double touch_angle;  // rad; 0 where it passes beside
+    const std::string* section = nullptr;  // given, else the body's own
   };
   const Case cases[] = {{&ball, 0.05, std::asin(std::sqrt(R * R - 0.05 * 0.05))},
                         {&ball, -0.09, std::asin(std::sqrt(R * R - 0.09 * 0.09))},
                         {&octahedron, 0.06, std::atan(R - 0.06)},
+                        {&cylinder, 0.05, std::asin(0.03), &groove},
+                        {&cylinder, -0.08, std::asin(0.03), &groove},
                         {&ball, 0.12, 0.0}};
   for (const test::Budget& b : test::kFourBudgets)
     for (const Case& c : cases) {
-      SCOPED_TRACE(test::name(b) + ", " + (c.shape == &ball ? "ball " : "octahedron ") + std::to_string(c.z) +
-                   " m out of plane");
-      Scene s = pendulumPastAPeg(*c.shape, c.z, b);
+      SCOPED_TRACE(test::name(b) + ", " + (c.shape == &ball ? "ball " : c.shape == &cylinder ? "groove " : "octahedron ") +
+                   std::to_string(c.z) + " m out of plane");
+      Scene s = pendulumPastAPeg(*c.shape, c.z, b, c.section ? *c.section : "");
       const BodyId bob = test::body(s, "bob");
       const double total = s.cables->totalLength(0);
       EnergyWatch watch(s);
@@ -272,7 +283,10 @@ TEST(MergeSplit, AStringPassingABallOrAHullOffItsPlaneWrapsItsSectionWhereItMeet
       EXPECT_NEAR(split, t_touch, 0.02 * t_touch + (b.substeps == 1 ? 1.0 / 60.0 : 0.0));
       // In the string's plane z = 0, by the section the body has there.
       EXPECT_EQ(peg.plane_offset, -c.z);
-      if (c.shape == &ball) {
+      if (c.shape == &cylinder) {
+        ASSERT_EQ(peg.section.kind, Section::Kind::Circle);
+        EXPECT_EQ(peg.section.radius, 0.03);  // the given groove, kept
+      } else if (c.shape == &ball) {
         ASSERT_EQ(peg.section.kind, Section::Kind::Circle);
         EXPECT_NEAR(peg.section.radius, std::sqrt(R * R - c.z * c.z), 1e-15);
       } else {

@@ -86,8 +86,7 @@ int CableSystem::addCable(const CableDef& def) {
       } else if (auto own = ownSection(world_.bodyDef(ld.body).shape, ld.plane_offset)) {
         link.section = *own;
         const Shape::Type shape = world_.bodyDef(ld.body).shape.type;
-        const bool prism = shape == Shape::Type::Box || shape == Shape::Type::Cylinder;
-        link.depth = prism ? Link::Depth::Prism : Link::Depth::Slice;
+        if (shape == Shape::Type::Sphere || shape == Shape::Type::Hull) link.depth = Link::Depth::Slice;
       } else {
         fail(at + "the cable plane misses the body; give the link a section");
       }

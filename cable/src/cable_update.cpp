@@ -33,13 +33,14 @@ constexpr double kSamePlane = 1e-9;
 // own, then merged and split it between the two until it ran out, 8.8e4 J
 // made in one frame. Within a section radius of the plane, the section
 // stands for the cable (a wheel's groove; the paper's machines lie there).
-// Farther out, a span passing within the body's thickness meets it there:
-// a prism (a bar, a peg) is wrapped where it was met, a given section in
-// its plane (the wrap then longer than the span by the detour). A sphere's
-// or hull's section changes with depth: met off the plane, the span wraps
-// the body's section where it met it, if it cuts that (a string passing a
-// ball 7 cm off its plane, wrapped at the ball's full 10 cm radius in the
-// plane, made 1.1 J).
+// Farther out, a span passing within the body's thickness meets it there,
+// and is wrapped where it met it (a bar, a peg; a given section too: a
+// string passing a 10 cm peg 8 cm from its given 3 cm groove, wrapped in
+// the groove's plane, was longer than the span by the detour, and made
+// 1.8 J). A sphere's or hull's section changes with depth: met off the
+// plane, the span wraps the body's section where it met it, if it cuts
+// that (a string passing a ball 7 cm off its plane, wrapped at the ball's
+// full 10 cm radius in the plane, made 1.1 J).
 struct Wrap {
   double plane_offset;
   std::optional<Section> section;  // the link's new section, if it changes
@@ -52,7 +53,7 @@ std::optional<Wrap> wrapAt(const Link& link, const Shape& shape, const BodyState
     const double radius = link.section.perimeter() / (2.0 * std::numbers::pi);
     if (std::abs(z - link.plane_offset) <= radius) return Wrap{link.plane_offset, std::nullopt};
     if (std::abs(z) > halfDepth(shape)) return std::nullopt;
-    return Wrap{link.depth == Link::Depth::Prism ? z : link.plane_offset, std::nullopt};
+    return Wrap{z, std::nullopt};
   }
   // Every section lies within the outer circle: most spans stop here.
   if (!swept && !spanCutsSection(Section{Section::Kind::Circle, outerRadius(shape), {}}, body, p, q, kSplitMargin))

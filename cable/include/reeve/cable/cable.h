@@ -41,8 +41,8 @@ enum class LinkType {
 ///   taken from the geometry (a span met with the centre on its left goes
 ///   round counter-clockwise), whatever was given. Only a span passing
 ///   within a section radius of the cable plane, or within the body's
-///   thickness, meets it (Link::depth: where it wraps; a sphere or hull by
-///   its own section where the span meets it).
+///   thickness, meets it, and is wrapped where it met it (Link::depth: a
+///   sphere or hull by its own section there).
 /// - `mu`: friction coefficient between cable and body, on interior rolling
 ///   links and pinholes (beyond the paper). Unset: a rolling link never
 ///   slips (the paper's rolling), a pinhole is frictionless. While the
@@ -139,18 +139,16 @@ struct Link {
   double plane_offset = 0.0;
   /// How the section lies along the body's axis, for a span split onto the
   /// link away from its cable plane (CableSystem::update):
-  /// - Given: the user's section, wrapped in its plane.
-  /// - Prism: the body's own, the same at every depth (a box or cylinder:
-  ///   a bar, a peg). Met more than a section radius from the plane, where
-  ///   the span passes along the body, it is wrapped in the plane where it
-  ///   met it: `plane_offset` moves there.
+  /// - Uniform: the same at every depth (a given section; a box's or
+  ///   cylinder's own: a bar, a peg). Met more than a section radius from
+  ///   the plane, where the span passes along the body, it is wrapped in
+  ///   the plane where it met it: `plane_offset` moves there (in the link's
+  ///   plane the wrap was longer than the span by the detour: energy made).
   /// - Slice: the body's own, which changes with depth (a sphere, a hull).
   ///   Met off the plane, it is wrapped in the plane where it met it, by
-  ///   the body's section there: `plane_offset` and `section` move there
-  ///   (in the link's plane, a ball met near its edge was wrapped at its
-  ///   full radius, a wrap longer than the string: energy made).
-  enum class Depth { Given, Prism, Slice };
-  Depth depth = Depth::Given;
+  ///   the body's section there: `plane_offset` and `section` move there.
+  enum class Depth { Uniform, Slice };
+  Depth depth = Depth::Uniform;
   double stored = 0.0;  // m of rest length
   /// An elastic cable winds on at the strain of the span it comes from and
   /// unwinds last on, first off, each layer at the strain it was wound

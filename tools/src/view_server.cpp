@@ -8,6 +8,7 @@
 #include <iostream>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <thread>
 #include <vector>
 
@@ -80,7 +81,19 @@ struct ViewServer::Impl {
   // The stepping thread's own.
   LiveScene live;
   Clock::time_point next_frame;
-  fs::file_time_type watched_time;
+  // The scene file's write time and size, as loaded and as last seen.
+  struct FileStamp {
+    fs::file_time_type time;
+    std::uintmax_t size = 0;
+    bool operator==(const FileStamp&) const = default;
+  };
+  FileStamp loaded, seen;
+  static std::optional<FileStamp> stampOf(const fs::path& file) {
+    std::error_code time_error, size_error;
+    FileStamp stamp{fs::last_write_time(file, time_error), fs::file_size(file, size_error)};
+    if (time_error || size_error) return std::nullopt;
+    return stamp;
+  }
 
   // Commands for the stepping thread, and their answers.
   struct Command {
@@ -133,13 +146,18 @@ struct ViewServer::Impl {
   }
 
   // The scene file changed on disk: the new one from t = 0, or its error
-  // in the page and the old one on.
+  // in the page and the old one on. Read once it has stayed as it is for a
+  // watch interval: a file still being written (hilbert3.json, 100 kB,
+  // written by a script) was read half-written, and its error shown.
   void watch() {
     if (options.scene.empty() || options.scene_text) return;
-    std::error_code ec;
-    const fs::file_time_type time = fs::last_write_time(options.scene, ec);
-    if (ec || time == watched_time) return;
-    watched_time = time;
+    const std::optional<FileStamp> now = stampOf(options.scene);
+    if (!now || *now == loaded) return;
+    if (*now != seen) {
+      seen = *now;
+      return;
+    }
+    loaded = *now;
     try {
       live.reloadFile(options.scene);
       publishScene();
@@ -306,8 +324,8 @@ struct ViewServer::Impl {
 
 ViewServer::ViewServer(const ViewOptions& options) : impl_(std::make_unique<Impl>(options)) {
   Impl& m = *impl_;
-  std::error_code ec;
-  if (!options.scene.empty() && !options.scene_text) m.watched_time = fs::last_write_time(options.scene, ec);
+  if (!options.scene.empty() && !options.scene_text)
+    if (const auto stamp = Impl::stampOf(options.scene)) m.loaded = m.seen = *stamp;
   m.files["/"] = {readViewerFile("live.html", "reeve view"), "text/html; charset=utf-8"};
   m.files["/viewer/live.js"] = {readViewerFile("live.js", "reeve view"), "text/javascript"};
   m.files["/viewer/view3d.js"] = {readViewerFile("view3d.js", "reeve view"), "text/javascript"};

@@ -143,6 +143,32 @@ Scene pegOutOfPlane(double peg_half_length, double peg_z, const test::Budget& b)
                           peg_z, b);
 }
 
+// The pendulum past its peg, swung to 1.5 s (past the long swing's turn
+// at 2 x 0.73 s): its first split (s; -1 if none), how far right the bob
+// went (m), the first energy the ledger saw made (empty if none), and the
+// cable's total length (m) at the start and the end.
+struct PegSwing {
+  double split = -1.0, farthest_right = 0.0;
+  std::string created;
+  double start_length = 0.0, total_length = 0.0;
+};
+PegSwing swingPastThePeg(Scene& s) {
+  PegSwing r;
+  const BodyId bob = test::body(s, "bob");
+  r.start_length = s.cables->totalLength(0);
+  EnergyWatch watch(s);
+  for (int f = 0; f < 90 && r.created.empty(); ++f) {
+    test::frame(s);
+    for (const CableEvent& e : s.cables->takeEvents())
+      if (e.kind == CableEvent::Kind::Split && r.split < 0.0) r.split = e.time_s;
+    r.farthest_right = std::max(r.farthest_right, s.world->body(bob).x.x());
+    if (const auto created = watch.check(s))
+      r.created = std::to_string(created->created_J) + " J at t = " + std::to_string(created->time_s);
+  }
+  r.total_length = s.cables->totalLength(0);
+  return r;
+}
+
 // Time (s) for a pendulum of length `L` (m) released from rest at
 // `released` (rad from the vertical) to swing to `reached` (|reached| <
 // |released|), by RK4 on theta'' = -(g / L) sin theta at 10 us steps.
@@ -183,19 +209,10 @@ TEST(MergeSplit, AStringPassingBesideAShortPegMissesItAndOneAlongALongPegWrapsIt
     SCOPED_TRACE(test::name(b) + ", peg half length " + std::to_string(c.half_length) + " m, " +
                  std::to_string(c.z) + " m out of plane");
     Scene s = pegOutOfPlane(c.half_length, c.z, b);
-    const BodyId bob = test::body(s, "bob");
-    const double total = s.cables->totalLength(0);
-    EnergyWatch watch(s);
-    double split = -1.0, farthest_right = 0.0;
-    for (int f = 0; f < 90; ++f) {  // to 1.5 s: past the long swing's turn at 2 x 0.73 s
-      test::frame(s);
-      for (const CableEvent& e : s.cables->takeEvents())
-        if (e.kind == CableEvent::Kind::Split && split < 0.0) split = e.time_s;
-      farthest_right = std::max(farthest_right, s.world->body(bob).x.x());
-      const auto created = watch.check(s);
-      ASSERT_FALSE(created) << created->created_J << " J at t = " << created->time_s;
-    }
-    EXPECT_NEAR(s.cables->totalLength(0), total, 1e-9 * total);
+    const PegSwing swing = swingPastThePeg(s);
+    ASSERT_TRUE(swing.created.empty()) << swing.created;
+    EXPECT_NEAR(swing.total_length, swing.start_length, 1e-9 * swing.start_length);
+    const double split = swing.split, farthest_right = swing.farthest_right;
     if (c.wraps) {
       // Within the substep it happened in; at one substep the string passes
       // the vertical up to a frame late (its O(h)).
@@ -258,19 +275,10 @@ TEST(MergeSplit, AStringPassingABallAHullOrAGrooveOffItsPlaneWrapsTheSectionWher
       SCOPED_TRACE(test::name(b) + ", " + (c.shape == &ball ? "ball " : c.shape == &cylinder ? "groove " : "octahedron ") +
                    std::to_string(c.z) + " m out of plane");
       Scene s = pendulumPastAPeg(*c.shape, c.z, b, c.section ? *c.section : "");
-      const BodyId bob = test::body(s, "bob");
-      const double total = s.cables->totalLength(0);
-      EnergyWatch watch(s);
-      double split = -1.0, farthest_right = 0.0;
-      for (int f = 0; f < 90; ++f) {  // to 1.5 s: past the long swing's turn at 2 x 0.73 s
-        test::frame(s);
-        for (const CableEvent& e : s.cables->takeEvents())
-          if (e.kind == CableEvent::Kind::Split && split < 0.0) split = e.time_s;
-        farthest_right = std::max(farthest_right, s.world->body(bob).x.x());
-        const auto created = watch.check(s);
-        ASSERT_FALSE(created) << created->created_J << " J at t = " << created->time_s;
-      }
-      EXPECT_NEAR(s.cables->totalLength(0), total, 1e-9 * total);
+      const PegSwing swing = swingPastThePeg(s);
+      ASSERT_TRUE(swing.created.empty()) << swing.created;
+      EXPECT_NEAR(swing.total_length, swing.start_length, 1e-9 * swing.start_length);
+      const double split = swing.split, farthest_right = swing.farthest_right;
       const Link& peg = s.cables->cables()[0].links[1];
       if (c.touch_angle == 0.0) {
         EXPECT_LT(split, 0.0);

@@ -148,8 +148,24 @@ TEST(BenchTrade, ReportsTheAtwoodAndSpoolErrorsOfADirectRun) {
     ++checked;
   }
   EXPECT_EQ(checked, 4);
-  // More substeps cost more and err less: both points are on the front.
-  for (const auto& row : rows) EXPECT_EQ(row.at("pareto"), "1") << row.at("case") << " " << row.at("substeps");
+  // Ten substeps err less than one, so that point is always on the front.
+  // Whether one substep is too depends on the clock (it is dominated if the
+  // timer saw ten substeps as no dearer): the column must follow the
+  // printed cost, never assert it.
+  for (const char* name : {"atwood_1_2", "spool"}) {
+    std::map<int, std::map<std::string, std::string>> bySubsteps;
+    for (const auto& row : rows)
+      if (row.at("case") == name) bySubsteps[std::stoi(row.at("substeps"))] = row;
+    ASSERT_EQ(bySubsteps.size(), 2u) << name;
+    const auto& one = bySubsteps.at(1);
+    const auto& ten = bySubsteps.at(10);
+    EXPECT_LT(std::stod(ten.at("error")), std::stod(one.at("error"))) << name;
+    EXPECT_EQ(ten.at("pareto"), "1") << name;
+    const double msOne = std::stod(one.at("ms_per_frame")), msTen = std::stod(ten.at("ms_per_frame"));
+    if (msOne != msTen) {
+      EXPECT_EQ(one.at("pareto"), msOne < msTen ? "1" : "0") << name << " " << msOne << " vs " << msTen;
+    }
+  }
 }
 
 TEST(BenchTrade, RunsReeveAtTheRopesCostAndItsErrorIsTheIntegratorsThere) {

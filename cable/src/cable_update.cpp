@@ -43,17 +43,17 @@ constexpr double kSamePlane = 1e-9;
 // full 10 cm radius in the plane, made 1.1 J).
 struct Wrap {
   double plane_offset;
-  std::optional<Section> section;  // the link's new section, if it changes
+  bool sliced;  // the link's new section is `slice`, the body's own there
 };
 std::optional<Wrap> wrapAt(const Link& link, const Shape& shape, const BodyState& body, const Vec3& p,
-                           const Vec3& q, bool swept) {
+                           const Vec3& q, bool swept, Section& slice, std::vector<Vec2>& points) {
   if (link.depth != Link::Depth::Slice) {
     if (!swept && !spanCutsSection(link.section, body, p, q, kSplitMargin)) return std::nullopt;
     const double z = spanDepth(body, p, q);
     const double radius = link.section.perimeter() / (2.0 * std::numbers::pi);
-    if (std::abs(z - link.plane_offset) <= radius) return Wrap{link.plane_offset, std::nullopt};
+    if (std::abs(z - link.plane_offset) <= radius) return Wrap{link.plane_offset, false};
     if (std::abs(z) > halfDepth(shape)) return std::nullopt;
-    return Wrap{z, std::nullopt};
+    return Wrap{z, false};
   }
   // Every section lies within the outer circle: most spans stop here.
   if (!swept && !spanCutsSection(Section{Section::Kind::Circle, outerRadius(shape), {}}, body, p, q, kSplitMargin))
@@ -62,11 +62,11 @@ std::optional<Wrap> wrapAt(const Link& link, const Shape& shape, const BodyState
   const double z = spanDepth(body, p, q);
   if (std::abs(z - link.plane_offset) <= kSamePlane * outerRadius(shape)) {
     if (!swept && !spanCutsSection(link.section, body, p, q, kSplitMargin)) return std::nullopt;
-    return Wrap{link.plane_offset, std::nullopt};
+    return Wrap{link.plane_offset, false};
   }
-  std::optional<Section> slice = ownSection(shape, z);
-  if (!slice || (!swept && !spanCutsSection(*slice, body, p, q, kSplitMargin))) return std::nullopt;
-  return Wrap{z, std::move(slice)};
+  if (!ownSection(shape, z, slice, points) || (!swept && !spanCutsSection(slice, body, p, q, kSplitMargin)))
+    return std::nullopt;
+  return Wrap{z, true};
 }
 
 // The turn (rad) of dq = q q_last^-1 about n, its axle's world direction
@@ -136,7 +136,11 @@ void CableSystem::beginUpdate(double h) {
   // the next substep's must not count it again.
   measure_solve_turn_ = !solve_turn_counted_;
   solve_turn_counted_ = h == 0.0;
-  updates_.resize(cables_.size());
+  if (updates_.size() != cables_.size()) {
+    const std::size_t added = updates_.size();
+    updates_.resize(cables_.size());
+    for (std::size_t c = added; c < cables_.size(); ++c) reserveSlice(static_cast<int>(c));
+  }
   // Sorted again only when the islands were built again (a cable added
   // couples its links, which builds them).
   if (grouped_for_ == world_.islandsBuilt()) return;
@@ -152,6 +156,14 @@ void CableSystem::beginUpdate(double h) {
       static_cast<int>(rolling_bodies_.size()), [&](int k) { return world_.islandOfBody(rolling_bodies_[k]); },
       rolling_by_island_, rolling_begin_);
   for (int& k : rolling_by_island_) k = rolling_bodies_[k];
+}
+
+void CableSystem::reserveSlice(int c) {
+  std::size_t room = 0;
+  for (const Link& link : cables_[c].links)
+    if (link.depth == Link::Depth::Slice) room = std::max(room, sectionRoom(world_.bodyDef(link.body).shape));
+  updates_[c].slice_points.reserve(room);
+  updates_[c].slice.vertices.reserve(2 * room);
 }
 
 void CableSystem::updateIsland(int island, double time_s, double h) {
@@ -473,7 +485,9 @@ void CableSystem::splitAtCrossedLinks(Cable& cable, int c, double time_s) {
       mid.side = side;
       // isnan first: an ordered comparison with NaN raises FE_INVALID.
       const bool swept = !std::isnan(before) && before * side < 0.0 && along > 0.0 && along < 1.0;
-      std::optional<Wrap> met_at = wrapAt(mid, world_.bodyDef(mid.body).shape, body, p, q, swept);
+      CableUpdate& update = updates_[c];
+      const Shape& shape = world_.bodyDef(mid.body).shape;
+      std::optional<Wrap> met_at = wrapAt(mid, shape, body, p, q, swept, update.slice, update.slice_points);
       if (!met_at) continue;
       Link& from = cable.links[j];
       Link& to = cable.links[in.to];
@@ -488,13 +502,13 @@ void CableSystem::splitAtCrossedLinks(Cable& cable, int c, double time_s) {
       const double given_plane = mid.plane_offset;
       if (met != 0.0) mid.orientation = met < 0.0 ? 1 : -1;
       mid.plane_offset = met_at->plane_offset;
-      if (met_at->section) std::swap(mid.section, *met_at->section);  // which keeps the given one
+      if (met_at->sliced) std::swap(mid.section, update.slice);  // which keeps the given one
       mid.active = true;  // so that the tangents below see it rolling
       const auto refuse = [&] {
         mid.active = false;
         mid.orientation = given;
         mid.plane_offset = given_plane;
-        if (met_at->section) std::swap(mid.section, *met_at->section);
+        if (met_at->sliced) std::swap(mid.section, update.slice);
       };
       const auto first = spanAnchors(from, world_.body(from.body), mid, world_.body(mid.body), Vec3::Zero());
       const auto second = spanAnchors(mid, world_.body(mid.body), to, world_.body(to.body), in.local_b);
@@ -531,7 +545,10 @@ void CableSystem::splitAtCrossedLinks(Cable& cable, int c, double time_s) {
       const double l_in = spanLength(cable, j), l_out = spanLength(cable, k);
       in.rest_length = l_in + l_out > 0.0 ? rest * l_in / (l_in + l_out) : 0.5 * rest;
       out.rest_length = rest - in.rest_length;
-      updates_[c].events.push_back({CableEvent::Kind::Split, time_s, c, k, mid.orientation});
+      // The slice's room went to the link with it: room again (this
+      // substep's event allows the heap) for the next slice tested.
+      if (met_at->sliced) update.slice.vertices.reserve(2 * sectionRoom(shape));
+      update.events.push_back({CableEvent::Kind::Split, time_s, c, k, mid.orientation});
       break;  // the new spans are checked again next substep
     }
   }

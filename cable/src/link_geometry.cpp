@@ -188,24 +188,53 @@ double halfDepth(const Shape& shape) {
   return 0.0;
 }
 
-std::optional<Section> ownSection(const Shape& shape, double offset) {
+bool ownSection(const Shape& shape, double offset, Section& out, std::vector<Vec2>& points) {
+  const auto circle = [&](double radius) {
+    out.kind = Section::Kind::Circle;
+    out.radius = radius;
+    out.vertices.clear();
+    return radius > 0.0;  // a sphere met at its pole, to rounding: none
+  };
+  switch (shape.type) {
+    case Shape::Type::Box: {
+      if (std::abs(offset) >= shape.half_extents.z()) return false;
+      const double hx = shape.half_extents.x(), hy = shape.half_extents.y();
+      points.assign({Vec2(-hx, -hy), Vec2(hx, -hy), Vec2(hx, hy), Vec2(-hx, hy)});
+      return out.setPolygon(points);
+    }
+    case Shape::Type::Cylinder:
+      return std::abs(offset) < shape.half_length && circle(shape.radius);
+    case Shape::Type::Sphere:
+      return std::abs(offset) < shape.radius && circle(std::sqrt(shape.radius * shape.radius - offset * offset));
+    case Shape::Type::Hull:
+      // Near a corner the slice may be too small to have an area: none.
+      planeSection(*shape.hull, offset, points);
+      return !points.empty() && out.setPolygon(points);
+  }
+  return false;
+}
+
+std::size_t sectionRoom(const Shape& shape) {
   switch (shape.type) {
     case Shape::Type::Box:
-      if (std::abs(offset) >= shape.half_extents.z()) return std::nullopt;
-      return boxSection(shape.half_extents.x(), shape.half_extents.y());
+      return 4;
     case Shape::Type::Cylinder:
-      if (std::abs(offset) >= shape.half_length) return std::nullopt;
-      return Section::circle(shape.radius);
     case Shape::Type::Sphere:
-      if (std::abs(offset) >= shape.radius) return std::nullopt;
-      return Section::circle(std::sqrt(shape.radius * shape.radius - offset * offset));
+      return 0;
     case Shape::Type::Hull: {
-      std::vector<Vec2> points = planeSection(*shape.hull, offset);
-      if (points.empty()) return std::nullopt;
-      return Section::polygon(std::move(points));
+      std::size_t room = 0;  // planeSection: a point per face edge it crosses
+      for (const ConvexHull::Face& face : shape.hull->faces) room += face.vertices.size();
+      return room;
     }
   }
-  return std::nullopt;
+  return 0;
+}
+
+std::optional<Section> ownSection(const Shape& shape, double offset) {
+  Section section;
+  std::vector<Vec2> points;
+  if (!ownSection(shape, offset, section, points)) return std::nullopt;
+  return section;
 }
 
 double outerRadius(const Shape& shape) {

@@ -72,8 +72,17 @@ bool spanCutsSection(const Section& section, const BodyState& body, const Vec3& 
 /// The body shape's own section in its local plane z = `offset` (m): what
 /// a rolling link wraps when the user gives no section, and where a span
 /// meets a sphere or hull off its link's plane (Link::Depth::Slice).
-/// nullopt where that plane misses the shape. A hull's allocates.
+/// nullopt where that plane misses the shape (or cuts only a corner or
+/// pole of it, to rounding: no area).
 std::optional<Section> ownSection(const Shape& shape, double offset);
+/// ownSection() into `out`, with `points` for a box's or hull's corners:
+/// no heap once both hold the room (sectionRoom). False where ownSection()
+/// gives nullopt; `out` is then not a section.
+bool ownSection(const Shape& shape, double offset, Section& out, std::vector<Vec2>& points);
+/// The most corners ownSection() finds for `shape` at any depth, and so
+/// the room `points` needs; the section's vertices need twice that (the
+/// monotone chain's stack: Section::setPolygon).
+std::size_t sectionRoom(const Shape& shape);
 
 /// Radius (m) of a circle about the body's local z axis that holds the
 /// shape's section at every depth, seen along z: a sphere's radius, a

@@ -38,20 +38,26 @@ Section Section::polygon(std::vector<Vec2> points) {
   for (const Vec2& p : points)
     if (!std::isfinite(p.x()) || !std::isfinite(p.y()))
       throw std::invalid_argument("polygon section: a point is not finite");
+  Section s;
+  if (!s.setPolygon(points)) throw std::invalid_argument("polygon section: the convex hull has zero area");
+  return s;
+}
+
+bool Section::setPolygon(std::vector<Vec2>& points) {
+  for (const Vec2& p : points)
+    if (!std::isfinite(p.x()) || !std::isfinite(p.y())) return false;
   std::sort(points.begin(), points.end(), [](const Vec2& a, const Vec2& b) {
     return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
   });
   points.erase(std::unique(points.begin(), points.end()), points.end());
-  const auto zero_area = [] {
-    return std::invalid_argument("polygon section: the convex hull has zero area");
-  };
-  if (points.size() < 3) throw zero_area();
+  if (points.size() < 3) return false;
   // Andrew's monotone chain: lower hull left to right, upper hull back.
   // `push` pops while the stack holds at least `keep` points (two make a
   // turn; the upper hull never pops the lower one); popping on cross <= 0
   // drops collinear points.
   const std::size_t n = points.size();
-  std::vector<Vec2> hull(2 * n);
+  std::vector<Vec2>& hull = vertices;
+  hull.resize(2 * n);
   std::size_t k = 0;
   const auto push = [&](const Vec2& p, std::size_t keep) {
     while (k >= keep && cross(hull[k - 1] - hull[k - 2], p - hull[k - 2]) <= 0.0) --k;
@@ -60,11 +66,9 @@ Section Section::polygon(std::vector<Vec2> points) {
   for (std::size_t i = 0; i < n; ++i) push(points[i], 2);
   for (std::size_t i = n - 1, lower = k + 1; i-- > 0;) push(points[i], lower);
   hull.resize(k - 1);  // the last point repeats the first
-  if (hull.size() < 3) throw zero_area();
-  Section s;
-  s.kind = Kind::Polygon;
-  s.vertices = std::move(hull);
-  return s;
+  kind = Kind::Polygon;
+  radius = 0.0;
+  return hull.size() >= 3;
 }
 
 Section boxSection(double hx, double hy) {

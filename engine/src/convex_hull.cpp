@@ -129,9 +129,15 @@ std::shared_ptr<const ConvexHull> makeConvexHull(const std::vector<Vec3>& points
 
 std::vector<Vec2> planeSection(const ConvexHull& hull, double z) {
   std::vector<Vec2> points;
+  planeSection(hull, z, points);
+  return points;
+}
+
+void planeSection(const ConvexHull& hull, double z, std::vector<Vec2>& points) {
+  points.clear();
   double lo = hull.vertices[0].z(), hi = lo;
   for (const Vec3& v : hull.vertices) lo = std::min(lo, v.z()), hi = std::max(hi, v.z());
-  if (!(z > lo && z < hi)) return points;
+  if (!(z > lo && z < hi)) return;
   for (const ConvexHull::Face& face : hull.faces)
     for (std::size_t i = 0; i < face.vertices.size(); ++i) {
       const Vec3& p = hull.vertices[face.vertices[i]];
@@ -140,7 +146,6 @@ std::vector<Vec2> planeSection(const ConvexHull& hull, double z) {
       const double t = (z - p.z()) / (q.z() - p.z());
       points.emplace_back(p.x() + t * (q.x() - p.x()), p.y() + t * (q.y() - p.y()));
     }
-  return points;
 }
 
 }  // namespace reeve

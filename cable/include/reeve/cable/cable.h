@@ -555,6 +555,9 @@ class CableSystem {
   void releaseFreeEnds(Cable& cable, int c, double time_s);
   void mergeEmptyLinks(Cable& cable, int c, double time_s);
   void splitAtCrossedLinks(Cable& cable, int c, double time_s);
+  /// Room in updates_[c] for the largest section of a link of cable `c`
+  /// met off its plane (Link::Depth::Slice).
+  void reserveSlice(int c);
   /// Runs (spans joined through sliding links), each substep: share out
   /// each run's rest length as the last solve left it and measure the slip
   /// of each sliding link over the last `h` s (settleRuns, before the
@@ -643,6 +646,11 @@ class CableSystem {
     double winch_total = 0.0;    // J, since the system was made: its part of winchWork()
     std::vector<JamRequest> jams;
     bool breached = false;  // its invariants broken after it (cableBreach)
+    // A sphere's or hull's section where a span met it off its link's
+    // plane (splitAtCrossedLinks), built here with room reserved
+    // (reserveSlice) so that testing one every substep takes no heap.
+    Section slice;
+    std::vector<Vec2> slice_points;
   };
   std::vector<CableUpdate> updates_;  // per cable
   std::vector<std::pair<BodyId, BodyId>> jams_;  // (wheel, tie point's body) held by a ball joint

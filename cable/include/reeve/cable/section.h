@@ -32,6 +32,11 @@ struct Section {
   /// the cross section"). Throws std::invalid_argument if a point is not
   /// finite or the hull has zero area.
   static Section polygon(std::vector<Vec2> points);
+  /// polygon(points) into this section, its vertices' room reused: no heap
+  /// once that holds 2 x points.size(). Sorts `points` (not this section's
+  /// own vertices) in place. False where polygon() would throw; the
+  /// section is then not a valid one.
+  bool setPolygon(std::vector<Vec2>& points);
 
   /// Boundary length (m): 2 pi r, or the sum of the edge lengths.
   double perimeter() const;

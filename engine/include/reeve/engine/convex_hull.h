@@ -45,5 +45,8 @@ std::shared_ptr<const ConvexHull> makeConvexHull(const std::vector<Vec3>& points
 /// repeated (Section::polygon takes their hull). Empty when the plane
 /// misses the hull's interior.
 std::vector<Vec2> planeSection(const ConvexHull& hull, double z);
+/// planeSection() into `points` (cleared first): no heap once it holds a
+/// point per face edge.
+void planeSection(const ConvexHull& hull, double z, std::vector<Vec2>& points);
 
 }  // namespace reeve

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -378,11 +379,35 @@ TEST(BenchBatch, StepsCopiesOnOneAndMoreThreadsAndPrintsTheSpeedUp) {
       reeve(dir, "bench batch --only atwood --copies 3 --threads 2 --frames 2 --repeats 1 --csv " + csv.string());
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("# threads: 2 used"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("ms_per_scene_frame  speedup"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("ms_per_scene_frame  speedup  ideal_speedup"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("1.00"), std::string::npos) << r.out;  // 1 thread, the baseline, always run
   const std::string table = slurp(csv);
   EXPECT_NE(table.find("atwood,3,1,2,"), std::string::npos) << table;
   EXPECT_NE(table.find("atwood,3,2,2,"), std::string::npos) << table;
+  // One thread was timed on each core: the baseline is the fastest, and
+  // two threads can at most reach the two fastest cores' rates summed.
+  const std::string head = "# atwood, one thread on each core:";
+  const std::size_t at = r.out.find(head);
+  ASSERT_NE(at, std::string::npos) << r.out;
+  std::vector<double> per_core;
+  std::istringstream cores(r.out.substr(at + head.size(), r.out.find('\n', at) - at - head.size()));
+  for (std::string cell; std::getline(cores, cell, ',');) per_core.push_back(std::stod(cell));
+  ASSERT_GE(per_core.size(), 1u);
+  std::sort(per_core.begin(), per_core.end());
+  const double ideal = 1.0 + (per_core.size() > 1 ? per_core[0] / per_core[1] : 0.0);
+  std::map<std::string, std::string> one, two;
+  std::istringstream rows(table);
+  for (std::string line; std::getline(rows, line);) {
+    if (line.rfind("atwood,3,", 0) != 0) continue;
+    std::vector<std::string> cells;
+    std::istringstream in(line);
+    for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
+    ASSERT_GE(cells.size(), 7u) << line;
+    (cells[2] == "1" ? one : two) = {{"ms", cells[4]}, {"speedup", cells[5]}, {"ideal", cells[6]}};
+  }
+  EXPECT_NEAR(std::stod(one.at("ms")), per_core[0], 1e-3 * per_core[0]);
+  EXPECT_EQ(one.at("ideal"), "1.00");
+  EXPECT_NEAR(std::stod(two.at("ideal")), ideal, 0.006) << table;
   EXPECT_EQ(reeve(dir, "bench batch --only nope").code, 64);
   EXPECT_EQ(reeve(dir, "bench batch --copies 0").code, 64);
 }

@@ -50,15 +50,18 @@ int benchBatch(const BatchBenchOptions& o) {
   bench::printEnvironment(stdout, env);
   std::printf("# %d copies of each scene stepped side by side (reeve.Batch), %d timed frames, median of %d runs\n",
               o.copies, o.frames, o.repeats);
-  bench::Table table({"scene", "copies", "threads", "frames", "ms_per_scene_frame", "speedup"});
+  std::printf("# speedup: over one thread on the fastest core; ideal_speedup: the cores' summed rates over it\n");
+  bench::Table table({"scene", "copies", "threads", "frames", "ms_per_scene_frame", "speedup", "ideal_speedup"});
   for (const std::string& name : o.scenes) {
     const std::filesystem::path file = o.scenes_dir / (name + ".json");
-    double one = 0.0;
+    const std::vector<double> per_core =
+        timeOnEachCore([&] { return measure(file, o.copies, 1, o.frames, o.repeats); });
+    printCoreTimes(name, per_core, "ms a scene-frame");
+    const double one = *std::min_element(per_core.begin(), per_core.end());
     for (const int t : threads) {
-      const double ms = measure(file, o.copies, t, o.frames, o.repeats);
-      if (t == 1) one = ms;
+      const double ms = t == 1 ? one : measure(file, o.copies, t, o.frames, o.repeats);
       table.add({name, std::to_string(o.copies), std::to_string(t), std::to_string(o.frames), fixed(ms, "%.4g"),
-                 fixed(one / ms, "%.2f")});
+                 fixed(one / ms, "%.2f"), fixed(idealSpeedup(per_core, t), "%.2f")});
     }
   }
   table.print(stdout);

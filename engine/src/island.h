@@ -35,6 +35,9 @@ struct Island {
   bool non_finite = false;   // a body state (or tension) not finite after the last pass
   bool driven = false;       // a joint of it has a drive this substep (World::beginSolve)
   bool moved = false;        // the hooks moved a row of it onto other bodies' island (World::rowsMoved)
+  // Its share of the time of the threads that ran it (their time over the
+  // islands each ran), since the last World::balanceIslandRuns.
+  double ns = 0.0;
   // Its work and losses since the islands were built (the flows of
   // WorldEnergy): World::energy adds them to the World's in island order,
   // and buildIslands folds them in, so the sums are the same on any number

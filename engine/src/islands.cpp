@@ -8,6 +8,7 @@
 #include <numeric>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "island.h"
 #include "reeve/engine/world.h"
@@ -202,7 +203,11 @@ void World::cutIslandRuns() {
   // One run a thread, some empty when there are fewer islands. Work as
   // measured, or else estimated by the bodies and constraints.
   island_runs_.assign(1, 0);
-  run_ns_.assign(threads_, RunTime{});
+  if (!thread_runs_) thread_runs_ = std::make_unique<ThreadRun[]>(threads_);
+  for (int t = 0; t < threads_; ++t) {
+    thread_runs_[t].ns = 0.0;
+    thread_runs_[t].ran.reserve(islands_.size());  // a thread may run them all
+  }
   serial_ns_ = 0.0;
   timed_runs_ = 0;
   // The islands' news is not known until they run (driven: a drive may be
@@ -233,23 +238,18 @@ void World::balanceIslandRuns() {
   // The islands' work a run (ns), and whether it pays to share it: a run
   // on threads costs 1 to 2 us more than its work (its join), and every
   // line the threads share crosses between cores.
-  const double work =
-      (share_runs_ ? std::accumulate(run_ns_.begin(), run_ns_.end(), 0.0,
-                                     [](double sum, const RunTime& t) { return sum + t.ns; })
-                   : serial_ns_) /
-      timed_runs_;
+  double shared_ns = 0.0;
+  for (int t = 0; t < threads_; ++t) shared_ns += thread_runs_[t].ns;
+  const double work = (share_runs_ ? shared_ns : serial_ns_) / timed_runs_;
   const bool shared = share_runs_;
   share_runs_ = work >= (share_runs_ ? 0.5 : 1.0) * min_shared_run_ns_;
   serial_ns_ = 0.0;
   timed_runs_ = 0;
   if (!shared) return;
-  for (int t = 0; t < threads_; ++t) {
-    const int first = island_runs_[t], count = island_runs_[t + 1] - first;
-    for (int i = first; i < first + count; ++i) {
-      double& cost = island_cost_[i];
-      const double share = run_ns_[t].ns / count;
-      cost = cost > 0.0 ? 0.5 * (cost + share) : share;
-    }
+  for (int i = 0; i < static_cast<int>(islands_.size()); ++i) {
+    double& cost = island_cost_[i];
+    const double ns = std::exchange(islands_[i]->ns, 0.0);
+    cost = cost > 0.0 ? 0.5 * (cost + ns) : ns;
   }
   cutIslandRuns();
 }

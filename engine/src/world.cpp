@@ -1,9 +1,11 @@
 #include "reeve/engine/world.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cassert>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
@@ -18,6 +20,19 @@
 
 namespace reeve {
 namespace {
+
+// Takes the next island of a run's [front, end) (World::ThreadRun::left):
+// its front one, or its end one; -1 when none is left. Every island is
+// taken once, by one thread or the other.
+int takeIsland(std::atomic<std::uint64_t>& left, bool front) {
+  std::uint64_t range = left.load(std::memory_order_relaxed);
+  while (true) {
+    const auto first = static_cast<std::uint32_t>(range), end = static_cast<std::uint32_t>(range >> 32);
+    if (first >= end) return -1;
+    const std::uint64_t rest = front ? range + 1 : range - (std::uint64_t{1} << 32);
+    if (left.compare_exchange_weak(range, rest, std::memory_order_relaxed)) return static_cast<int>(front ? first : end - 1);
+  }
+}
 
 // The body's pose and velocities are all finite: 0 x each is 0 but for an
 // infinity or a NaN, which makes the sum NaN (one test, not thirteen).
@@ -508,36 +523,53 @@ void World::forEachIsland(const Fn& fn) {
   const int n = static_cast<int>(islands_.size());
   // What the islands report, gathered by the thread that ran them: the
   // caller then reads one line a thread, not each island's.
-  const auto run = [&](RunNews& news, int first, int last) {
-    news = RunNews{};
-    for (int i = first; i < last; ++i) {
-      fn(i);
-      const Island& island = *islands_[i];
-      news.non_finite |= island.non_finite;
-      news.moved |= island.moved;
-      news.driven |= island.driven;
-      news.interrupted |= island.interrupted;
-      news.iterations = std::max(news.iterations, island.iterations);
-    }
+  const auto fold = [](RunNews& news, const Island& island) {
+    news.non_finite |= island.non_finite;
+    news.moved |= island.moved;
+    news.driven |= island.driven;
+    news.interrupted |= island.interrupted;
+    news.iterations = std::max(news.iterations, island.iterations);
   };
   if (!pool_ || n < 2 || !share_runs_) {
     std::fill(news_.begin(), news_.end(), RunNews{});
     const bool timed = pool_ && n > 1;  // to see whether the threads would pay (balanceIslandRuns)
     const auto start = timed ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
-    run(news_[0], 0, n);
+    for (int i = 0; i < n; ++i) {
+      fn(i);
+      fold(news_[0], *islands_[i]);
+    }
     if (timed) {
       serial_ns_ += std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start).count();
       ++timed_runs_;
     }
     return;
   }
-  // Each thread its own run of islands of about equal work, the same every
-  // substep, so that an island's data stays in its core's cache
-  // (ThreadPool::runEach).
+  // Each thread its own run of islands of about equal measured work, the
+  // same every substep, so that an island's data stays in its core's cache
+  // (ThreadPool::runEach); done with it, a thread takes the islands the
+  // others have not yet begun, from their runs' ends: a core slower than
+  // the other, or islands dearer this substep than measured, hold no thread
+  // up for a whole run.
+  for (int t = 0; t < threads_; ++t)
+    thread_runs_[t].left.store(static_cast<std::uint64_t>(island_runs_[t + 1]) << 32 | island_runs_[t],
+                               std::memory_order_relaxed);  // published by runEach
   pool_->runEach([&](int t) {
     const auto start = std::chrono::steady_clock::now();
-    run(news_[t], island_runs_[t], island_runs_[t + 1]);
-    run_ns_[t].ns += std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start).count();
+    ThreadRun& mine = thread_runs_[t];
+    RunNews& news = news_[t];
+    news = RunNews{};
+    mine.ran.clear();
+    const auto step = [&](int i) {
+      fn(i);
+      mine.ran.push_back(i);
+      fold(news, *islands_[i]);
+    };
+    for (int i; (i = takeIsland(mine.left, true)) >= 0;) step(i);
+    for (int k = 1; k < threads_; ++k)
+      for (int i; (i = takeIsland(thread_runs_[(t + k) % threads_].left, false)) >= 0;) step(i);
+    const double ns = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start).count();
+    mine.ns += ns;
+    for (const int i : mine.ran) islands_[i]->ns += ns / static_cast<double>(mine.ran.size());
   });
   ++timed_runs_;
 }
@@ -691,6 +723,7 @@ void World::setThreads(int threads, double min_shared_run_us) {
   if (threads == threads_) return;
   threads_ = threads;
   pool_.reset();          // started again by buildIslands() if there are islands to share
+  thread_runs_.reset();   // made again for the threads by cutIslandRuns()
   islands_dirty_ = true;  // their runs (island_runs_) are cut for the threads
 }
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cassert>
+#include <cstdint>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -462,8 +463,8 @@ class World {
   /// Cuts the islands into island_runs_, one run a thread, of about equal
   /// cost (island_cost_; counted bodies and constraints until measured).
   void cutIslandRuns();
-  /// Shares each thread's measured time (run_ns_) out over the islands it
-  /// ran, and cuts the runs again by those costs: which thread steps an
+  /// Takes each island's share of its threads' measured time (Island::ns),
+  /// and cuts the runs again by those costs: which thread steps an
   /// island changes no result. Decides from the runs' measured work
   /// whether the next step's runs are shared at all (share_runs_).
   void balanceIslandRuns();
@@ -569,15 +570,19 @@ class World {
   int threads_ = 1;                                 // setThreads
   std::unique_ptr<ThreadPool> pool_;                // threads_ of them, once there are two islands
   std::vector<int> island_runs_;  // thread t's islands: [island_runs_[t], island_runs_[t + 1])
-  // Per thread, on a line of its own (the threads write theirs after every
-  // run): ns spent on its islands since the last balanceIslandRuns.
-  struct alignas(64) RunTime {
-    double ns = 0.0;
+  /// Per thread, on a line of its own: its run as a shared run goes
+  /// (forEachIsland), and what it measured.
+  struct alignas(64) ThreadRun {
+    // Its run's islands not yet taken, [front, end) as end << 32 | front:
+    // its thread takes the front, a thread done with its own the end.
+    std::atomic<std::uint64_t> left{0};
+    double ns = 0.0;       // spent on islands since the last balanceIslandRuns
+    std::vector<int> ran;  // the islands it ran in its last run, its own and others'
   };
-  std::vector<RunTime> run_ns_;
-  // Per island: what stepping it costs (ns a step, smoothed), as its
-  // thread's measured time over the islands it ran (balanceIslandRuns); 0
-  // until then. Kept here, not on the Island, which its thread writes.
+  std::unique_ptr<ThreadRun[]> thread_runs_;  // threads_ of them, made with the pool's first runs (cutIslandRuns)
+  // Per island: what stepping it costs (ns a step, smoothed), as the
+  // measured time of the threads that ran it over the islands each ran
+  // (Island::ns, balanceIslandRuns); 0 until then.
   std::vector<double> island_cost_;
   // Some island holds contact manifolds (sortManifolds): without, the
   // caller's thread touches no island between the runs.

@@ -398,14 +398,17 @@ void expectTheSweptWheelWrappedAndCaught(const std::string& wheel_shape, double 
           for (int f = 0; f < s.frameCount(); ++f) {
             test::frame(s);
             for (const CableEvent& e : s.cables->takeEvents()) splits += e.kind == CableEvent::Kind::Split;
-            // Gauss-Seidel makes energy holding the wheel against its
-            // drive, its sweeps' known limit, not asserted here: measured
-            // 0.005 to 0.016 J at 1 x 1 (10 kg at 1 N), 0.029 J at 10 x 2
-            // (10 kg) and 0.18 J at 10 x 2 (0.1 kg at 100 N; 0.25 J on the
-            // ball 10 cm out).
+            // Gauss-Seidel's sweeps leave the rigid cable stretched against
+            // the drive, and the drive's work into that stretch is lost (2.4
+            // J at 10 x 2, 0.1 kg at 100 N). As later sweeps pull the stretch
+            // in, the drive gives some back: the balance rises from its
+            // lowest point (0.21 J there), which the watch reports, but
+            // never above where it started.
             const auto created = watch.check(s);
             if (b.solver == SolverKind::Direct) {
               ASSERT_FALSE(created) << created->created_J << " J at t = " << created->time_s;
+            } else {
+              ASSERT_LE(watch.residual_J(), energyTolerance(h) * watch.scale_J()) << "J over the start, t = " << s.world->time();
             }
           }
           EXPECT_EQ(splits, 1);

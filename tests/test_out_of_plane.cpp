@@ -59,9 +59,7 @@ TEST(OutOfPlane, AWinchHoistingALoadSwingingOutOfItsSheavesPlaneMakesNoEnergy) {
   // span pulled 1 / cos phi of the ceiling's (13 % at 0.5 rad), and out
   // of plane the winch did 202.4 J of the box's 210 J at 10 x 2.
   for (const test::Budget& b : test::kFourBudgets) {
-    // Gauss-Seidel's own limit, in the sheave's plane too: its unconverged
-    // sweeps make 10 J at 1 x 1 and 0.24 J at 10 x 2 of a hoist swinging
-    // in plane (README, "Gauss-Seidel's price").
+    // Gauss-Seidel: the next test.
     if (b.solver == SolverKind::GaussSeidel) continue;
     // Sheaves 1e-6, 0.2 and 10 times the box.
     for (const double sheave_kg : {1e-5, 2.0, 100.0})
@@ -103,5 +101,36 @@ TEST(OutOfPlane, AWinchHoistingALoadSwingingOutOfItsSheavesPlaneMakesNoEnergy) {
   }
 }
 
+
+TEST(OutOfPlane, UnderGaussSeidelTheHoistGivesBackNoMoreThanItLost) {
+  // Gauss-Seidel's unconverged sweeps leave the rope stretched, and what
+  // the winch put into that stretch is lost; as later sweeps pull it in,
+  // part comes back, and its watch reports the rise from the lowest point
+  // (5.35 J at 1 x 1, 0.04 J at 10 x 2 over the 2 kg sheave). But the
+  // balance never rises above where it started: no energy from nothing,
+  // in plane or out, over a sheave a fifth of the box or ten times it.
+  // Over a sheave 1e-6 of the box it makes 1e4 J outright (README,
+  // "Gauss-Seidel's price": it does not converge there), not tried here.
+  for (const test::Budget& b : test::kFourBudgets) {
+    if (b.solver != SolverKind::GaussSeidel) continue;
+    for (const double sheave_kg : {2.0, 100.0})
+      for (const bool out_of_plane : {false, true}) {
+        SCOPED_TRACE(test::name(b) + (out_of_plane ? ", swinging out of plane" : ", swinging in plane") + ", sheave " +
+                     std::to_string(sheave_kg) + " kg");
+        Scene s = hoist(b, out_of_plane ? Vec3(0.0, 0.0, 1.5) : Vec3(1.5, 0.0, 0.0), sheave_kg);
+        const double h = 1.0 / (s.frame_rate_hz * b.substeps), total = s.cables->totalLength(0);
+        EnergyWatch watch(s);
+        for (int f = 0; f < 215; ++f) {
+          test::frame(s);
+          ASSERT_FALSE(s.world->firstNonFinite()) << "t = " << s.world->time();
+          watch.check(s);
+          ASSERT_LE(watch.residual_J(), energyTolerance(h) * watch.scale_J()) << "t = " << s.world->time();
+        }
+        EXPECT_NEAR(s.cables->cables()[0].links[2].stored, 2.0, 1e-6);
+        EXPECT_NEAR(s.cables->totalLength(0), total, 1e-9 * total);
+        EXPECT_GT(s.cables->winchWork(), kLoad * kG * 2.0);
+      }
+  }
+}
 }  // namespace
 }  // namespace reeve

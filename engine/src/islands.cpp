@@ -204,10 +204,7 @@ void World::cutIslandRuns() {
   // measured, or else estimated by the bodies and constraints.
   island_runs_.assign(1, 0);
   if (!thread_runs_) thread_runs_ = std::make_unique<ThreadRun[]>(threads_);
-  for (int t = 0; t < threads_; ++t) {
-    thread_runs_[t].ns = 0.0;
-    thread_runs_[t].ran.reserve(islands_.size());  // a thread may run them all
-  }
+  for (int t = 0; t < threads_; ++t) thread_runs_[t].ran.reserve(islands_.size());  // a thread may run them all
   serial_ns_ = 0.0;
   timed_runs_ = 0;
   // The islands' news is not known until they run (driven: a drive may be
@@ -238,8 +235,8 @@ void World::balanceIslandRuns() {
   // The islands' work a run (ns), and whether it pays to share it: a run
   // on threads costs 1 to 2 us more than its work (its join), and every
   // line the threads share crosses between cores.
-  double shared_ns = 0.0;
-  for (int t = 0; t < threads_; ++t) shared_ns += thread_runs_[t].ns;
+  double shared_ns = 0.0;  // the threads' time, shared out over the islands they ran
+  for (const auto& island : islands_) shared_ns += island->ns;
   const double work = (share_runs_ ? shared_ns : serial_ns_) / timed_runs_;
   const bool shared = share_runs_;
   share_runs_ = work >= (share_runs_ ? 0.5 : 1.0) * min_shared_run_ns_;

@@ -568,7 +568,6 @@ void World::forEachIsland(const Fn& fn) {
     for (int k = 1; k < threads_; ++k)
       for (int i; (i = takeIsland(thread_runs_[(t + k) % threads_].left, false)) >= 0;) step(i);
     const double ns = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start).count();
-    mine.ns += ns;
     for (const int i : mine.ran) islands_[i]->ns += ns / static_cast<double>(mine.ran.size());
   });
   ++timed_runs_;

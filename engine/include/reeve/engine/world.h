@@ -571,13 +571,12 @@ class World {
   std::unique_ptr<ThreadPool> pool_;                // threads_ of them, once there are two islands
   std::vector<int> island_runs_;  // thread t's islands: [island_runs_[t], island_runs_[t + 1])
   /// Per thread, on a line of its own: its run as a shared run goes
-  /// (forEachIsland), and what it measured.
+  /// (forEachIsland).
   struct alignas(64) ThreadRun {
     // Its run's islands not yet taken, [front, end) as end << 32 | front:
     // its thread takes the front, a thread done with its own the end.
     std::atomic<std::uint64_t> left{0};
-    double ns = 0.0;       // spent on islands since the last balanceIslandRuns
-    std::vector<int> ran;  // the islands it ran in its last run, its own and others'
+    std::vector<int> ran;  // the islands it ran in its last run, its own and others' (their Island::ns)
   };
   std::unique_ptr<ThreadRun[]> thread_runs_;  // threads_ of them, made with the pool's first runs (cutIslandRuns)
   // Per island: what stepping it costs (ns a step, smoothed), as the

@@ -20,7 +20,7 @@ export LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp:print_suppressions=1"
 # scenes' whole runs take through the sanitizers already, over long
 # simulated spans, to check its accuracy (DESIGN, "CI time": 4 minutes of
 # the 7 this phase's tests took).
-long='^(Bow\.(DrawnSlowly|TheDrawForce|Released|TheScenesOwnDrive)|Contacts\.(TallStack|StackStandsAtEverySplit|StackOfFiveBoxes)|BothSolvers/Springs\.(TrapezoidalSpringKeeps|Cantilever)'
+long='^(Bow\.(DrawnSlowly|TheDrawForce|Released|TheScenesOwnDrive|HeldAtFullDraw)|Contacts\.(TallStack|StackStandsAtEverySplit|StackOfFiveBoxes)|BothSolvers/Springs\.(TrapezoidalSpringKeeps|Cantilever)'
 long+='|Determinism\.|Cli\.EveryShippedScenesCsv|Hand\.MoreFlexorLoad|Hull\.StackOfFive'
 # The energy ledger's four-budget matrix (issue 28): its bookkeeping in the
 # step runs in every scene's whole run here (Invariants), its watch in the

@@ -276,7 +276,11 @@ TEST(BenchTable1, ReportsTheSceneTheEnvironmentAndTheSpeedUpItMeasured) {
   EXPECT_TRUE(std::isfinite(std::stod(rows[0].at("marginal_ns_per_joint_iteration"))));
   EXPECT_NE(rows[0].at("fixed_us_per_substep"), "");
   EXPECT_EQ(rows[1].at("fixed_us_per_substep"), "");
+  // Each row's run watched by the energy ledger, off the clock: Simple
+  // creates none (test_energy_scenes.cpp at four budgets).
+  EXPECT_NE(out.find("direct: energy created (the ledger's watch): none"), std::string::npos) << out;
   for (const auto& row : rows) {
+    EXPECT_EQ(row.at("energy_created_J"), "0");
     EXPECT_EQ(row.at("joints"), "4");
     EXPECT_EQ(row.at("frames"), "10");
     const double min = std::stod(row.at("min_ms")), median = std::stod(row.at("median_ms"));

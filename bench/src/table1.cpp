@@ -116,7 +116,8 @@ void printSummary(const std::vector<Measured>& rows, const std::vector<std::stri
       if (m.solver == solver && m.energy_created_J > 0.0)
         created += std::string(created.empty() ? "" : ", ") + m.machine + " " + std::to_string(m.substeps) + " x " +
                    std::to_string(m.iterations) + " (" + number(m.energy_created_J, 3) + " J)";
-    std::printf("%s: energy created (the ledger's watch): %s\n", solver.c_str(), created.empty() ? "none" : created.c_str());
+    std::printf("%s: energy created (the ledger's watch): %s\n", solver.c_str(),
+                created.empty() ? "none" : created.c_str());
   }
 }
 

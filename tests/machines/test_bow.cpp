@@ -419,7 +419,8 @@ TEST(Bow, HeldAtFullDrawItStaysStill) {
     bool implicit;  // the springs implicit, not trapezoidal
     const char* name;
   };
-  for (const Case& c : {Case{{14, 2}, Projection::End, false, "14 x 2"}, Case{{30, 2}, Projection::End, false, "30 x 2"},
+  for (const Case& c : {Case{{14, 2}, Projection::End, false, "14 x 2"},
+                        Case{{30, 2}, Projection::End, false, "30 x 2"},
                         Case{kPaper, Projection::Start, false, "10 x 10, start projection"},
                         Case{kPaper, Projection::End, true, "10 x 10, implicit springs"}}) {
     Bow bow(c.budget);

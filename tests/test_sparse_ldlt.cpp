@@ -119,18 +119,25 @@ TEST(SparseLdlt, SolvesALongChain) {
   EXPECT_LE((A * x - b).norm(), 1e-13 * A.norm() * x.norm());
 }
 
+// Six rows on twelve unknowns, five random on overlapping pairs of bodies
+// and the sixth row 1 less 2 times row 3 (a belt's last span repeating the
+// others), off that by `off` in one entry.
+Dense beltJacobian(unsigned seed, double off) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Dense J = Dense::Zero(6, 12);
+  for (int r = 0; r < 5; ++r)
+    for (int d = 2 * r; d < 2 * r + 4; ++d) J(r, d) = u(rng);
+  J.row(5) = J.row(1) - 2.0 * J.row(3);
+  J(5, 2) += off;
+  return J;
+}
+
 // A belt's last span repeats the others (its row the sum of two): the pivot
 // is rounding's, the row dropped and its unknown 0; the rest still meet a
 // consistent right-hand side, and L^T z = e_k gives the dependency, A z = 0.
 TEST(SparseLdlt, DropsADependentRowAndGivesItsDependency) {
-  std::mt19937 rng(3);
-  const int dofs = 12;
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  Dense J = Dense::Zero(6, dofs);
-  for (int r = 0; r < 5; ++r)
-    for (int d = 2 * r; d < 2 * r + 4; ++d) J(r, d) = u(rng);
-  J.row(5) = J.row(1) - 2.0 * J.row(3);
-  const Dense A = J * J.transpose();
+  const Dense J = beltJacobian(3, 0.0), A = J * J.transpose();
   SparseLdlt ldlt;
   load(ldlt, A);
   ASSERT_EQ(ldlt.factor(1e-13), 1);
@@ -158,15 +165,7 @@ TEST(SparseLdlt, DropsADependentRowAndGivesItsDependency) {
 // (the light wheel between heavy loads of active_set.cpp); `keep` keeps a
 // row whose ratio the drop tolerance would have dropped.
 TEST(SparseLdlt, KeepsANearlyDependentRow) {
-  std::mt19937 rng(5);
-  const int dofs = 12;
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  Dense J = Dense::Zero(6, dofs);
-  for (int r = 0; r < 5; ++r)
-    for (int d = 2 * r; d < 2 * r + 4; ++d) J(r, d) = u(rng);
-  J.row(5) = J.row(1) - 2.0 * J.row(3);
-  J(5, 2) += 1e-4;
-  const Dense A = J * J.transpose();
+  const Dense J = beltJacobian(5, 1e-4), A = J * J.transpose();
   SparseLdlt ldlt;
   load(ldlt, A);
   EXPECT_EQ(ldlt.factor(1e-13), 0);

@@ -10,11 +10,14 @@
 #include <cstdlib>
 #include <fstream>
 #include <map>
+#include <mutex>
 #include <numbers>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "bench_threads.h"
 #include "reeve/machines/closed_forms.h"
 #include "reeve/machines/machines.h"
 #include "reeve/machines/probe.h"
@@ -383,7 +386,8 @@ TEST(BenchBatch, StepsCopiesOnOneAndMoreThreadsAndPrintsTheSpeedUp) {
       reeve(dir, "bench batch --only atwood --copies 3 --threads 2 --frames 2 --repeats 1 --csv " + csv.string());
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("# threads: 2 used"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("ms_per_scene_frame  speedup  ideal_speedup"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("ms_per_scene_frame  speedup  ideal_speedup  busy_speedup"), std::string::npos)
+      << r.out;
   EXPECT_NE(r.out.find("1.00"), std::string::npos) << r.out;  // 1 thread, the baseline, always run
   const std::string table = slurp(csv);
   EXPECT_NE(table.find("atwood,3,1,2,"), std::string::npos) << table;
@@ -406,14 +410,45 @@ TEST(BenchBatch, StepsCopiesOnOneAndMoreThreadsAndPrintsTheSpeedUp) {
     std::vector<std::string> cells;
     std::istringstream in(line);
     for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
-    ASSERT_GE(cells.size(), 7u) << line;
-    (cells[2] == "1" ? one : two) = {{"ms", cells[4]}, {"speedup", cells[5]}, {"ideal", cells[6]}};
+    ASSERT_GE(cells.size(), 8u) << line;
+    (cells[2] == "1" ? one : two) = {{"ms", cells[4]}, {"speedup", cells[5]}, {"ideal", cells[6]}, {"busy", cells[7]}};
   }
   EXPECT_NEAR(std::stod(one.at("ms")), per_core[0], 1e-3 * per_core[0]);
   EXPECT_EQ(one.at("ideal"), "1.00");
+  EXPECT_EQ(one.at("busy"), "1.00");  // one thread: no other core busy
   EXPECT_NEAR(std::stod(two.at("ideal")), ideal, 0.006) << table;
+  EXPECT_GT(std::stod(two.at("busy")), 0.0) << table;  // timed (its arithmetic: BenchThreads below)
   EXPECT_EQ(reeve(dir, "bench batch --only nope").code, 64);
   EXPECT_EQ(reeve(dir, "bench batch --copies 0").code, 64);
+}
+
+TEST(BenchThreads, EachThreadRunsOnItsOwnCoreAndTheirRatesAddUp) {
+  // timeOnCoresAtOnce: one thread pinned to each core given, all timed
+  // together (the ceiling busy cores leave: reeve bench batch, islands).
+  const std::vector<int> cores = allowedCores();
+  ASSERT_FALSE(cores.empty());
+  std::mutex mutex;
+  std::vector<int> ran_on;
+  const std::vector<double> ms = timeOnCoresAtOnce(
+      [&] {
+        const int cpu = sched_getcpu();
+        const std::lock_guard lock(mutex);
+        ran_on.push_back(cpu);
+        return 1.0 + cpu;
+      },
+      cores);
+  ASSERT_EQ(ms.size(), cores.size());
+  for (std::size_t i = 0; i < cores.size(); ++i) EXPECT_EQ(ms[i], 1.0 + cores[i]) << i;  // each on its core
+  std::sort(ran_on.begin(), ran_on.end());
+  EXPECT_EQ(ran_on, cores);
+  // A run that throws: the error reaches the caller, after every thread joined.
+  EXPECT_THROW(timeOnCoresAtOnce([]() -> double { throw std::runtime_error("boom"); }, cores), std::runtime_error);
+  // The fastest cores by one thread's time, and the busy rates summed: two
+  // threads at 1 and 2 ms against one alone at 1 ms run 1.5 times its rate.
+  EXPECT_EQ(fastestCores({3, 5, 7}, {2.0, 1.0, 1.5}, 2), (std::vector<int>{5, 7}));
+  EXPECT_EQ(fastestCores({3, 5, 7}, {2.0, 1.0, 1.5}, 9), (std::vector<int>{5, 7, 3}));
+  EXPECT_DOUBLE_EQ(busySpeedup(1.0, {1.0, 2.0}), 1.5);
+  EXPECT_DOUBLE_EQ(busySpeedup(1.0, {1.25, 1.25}), 1.6);
 }
 
 TEST(BenchOutputs, RefusesToOverwriteAndRejectsUnknownNames) {

@@ -1,6 +1,7 @@
 #include "bench_islands.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -34,31 +35,31 @@ struct Measured {
   std::vector<unsigned char> bits;  // the bodies' state after the last run
 };
 
+// One timed run of `frames` frames (after one untimed, which builds the
+// islands and solvers).
 Measured measure(const IslandsBenchOptions& o, SolverKind solver, int threads) {
   Measured out;
-  std::vector<double> runs;
-  for (int r = 0; r < o.repeats; ++r) {
-    machines::StaticMachine m = atwoods(o, solver, threads);
-    World& world = *m.scene.world;
-    world.step(1.0 / 60.0);  // untimed: builds the islands and solvers
-    const auto start = std::chrono::steady_clock::now();
-    for (int f = 0; f < o.frames; ++f) world.step(1.0 / 60.0);
-    runs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() /
-                   o.frames);
-    out.bits.clear();
-    for (BodyId id = 0; id < world.bodyCount(); ++id) {
-      const BodyState& b = world.body(id);
-      for (const double v : {b.x.x(), b.x.y(), b.x.z(), b.q.w(), b.q.x(), b.q.y(), b.q.z(), b.v.x(), b.v.y(),
-                             b.v.z(), b.omega.x(), b.omega.y(), b.omega.z()}) {
-        unsigned char bytes[sizeof v];
-        std::memcpy(bytes, &v, sizeof v);
-        out.bits.insert(out.bits.end(), bytes, bytes + sizeof v);
-      }
+  machines::StaticMachine m = atwoods(o, solver, threads);
+  World& world = *m.scene.world;
+  world.step(1.0 / 60.0);
+  const auto start = std::chrono::steady_clock::now();
+  for (int f = 0; f < o.frames; ++f) world.step(1.0 / 60.0);
+  out.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() / o.frames;
+  for (BodyId id = 0; id < world.bodyCount(); ++id) {
+    const BodyState& b = world.body(id);
+    for (const double v : {b.x.x(), b.x.y(), b.x.z(), b.q.w(), b.q.x(), b.q.y(), b.q.z(), b.v.x(), b.v.y(), b.v.z(),
+                           b.omega.x(), b.omega.y(), b.omega.z()}) {
+      unsigned char bytes[sizeof v];
+      std::memcpy(bytes, &v, sizeof v);
+      out.bits.insert(out.bits.end(), bytes, bytes + sizeof v);
     }
   }
-  std::sort(runs.begin(), runs.end());
-  out.ms = runs[runs.size() / 2];
   return out;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
 }
 
 }  // namespace
@@ -73,26 +74,59 @@ int benchIslands(const IslandsBenchOptions& o) {
   bench::printEnvironment(stdout, env);
   std::printf("# one scene of %d Atwood machines (islands), %d x %d, %d timed frames, median of %d runs\n",
               o.machines, o.substeps, o.iterations, o.frames, o.repeats);
-  std::printf("# speedup: over one thread on the fastest core; ideal_speedup: the cores' summed rates over it\n");
-  bench::Table table(
-      {"machines", "solver", "threads", "frames", "ms_per_frame", "speedup", "ideal_speedup", "same_bits"});
+  std::printf("# speedup: over one thread on the fastest core; ideal_speedup: the cores' summed rates over it; "
+              "busy_speedup: their rates with that many cores busy at once, timed beside each run\n");
+  bench::Table table({"machines", "solver", "threads", "frames", "ms_per_frame", "speedup", "ideal_speedup",
+                      "busy_speedup", "same_bits"});
+  const std::vector<int> cores = allowedCores();
   for (const std::string& name : o.solvers) {
     const SolverKind solver = name == "direct" ? SolverKind::Direct : SolverKind::GaussSeidel;
-    Measured one;  // on the fastest core
+    // One thread on each core, the fastest core's the baseline: the
+    // median of its runs, and its last run's bits.
+    Measured one;
     bool cores_agree = true;
-    const std::vector<double> per_core = timeOnEachCore([&] {
-      Measured m = measure(o, solver, 1);
-      const double ms = m.ms;
-      cores_agree = cores_agree && (one.bits.empty() || m.bits == one.bits);
-      if (one.bits.empty() || ms < one.ms) one = std::move(m);
-      return ms;
-    });
+    const std::vector<double> per_core = timeOnEachCore(
+        [&] {
+          std::vector<double> runs;
+          Measured m;
+          for (int r = 0; r < o.repeats; ++r) {
+            m = measure(o, solver, 1);
+            runs.push_back(m.ms);
+          }
+          const double ms = m.ms = median(runs);
+          cores_agree = cores_agree && (one.bits.empty() || m.bits == one.bits);
+          if (one.bits.empty() || ms < one.ms) one = std::move(m);
+          return ms;
+        },
+        cores);
     printCoreTimes(name, per_core, "ms a frame");
     for (const int t : threads) {
-      const Measured now = t == 1 ? one : measure(o, solver, t);
-      table.add({std::to_string(o.machines), name, std::to_string(t), std::to_string(o.frames), fixed(now.ms, "%.4g"),
-                 fixed(one.ms / now.ms, "%.2f"), fixed(idealSpeedup(per_core, t), "%.2f"),
-                 cores_agree && now.bits == one.bits ? "yes" : "NO"});
+      if (t == 1) {
+        table.add({std::to_string(o.machines), name, "1", std::to_string(o.frames), fixed(one.ms, "%.4g"), "1.00",
+                   "1.00", "1.00", cores_agree ? "yes" : "NO"});
+        continue;
+      }
+      // Each run beside t one-thread runs on the t fastest cores at once:
+      // the host's load on them changes from second to second.
+      const std::vector<int> busy_cores = fastestCores(cores, per_core, t);
+      std::vector<double> runs, busy;
+      bool same = cores_agree;
+      std::atomic<bool> busy_same{true};  // the one-thread runs side by side end on the baseline's bits too
+      for (int r = 0; r < o.repeats; ++r) {
+        const Measured now = measure(o, solver, t);
+        runs.push_back(now.ms);
+        same = same && now.bits == one.bits;
+        const auto side_by_side = [&] {
+          const Measured m = measure(o, solver, 1);
+          if (m.bits != one.bits) busy_same = false;
+          return m.ms;
+        };
+        busy.push_back(busySpeedup(one.ms, timeOnCoresAtOnce(side_by_side, busy_cores)));
+      }
+      const double ms = median(runs);
+      table.add({std::to_string(o.machines), name, std::to_string(t), std::to_string(o.frames), fixed(ms, "%.4g"),
+                 fixed(one.ms / ms, "%.2f"), fixed(idealSpeedup(per_core, t), "%.2f"), fixed(median(busy), "%.2f"),
+                 same && busy_same ? "yes" : "NO"});
     }
   }
   table.print(stdout);

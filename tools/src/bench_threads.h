@@ -1,5 +1,6 @@
-// The thread counts a thread bench runs (reeve bench batch, islands), and
-// its one-thread baseline timed on each core.
+// The thread counts a thread bench runs (reeve bench batch, islands), its
+// one-thread baseline timed on each core, and one thread timed on each of
+// several cores at once: the ceiling that busy cores leave.
 #pragma once
 
 #include <pthread.h>
@@ -7,9 +8,13 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <exception>
 #include <functional>
+#include <latch>
+#include <mutex>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "reeve/engine/thread_pool.h"
@@ -28,28 +33,94 @@ inline std::vector<int> threadCounts(std::vector<int> asked) {
   return asked;
 }
 
-/// One thread's time (ms, as `timed` returns it) on each core this process
-/// may run on, the calling thread pinned to each in turn and then given
-/// back the cores it had. A VM's cores need not be equally fast (DESIGN,
-/// "This VM's two cores are not equally fast": 1 and 0.71 measured), and an
-/// unpinned one-thread row lands on either. Where pinning fails, one
-/// unpinned time.
-inline std::vector<double> timeOnEachCore(const std::function<double()>& timed) {
+/// The cores this process may run on (CPU numbers, increasing); empty
+/// where they cannot be read.
+inline std::vector<int> allowedCores() {
   cpu_set_t allowed;
   CPU_ZERO(&allowed);
-  if (pthread_getaffinity_np(pthread_self(), sizeof allowed, &allowed) != 0) return {timed()};
+  if (pthread_getaffinity_np(pthread_self(), sizeof allowed, &allowed) != 0) return {};
+  std::vector<int> cores;
+  for (int cpu = 0; cpu < CPU_SETSIZE; ++cpu)
+    if (CPU_ISSET(cpu, &allowed)) cores.push_back(cpu);
+  return cores;
+}
+
+/// Pins the calling thread to `cpu`; false where that fails.
+inline bool pinTo(int cpu) {
+  cpu_set_t one;
+  CPU_ZERO(&one);
+  CPU_SET(cpu, &one);
+  return pthread_setaffinity_np(pthread_self(), sizeof one, &one) == 0;
+}
+
+/// One thread's time (ms, as `timed` returns it) on each of `cores`
+/// (allowedCores()), the calling thread pinned to each in turn and then
+/// given back the cores it had. A VM's cores need not be equally fast
+/// (DESIGN, "This VM's two cores are not equally fast": 1 and 0.71
+/// measured), and an unpinned one-thread row lands on either. Where
+/// pinning fails, one unpinned time.
+inline std::vector<double> timeOnEachCore(const std::function<double()>& timed, const std::vector<int>& cores) {
+  cpu_set_t allowed;
+  CPU_ZERO(&allowed);
+  if (cores.empty() || pthread_getaffinity_np(pthread_self(), sizeof allowed, &allowed) != 0) return {timed()};
   std::vector<double> ms;
-  for (int cpu = 0; cpu < CPU_SETSIZE; ++cpu) {
-    if (!CPU_ISSET(cpu, &allowed)) continue;
-    cpu_set_t one;
-    CPU_ZERO(&one);
-    CPU_SET(cpu, &one);
-    if (pthread_setaffinity_np(pthread_self(), sizeof one, &one) != 0) continue;
-    ms.push_back(timed());
-  }
+  for (const int cpu : cores)
+    if (pinTo(cpu)) ms.push_back(timed());
   pthread_setaffinity_np(pthread_self(), sizeof allowed, &allowed);
-  if (ms.empty()) ms.push_back(timed());
+  if (ms.size() != cores.size()) return {timed()};
   return ms;
+}
+
+/// `timed` on one thread per core of `cores`, each pinned to its core
+/// (unpinned where that fails) and all started together: each thread's
+/// time (ms). A VM's cores can slow each other while all are busy (the
+/// host's other work), which timeOnEachCore, one core at a time, does not
+/// show. `timed` must be safe to run on several threads at once (each run
+/// stepping a World of its own).
+inline std::vector<double> timeOnCoresAtOnce(const std::function<double()>& timed, const std::vector<int>& cores) {
+  std::vector<double> ms(cores.size());
+  std::latch start(static_cast<std::ptrdiff_t>(cores.size()));
+  std::exception_ptr error;
+  std::mutex error_mutex;
+  {
+    std::vector<std::jthread> threads;
+    for (std::size_t i = 0; i < cores.size(); ++i)
+      threads.emplace_back([&, i] {
+        pinTo(cores[i]);
+        start.arrive_and_wait();
+        try {
+          ms[i] = timed();
+        } catch (...) {
+          const std::lock_guard lock(error_mutex);
+          if (!error) error = std::current_exception();
+        }
+      });
+  }  // joined
+  if (error) std::rethrow_exception(error);
+  return ms;
+}
+
+/// The `threads` fastest of `cores` by one thread's time on each
+/// (`per_core`, ms, in the order of `cores`), fastest first.
+inline std::vector<int> fastestCores(const std::vector<int>& cores, const std::vector<double>& per_core,
+                                     int threads) {
+  std::vector<std::size_t> order;
+  for (std::size_t i = 0; i < per_core.size() && i < cores.size(); ++i) order.push_back(i);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return per_core[a] < per_core[b]; });
+  std::vector<int> fastest;
+  for (std::size_t i = 0; i < order.size() && static_cast<int>(fastest.size()) < threads; ++i)
+    fastest.push_back(cores[order[i]]);
+  return fastest;
+}
+
+/// The most that threads side by side can run over one thread alone on
+/// the fastest core (`one`, ms), given each one's time with all their
+/// cores busy at once (`busy`, ms, timeOnCoresAtOnce): the rates summed,
+/// the sum of one / busy[i].
+inline double busySpeedup(double one, const std::vector<double>& busy) {
+  double rate = 0.0;
+  for (const double ms : busy) rate += one / ms;
+  return rate;
 }
 
 /// The most that `threads` threads can run over the fastest core alone,

@@ -139,27 +139,34 @@ TEST(SwingEnergy, AnInvertedPendulumOnATrapezoidalSpringGainsAtTheEndAndKeepsIts
   // keeps it; so the bow held at full draw (DESIGN.md, "The held bow").
   // Hanging on a spring of m g L (swing 1/2 (k + m g L) 0.1^2), the end
   // loses it.
-  const auto run = [](bool inverted, int substeps, const char* projection, const char* method = "direct") {
-    const double L = 1.0, k = (inverted ? 2.0 : 1.0) * kG * L, tilt = 0.1;
+  const auto run = [](bool inverted, int substeps, const char* projection, const char* method = "direct",
+                      double mass = 1.0) {
+    const auto exact = [](double v) {  // every digit: a stiffness of 2e-5 N m/rad too
+      char text[32];
+      std::snprintf(text, sizeof text, "%.17g", v);
+      return std::string(text);
+    };
+    const double L = 1.0, k = (inverted ? 2.0 : 1.0) * mass * kG * L, tilt = 0.1;
     const double y = inverted ? L : -L;
     const std::string json = R"({"name": "inverted", "duration_s": 100,
       "solver": {"substeps": )" + std::to_string(substeps) + R"(, "iterations": 2, "method": ")" + method +
                              R"(", "projection": ")" + projection + R"("},
       "bodies": [{"name": "pin", "shape": {"type": "sphere", "radius_m": 0.01}, "static": true, "position_m": [0, 0, 0]},
-                 {"name": "bob", "shape": {"type": "sphere", "radius_m": 0.05}, "mass_kg": 1,
+                 {"name": "bob", "shape": {"type": "sphere", "radius_m": 0.05}, "mass_kg": )" +
+                             exact(mass) + R"(,
                   "position_m": [)" + std::to_string(-y * std::sin(tilt)) + ", " +
                              std::to_string(y * std::cos(tilt)) + R"(, 0],
                   "orientation": {"axis": [0, 0, 1], "angle_rad": )" + std::to_string(tilt) + R"(}}],
       "hinges": [{"body": "bob", "other": "pin", "anchor_m": [0, 0, 0], "axis": [0, 0, 1],
                   "drive": {"mode": "angle", "target_rad": 0, "stiffness_N_m_per_rad": )" +
-                             std::to_string(k) + R"(, "integration": "trapezoidal"}}]})";
+                             exact(k) + R"(, "integration": "trapezoidal"}}]})";
     Scene scene = parseScene(json, "<inverted pendulum>");
     World& world = *scene.world;
     const auto total = [&] {
       const WorldEnergy e = world.energy();
       return e.kinetic + e.gravity + e.elastic;
     };
-    const double e0 = total(), swing = 0.5 * (inverted ? k - kG * L : k + kG * L) * tilt * tilt;
+    const double e0 = total(), swing = 0.5 * (inverted ? k - mass * kG * L : k + mass * kG * L) * tilt * tilt;
     double most = 0.0;  // the largest |change| on the way
     for (int f = 0; f < 6000; ++f) {  // 100 s, 50 periods
       world.step(1.0 / 60.0);
@@ -180,6 +187,13 @@ TEST(SwingEnergy, AnInvertedPendulumOnATrapezoidalSpringGainsAtTheEndAndKeepsIts
   for (const auto& [substeps, gain] : {std::pair{10, end10}, std::pair{32, end32}, std::pair{10, gauss_seidel10}}) {
     const double h = 1.0 / (60.0 * substeps), predicted = std::expm1(6000.0 * substeps * kG * h * h / I);
     EXPECT_NEAR(gain, predicted, 0.15 * predicted) << substeps;
+  }
+  // The gain is mu h^2 / I a substep, mu = m g L and I = m (L^2 + 0.4
+  // r^2): the bob's mass cancels. A bob of 1e-6 or 1e6 kg on a spring
+  // scaled with it gains what the 1 kg one does, under both solvers.
+  for (const double mass : {1e-6, 1e6}) {
+    EXPECT_NEAR(run(true, 10, "end", "direct", mass).first, end10, 1e-6 * end10) << mass;
+    EXPECT_NEAR(run(true, 10, "end", "gauss-seidel", mass).first, gauss_seidel10, 1e-6 * gauss_seidel10) << mass;
   }
   // The start's swing beats by 1.3 % over about 300 s and comes back to
   // 5e-6 (measured, not derived): bounded, against the end's 378 %.

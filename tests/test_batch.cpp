@@ -2,6 +2,7 @@
 // pool runs every index once, and a scene stepped in a batch on any number
 // of threads ends on the same bits as stepped alone.
 #include <gtest/gtest.h>
+#include <sched.h>
 
 #include <atomic>
 #include <cfenv>
@@ -49,6 +50,21 @@ TEST(ThreadPool, RethrowsATasksExceptionAfterTheOtherIndicesRan) {
   pool.run(4, [&](int) { ran.fetch_add(1); });  // still usable
   EXPECT_EQ(ran.load(), 54);
   EXPECT_THROW(ThreadPool(0), std::invalid_argument);
+}
+
+TEST(ThreadPool, CountsTheCoresThisProcessMayRunOn) {
+  // Its affinity (taskset, a container's cpuset), not the machine's cores:
+  // two threads on one allowed core spin-wait against each other.
+  cpu_set_t allowed;
+  ASSERT_EQ(sched_getaffinity(0, sizeof allowed, &allowed), 0);
+  EXPECT_EQ(ThreadPool::cores(), CPU_COUNT(&allowed));
+  cpu_set_t one;
+  CPU_ZERO(&one);
+  CPU_SET(sched_getcpu(), &one);
+  ASSERT_EQ(sched_setaffinity(0, sizeof one, &one), 0);
+  EXPECT_EQ(ThreadPool::cores(), 1);
+  ASSERT_EQ(sched_setaffinity(0, sizeof allowed, &allowed), 0);
+  EXPECT_EQ(ThreadPool::cores(), CPU_COUNT(&allowed));
 }
 
 // Every double of the bodies' state.

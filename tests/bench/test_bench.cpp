@@ -447,6 +447,8 @@ TEST(BenchThreads, EachThreadRunsOnItsOwnCoreAndTheirRatesAddUp) {
   // threads at 1 and 2 ms against one alone at 1 ms run 1.5 times its rate.
   EXPECT_EQ(fastestCores({3, 5, 7}, {2.0, 1.0, 1.5}, 2), (std::vector<int>{5, 7}));
   EXPECT_EQ(fastestCores({3, 5, 7}, {2.0, 1.0, 1.5}, 9), (std::vector<int>{5, 7, 3}));
+  EXPECT_EQ(fastestCores({3, 5}, {1.0}, 2), (std::vector<int>{-1, -1}));  // not timed core by core: unpinned
+  EXPECT_EQ(timeOnCoresAtOnce([] { return 2.0; }, {-1, -1}), (std::vector<double>{2.0, 2.0}));
   EXPECT_DOUBLE_EQ(busySpeedup(1.0, {1.0, 2.0}), 1.5);
   EXPECT_DOUBLE_EQ(busySpeedup(1.0, {1.25, 1.25}), 1.6);
 }

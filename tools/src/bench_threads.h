@@ -71,11 +71,11 @@ inline std::vector<double> timeOnEachCore(const std::function<double()>& timed, 
   return ms;
 }
 
-/// `timed` on one thread per core of `cores`, each pinned to its core
-/// (unpinned where that fails) and all started together: each thread's
-/// time (ms). A VM's cores can slow each other while all are busy (the
-/// host's other work), which timeOnEachCore, one core at a time, does not
-/// show. `timed` must be safe to run on several threads at once (each run
+/// `timed` on one thread per entry of `cores`, each pinned to its core
+/// (unpinned for -1, or where pinning fails) and all started together:
+/// each thread's time (ms). A VM's cores can slow each other while all
+/// are busy (the host's other work), which timeOnEachCore, one core at a
+/// time, does not show. `timed` must be safe to run on several threads at once (each run
 /// stepping a World of its own).
 inline std::vector<double> timeOnCoresAtOnce(const std::function<double()>& timed, const std::vector<int>& cores) {
   std::vector<double> ms(cores.size());
@@ -86,7 +86,7 @@ inline std::vector<double> timeOnCoresAtOnce(const std::function<double()>& time
     std::vector<std::jthread> threads;
     for (std::size_t i = 0; i < cores.size(); ++i)
       threads.emplace_back([&, i] {
-        pinTo(cores[i]);
+        if (cores[i] >= 0) pinTo(cores[i]);
         start.arrive_and_wait();
         try {
           ms[i] = timed();
@@ -101,9 +101,12 @@ inline std::vector<double> timeOnCoresAtOnce(const std::function<double()>& time
 }
 
 /// The `threads` fastest of `cores` by one thread's time on each
-/// (`per_core`, ms, in the order of `cores`), fastest first.
+/// (`per_core`, ms, in the order of `cores`), fastest first; where the
+/// cores were not timed one by one (timeOnEachCore's one unpinned time),
+/// `threads` unpinned slots (-1).
 inline std::vector<int> fastestCores(const std::vector<int>& cores, const std::vector<double>& per_core,
                                      int threads) {
+  if (per_core.size() != cores.size()) return std::vector<int>(std::max(threads, 0), -1);
   std::vector<std::size_t> order;
   for (std::size_t i = 0; i < per_core.size() && i < cores.size(); ++i) order.push_back(i);
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return per_core[a] < per_core[b]; });

@@ -40,8 +40,9 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--iterations", run.iterations, "Solver iterations per substep, 1..100000 (default: the scene's)")
       ->check(CLI::Range(1, 100000));
   run_cmd->add_option("--threads", run.threads,
-                      "Threads to step the scene's islands on, 1..1024 (default: the cores; shared only where a "
-                      "substep's islands take 20 us or more); the results are the same for any number")
+                      "Threads to step the scene's islands on, 1..1024 (default: the cores this process may run on; "
+                      "shared only where a substep's islands take 20 us or more); the results are the same for any "
+                      "number")
       ->check(CLI::Range(1, 1024));
   run_cmd->add_option("--solver", run.solver,
                       "direct (joints and cables solved together) or gauss-seidel (the paper's); overrides the scene")
@@ -82,7 +83,8 @@ int main(int argc, char** argv) {
   view_cmd->add_option("--iterations", view.overrides.iterations, "Solver iterations per substep, 1..100000")
       ->check(CLI::Range(1, 100000));
   view_cmd->add_option("--threads", view.overrides.threads,
-                       "Threads to step the scene's islands on, 1..1024 (default: the cores), as reeve run")
+                       "Threads to step the scene's islands on, 1..1024 (default: the cores this process may run "
+                       "on), as reeve run")
       ->check(CLI::Range(1, 1024));
   view_cmd->add_option("--solver", view_solver, "direct or gauss-seidel (default: the scene's)")
       ->check(CLI::IsMember({"direct", "gauss-seidel"}));

@@ -55,8 +55,9 @@ class ThreadPool {
     runIndices(threads(), [](const void* t, int i) { (*static_cast<const Task*>(t))(i); }, &task, true);
   }
 
-  /// The cores this machine offers (std::thread::hardware_concurrency),
-  /// at least 1.
+  /// The cores this process may run on (its CPU affinity: taskset, a
+  /// container's cpuset; the machine's, std::thread::hardware_concurrency,
+  /// where that cannot be read), at least 1.
   static int cores();
 
  private:

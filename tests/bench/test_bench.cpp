@@ -451,6 +451,8 @@ TEST(BenchThreads, EachThreadRunsOnItsOwnCoreAndTheirRatesAddUp) {
   EXPECT_EQ(timeOnCoresAtOnce([] { return 2.0; }, {-1, -1}), (std::vector<double>{2.0, 2.0}));
   EXPECT_DOUBLE_EQ(busySpeedup(1.0, {1.0, 2.0}), 1.5);
   EXPECT_DOUBLE_EQ(busySpeedup(1.0, {1.25, 1.25}), 1.6);
+  EXPECT_EQ(median({3.0, 1.0, 2.0}), 2.0);  // of the timed runs
+  EXPECT_EQ(median({4.0, 1.0, 3.0, 2.0}), 3.0);
 }
 
 TEST(BenchOutputs, RefusesToOverwriteAndRejectsUnknownNames) {

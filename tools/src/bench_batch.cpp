@@ -30,11 +30,6 @@ double measure(const std::filesystem::path& file, int copies, int threads, int f
   return ms / (static_cast<double>(frames) * copies);
 }
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
-
 }  // namespace
 
 int benchBatch(const BatchBenchOptions& o) {

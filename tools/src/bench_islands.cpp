@@ -57,11 +57,6 @@ Measured measure(const IslandsBenchOptions& o, SolverKind solver, int threads) {
   return out;
 }
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
-
 }  // namespace
 
 int benchIslands(const IslandsBenchOptions& o) {

@@ -33,6 +33,12 @@ inline std::vector<int> threadCounts(std::vector<int> asked) {
   return asked;
 }
 
+/// The median of `runs` (ms; the upper one of an even count), not empty.
+inline double median(std::vector<double> runs) {
+  std::sort(runs.begin(), runs.end());
+  return runs[runs.size() / 2];
+}
+
 /// The cores this process may run on (CPU numbers, increasing); empty
 /// where they cannot be read.
 inline std::vector<int> allowedCores() {

@@ -210,16 +210,17 @@ CellOutcome runIsolated(const std::function<CellReport()>& cell, double timeout_
   return out;
 }
 
-struct Point {
+// A chain of K wheels and its ms a frame.
+struct SizeTime {
   int k;
   double ms;
 };
 
 // Least-squares slope of log(ms) against log(K) over `points`; NaN with
 // fewer than two distinct K.
-double fittedExponent(const std::vector<Point>& points) {
+double fittedExponent(const std::vector<SizeTime>& points) {
   double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
-  for (const Point& p : points) {
+  for (const SizeTime& p : points) {
     const double x = std::log(p.k), y = std::log(p.ms);
     n += 1;
     sx += x;
@@ -232,20 +233,20 @@ double fittedExponent(const std::vector<Point>& points) {
 }
 
 // The exponent the report prints: over the cells run with K >= 16.
-double reportedExponent(const std::vector<Point>& points) {
-  std::vector<Point> large;
-  std::copy_if(points.begin(), points.end(), std::back_inserter(large), [](const Point& p) { return p.k >= 16; });
+double reportedExponent(const std::vector<SizeTime>& points) {
+  std::vector<SizeTime> large;
+  std::copy_if(points.begin(), points.end(), std::back_inserter(large), [](const SizeTime& p) { return p.k >= 16; });
   return fittedExponent(large);
 }
 
 // ms/frame predicted at `k` from the last cell run, with the exponent so
 // far (over K >= 16 once there are two such cells, else over all; 1, linear,
 // from a single cell).
-double predictedMs(const std::vector<Point>& points, int k) {
+double predictedMs(const std::vector<SizeTime>& points, int k) {
   double exponent = reportedExponent(points);
   if (!std::isfinite(exponent)) exponent = fittedExponent(points);
   if (!std::isfinite(exponent)) exponent = 1.0;
-  const Point& last = points.back();
+  const SizeTime& last = points.back();
   return last.ms * std::pow(static_cast<double>(k) / last.k, exponent);
 }
 
@@ -271,10 +272,10 @@ std::vector<Sequence> sequences(const ScalingOptions& o) {
 
 // Runs one series x solver x budget over the K of `o` in increasing order,
 // adding a row per K; returns the cells that ran.
-std::vector<Point> runSequence(const Sequence& seq, const ScalingOptions& o, Table& table) {
+std::vector<SizeTime> runSequence(const Sequence& seq, const ScalingOptions& o, Table& table) {
   std::vector<int> ks = o.k;
   std::sort(ks.begin(), ks.end());
-  std::vector<Point> points;
+  std::vector<SizeTime> points;
   std::string stop;  // once set, why every larger K is skipped
   for (const int k : ks) {
     const std::string solver = solverMethodName(seq.solver);

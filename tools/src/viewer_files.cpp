@@ -41,7 +41,7 @@ const char* driveName(HingeDrive::Mode mode) {
   return "none";
 }
 
-std::string bodyName(const World& world, BodyId id) {
+std::string plainBodyName(const World& world, BodyId id) {
   return id == kWorldBody ? std::string("world") : world.bodyDef(id).name;
 }
 
@@ -115,7 +115,9 @@ nlohmann::json sceneHead(const Scene& scene) {
   for (const Cable& cable : scene.cables->cables())
     cables.push_back({{"name", cable.name}, {"joints", cable.joints.size()}, {"winch", cable.winch.has_value()}});
   for (const HingeJoint& j : world.hinges())
-    hinges.push_back({{"body", bodyName(world, j.a)}, {"other", bodyName(world, j.b)}, {"drive", driveName(j.drive.mode)}});
+    hinges.push_back({{"body", plainBodyName(world, j.a)},
+                      {"other", plainBodyName(world, j.b)},
+                      {"drive", driveName(j.drive.mode)}});
   nlohmann::json camera = nullptr;
   if (scene.camera)
     camera = {{"eye", vec(scene.camera->eye)}, {"target", vec(scene.camera->target)},

@@ -8,7 +8,7 @@
 
 #include "atwood_machine.h"
 
-namespace reeve {
+namespace reeve::test_applied_load {
 namespace {
 
 TEST(AppliedLoad, AFreeBodyAcceleratesAtForceOverMassAndTorqueOverInertia) {
@@ -93,4 +93,4 @@ TEST(AppliedLoad, StaticBodiesIgnoreIt) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_applied_load

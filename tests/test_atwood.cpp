@@ -4,7 +4,7 @@
 
 #include "atwood_machine.h"
 
-namespace reeve {
+namespace reeve::test_atwood {
 namespace {
 
 void expectAnalytic(double m1, double m2, int substeps, int iterations) {
@@ -46,4 +46,4 @@ TEST(Atwood, CableLengthIsConservedAndStaysTaut) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_atwood

@@ -18,7 +18,7 @@
 #include "reeve/engine/thread_pool.h"
 #include "scene_fixture.h"
 
-namespace reeve {
+namespace reeve::test_batch {
 namespace {
 
 TEST(ThreadPool, RunsEveryIndexOnceForAnyThreadCountAndSize) {
@@ -177,4 +177,4 @@ TEST(Batch, RefusesASceneListedTwiceAndNegativeFrames) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_batch

@@ -16,7 +16,7 @@
 #include "reeve/cable/cable.h"
 #include "solver_budgets.h"
 
-namespace reeve {
+namespace reeve::test_break {
 namespace {
 
 constexpr double kG = 9.81;
@@ -403,4 +403,4 @@ TEST(Break, ABreakingTensionMustBePositive) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_break

@@ -23,7 +23,7 @@
 #include "reeve/cable/cable.h"
 #include "solver_budgets.h"
 
-namespace reeve {
+namespace reeve::test_cable_damping {
 namespace {
 
 constexpr double kG = 9.81, kFrame = 1.0 / 60.0;
@@ -421,4 +421,4 @@ TEST(CableDamping, NegativeNonFiniteAndRigidDampingAreRefused) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_cable_damping

@@ -8,7 +8,7 @@
 
 #include "scene_fixture.h"
 
-namespace reeve {
+namespace reeve::test_capstan_scene {
 namespace {
 
 TEST(CapstanScene, HoldsSlidesAndRunsFreeAsItsDescriptionSays) {
@@ -57,4 +57,4 @@ TEST(CapstanScene, HoldsSlidesAndRunsFreeAsItsDescriptionSays) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_capstan_scene

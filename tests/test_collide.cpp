@@ -9,7 +9,7 @@
 
 #include "reeve/engine/collide.h"
 
-namespace reeve {
+namespace reeve::test_collide {
 namespace {
 
 using std::numbers::pi;
@@ -147,4 +147,4 @@ TEST(Collide, ThinRodOnAWheelTouchesOnTheRadiusThroughBothAxes) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_collide

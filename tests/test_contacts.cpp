@@ -19,7 +19,7 @@
 
 #include "contact_fixture.h"
 
-namespace reeve {
+namespace reeve::test_contacts {
 namespace {
 
 using namespace test;
@@ -368,9 +368,9 @@ TEST(Contacts, ThinRodRestsOnAWheelWithoutSpinningOrSlidingAlongTheAxle) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_contacts
 
-namespace reeve {
+namespace reeve::test_contacts {
 namespace {
 
 using namespace test;
@@ -420,4 +420,4 @@ TEST(Contacts, ContactBitsAndExcludedPairsChooseWhichBodiesTouch) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_contacts

@@ -12,7 +12,7 @@
 #include "reeve/engine/correction.h"
 #include "reeve/engine/world.h"
 
-namespace reeve {
+namespace reeve::test_correction {
 namespace {
 
 BodyState freeBox(double mass, const Vec3& half, const Vec3& x) {
@@ -298,4 +298,4 @@ TEST(Integration, TheGuardNamesATensionThatOverflowsWhileTheBodiesStayFinite) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_correction

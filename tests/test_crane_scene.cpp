@@ -11,7 +11,7 @@
 #include "reeve/scene/energy.h"
 #include "scene_fixture.h"
 
-namespace reeve {
+namespace reeve::test_crane_scene {
 namespace {
 
 TEST(CraneScene, LiftsSlewsAndSetsTheLoadDown) {
@@ -110,4 +110,4 @@ TEST(CraneScene, ATorqueLimitedAngleDriveSlewsToItsTargetWithoutRopeChatter) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_crane_scene

@@ -11,7 +11,7 @@
 
 #include "reeve/scene/scene.h"
 
-namespace reeve {
+namespace reeve::test_determinism {
 namespace {
 
 // Every double of the state a run reports: bodies' position, orientation,
@@ -77,4 +77,4 @@ TEST(Determinism, ASolveDoneAgainStartsFromWhatTheFirstStartedFrom) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_determinism

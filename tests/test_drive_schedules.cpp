@@ -16,7 +16,7 @@
 
 #include "solver_budgets.h"
 
-namespace reeve {
+namespace reeve::test_drive_schedules {
 namespace {
 
 using std::numbers::pi;
@@ -303,4 +303,4 @@ TEST(DriveTargets, WorldRefusesAScheduleWhoseTimesDoNotIncrease) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_drive_schedules

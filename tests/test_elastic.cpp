@@ -10,7 +10,7 @@
 #include "scene_fixture.h"
 #include "solver_budgets.h"
 
-namespace reeve {
+namespace reeve::test_elastic {
 namespace {
 
 TEST(Elastic, HangingWeightsStretchTheirCablesByComplianceTimesTension) {
@@ -150,9 +150,9 @@ TEST(Elastic, ZeroComplianceIsInextensibleAtTwentyIterations) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_elastic
 
-namespace reeve {
+namespace reeve::test_elastic {
 namespace {
 
 TEST(Elastic, ASoftCableLetsItsWeightRestOnTheGround) {
@@ -173,4 +173,4 @@ TEST(Elastic, ASoftCableLetsItsWeightRestOnTheGround) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_elastic

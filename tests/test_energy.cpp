@@ -11,7 +11,7 @@
 #include "reeve/scene/energy.h"
 #include "solver_budgets.h"
 
-namespace reeve {
+namespace reeve::test_energy {
 namespace {
 
 constexpr double kG = 9.81;
@@ -319,4 +319,4 @@ TEST(EnergyWatch, AWinchHaulingOverAFrictionDrumCreatesNothingAndItsFrictionIsCo
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_energy

@@ -30,7 +30,7 @@
 #include "ledger_ratchet.h"
 #include "solver_budgets.h"
 
-namespace reeve {
+namespace reeve::test_energy_generated {
 namespace {
 
 using nlohmann::json;
@@ -514,6 +514,6 @@ INSTANTIATE_TEST_SUITE_P(EnergyLedger, GeneratedMachineAtFourBudgets, testing::V
                          [](const testing::TestParamInfo<Cell>& info) { return test::parameterName(cellName(info.param)); });
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_energy_generated
 
 

@@ -31,7 +31,7 @@
 #include "ledger_ratchet.h"  // parameterName
 #include "solver_budgets.h"
 
-namespace reeve {
+namespace reeve::test_energy_joint_chains {
 namespace {
 
 constexpr int kChains = 32;
@@ -167,4 +167,4 @@ INSTANTIATE_TEST_SUITE_P(EnergyLedger, JointChains,
                          });
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_energy_joint_chains

@@ -27,7 +27,7 @@
 #include "scene_fixture.h"
 #include "solver_budgets.h"
 
-namespace reeve {
+namespace reeve::test_energy_scenes {
 namespace {
 
 struct Cell {
@@ -147,4 +147,4 @@ INSTANTIATE_TEST_SUITE_P(EnergyLedger, EveryShippedSceneAtFourBudgets, testing::
                          [](const testing::TestParamInfo<Cell>& info) { return test::parameterName(cellName(info.param)); });
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_energy_scenes

@@ -9,7 +9,7 @@
 
 #include "reeve/engine/world.h"
 
-namespace reeve {
+namespace reeve::test_fast_spin {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -53,9 +53,9 @@ TEST(FastSpin, ThinRodSpunOffItsAxesNeverGainsEnergy) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_fast_spin
 
-namespace reeve {
+namespace reeve::test_fast_spin {
 namespace {
 
 TEST(FastSpin, FlatBoxesSpunNearTheirMiddleAxisNeverGainEnergyOrMomentum) {
@@ -107,4 +107,4 @@ TEST(FastSpin, RotateExactlyIsTheExponentialMapAtEveryAngle) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_fast_spin

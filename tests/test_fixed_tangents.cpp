@@ -13,7 +13,7 @@
 #include "reeve/cable/cable.h"
 #include "scene_fixture.h"
 
-namespace reeve {
+namespace reeve::test_fixed_tangents {
 namespace {
 
 // The largest misfit, over every span of `s` between two rolling links,
@@ -159,4 +159,4 @@ TEST(FixedTangents, ASpanWhoseHybridRunsOutIsEvaluatedAfresh) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_fixed_tangents

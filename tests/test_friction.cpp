@@ -14,7 +14,7 @@
 #include "reeve/cable/cable.h"
 #include "solver_budgets.h"
 
-namespace reeve {
+namespace reeve::test_friction {
 namespace {
 
 constexpr double kG = 9.81, kPi = std::numbers::pi;
@@ -561,4 +561,4 @@ TEST(Friction, BadValuesAreRefused) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_friction

@@ -7,7 +7,7 @@
 #include "reeve/cable/cable.h"
 #include "scene_fixture.h"
 
-namespace reeve {
+namespace reeve::test_gear {
 namespace {
 
 // Generalized coordinate: the small wheel's angle t (ccw). The large wheel
@@ -62,9 +62,9 @@ TEST(Gear, TheBeltTransmitsTheRadiusRatioWithoutSlipAndKeepsItsLength) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_gear
 
-namespace reeve {
+namespace reeve::test_gear {
 namespace {
 
 TEST(MotorBelt, ATorqueLimitedMotorSpinsUpTheBeltDrivenWheelsAsDerived) {
@@ -86,4 +86,4 @@ TEST(MotorBelt, ATorqueLimitedMotorSpinsUpTheBeltDrivenWheelsAsDerived) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_gear

@@ -12,7 +12,7 @@
 
 #include "contact_fixture.h"
 
-namespace reeve {
+namespace reeve::test_hull {
 namespace {
 
 using namespace test;
@@ -329,4 +329,4 @@ TEST(Hull, StackOfFiveHullCubesStandsStill) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_hull

@@ -8,7 +8,7 @@
 
 #include "atwood_machine.h"
 
-namespace reeve {
+namespace reeve::test_interrupt {
 namespace {
 
 class Interrupt : public ::testing::TestWithParam<SolverKind> {};
@@ -102,4 +102,4 @@ INSTANTIATE_TEST_SUITE_P(BothSolvers, Interrupt, ::testing::Values(SolverKind::D
                          [](const auto& info) { return info.param == SolverKind::Direct ? "Direct" : "GaussSeidel"; });
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_interrupt

@@ -14,7 +14,7 @@
 #include "reeve/scene/scene.h"
 #include "scene_fixture.h"
 
-namespace reeve {
+namespace reeve::test_invariants {
 namespace {
 
 // One test per scene and solver, so that ctest runs them in parallel.
@@ -117,4 +117,4 @@ TEST(Invariants, ANegativeRestLengthOrStoredCableIsReported) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_invariants

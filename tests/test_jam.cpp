@@ -12,7 +12,7 @@
 #include "scene_fixture.h"
 #include "solver_budgets.h"
 
-namespace reeve {
+namespace reeve::test_jam {
 namespace {
 
 constexpr double kRadius = 0.1;   // m, drum and idler
@@ -122,4 +122,4 @@ TEST(Jam, ALoadHauledIntoItsIdlerJamsThereAndTheMotorStallsAtItsTorque) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_jam

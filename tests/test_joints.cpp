@@ -20,7 +20,7 @@
 #include "run_frames.h"
 #include "solver_budgets.h"
 
-namespace reeve {
+namespace reeve::test_joints {
 namespace {
 
 using std::numbers::pi;
@@ -832,4 +832,4 @@ TEST(HingeDrive, ACappedMotorOnAWheelMovesItsRopeAtTheClosedFormBothWays) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_joints

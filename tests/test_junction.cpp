@@ -16,7 +16,7 @@
 #include "ledger_ratchet.h"
 #include "scene_fixture.h"
 
-namespace reeve {
+namespace reeve::test_junction {
 namespace {
 
 constexpr double kG = 9.81;
@@ -259,4 +259,4 @@ TEST(Junction, CreatesNoEnergyAtAnyBudget) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_junction

@@ -14,7 +14,7 @@
 
 #include "solver_budgets.h"
 
-namespace reeve {
+namespace reeve::test_kinematic {
 namespace {
 
 constexpr double kG = 9.81;
@@ -198,4 +198,4 @@ TEST(Kinematic, WorldRefusesABadMotion) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_kinematic

@@ -15,7 +15,7 @@
 #include "reeve/scene/energy.h"
 #include "scene_fixture.h"
 
-namespace reeve {
+namespace reeve::test_live_scene {
 namespace {
 
 namespace fs = std::filesystem;
@@ -403,4 +403,4 @@ TEST(LiveScene, AnInvalidReloadIsRefusedAndTheOldSceneRunsOn) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_live_scene

@@ -12,7 +12,7 @@
 
 #include "reeve/engine/math.h"
 
-namespace reeve {
+namespace reeve::test_math {
 namespace {
 
 // Units in the last place between a and b (same sign, finite).
@@ -63,4 +63,4 @@ TEST(RotationVector, GivesBackTheAngleOfARotation) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_math

@@ -14,7 +14,7 @@
 #include "scene_fixture.h"
 #include "solver_budgets.h"
 
-namespace reeve {
+namespace reeve::test_merge_split {
 namespace {
 
 // Complete elliptic integral of the first kind, K(k) = pi / (2 AGM(1, k')).
@@ -460,4 +460,4 @@ TEST(MergeSplit, ABallSweptIntoASlackSpanOffItsMiddleWrapsItsSectionThere) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_merge_split

@@ -68,7 +68,7 @@ int posix_memalign(void** out, std::size_t alignment, std::size_t size) {
 void free(void* p) { __libc_free(p); }
 }
 
-namespace reeve {
+namespace reeve::test_no_allocation {
 namespace {
 
 constexpr int kFrames = 60;
@@ -240,4 +240,4 @@ TEST(NoAllocation, ABatchsFramesAllocateNothing) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_no_allocation

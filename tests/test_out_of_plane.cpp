@@ -15,7 +15,7 @@
 #include "scene_fixture.h"
 #include "solver_budgets.h"
 
-namespace reeve {
+namespace reeve::test_out_of_plane {
 namespace {
 
 constexpr double kLoad = 10.0;  // kg
@@ -133,4 +133,4 @@ TEST(OutOfPlane, UnderGaussSeidelTheHoistGivesBackNoMoreThanItLost) {
   }
 }
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_out_of_plane

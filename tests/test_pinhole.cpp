@@ -8,7 +8,7 @@
 #include "scene_fixture.h"
 #include "solver_budgets.h"
 
-namespace reeve {
+namespace reeve::test_pinhole {
 namespace {
 
 TEST(Pinhole, ARingOnACableComesToRestWithEqualAnglesAndTensions) {
@@ -131,4 +131,4 @@ TEST(Pinhole, ATiePointHauledIntoItsPinholeJamsThere) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_pinhole

@@ -7,7 +7,7 @@
 
 #include "reeve/cable/cable.h"
 
-namespace reeve {
+namespace reeve::test_rest_length {
 namespace {
 
 // A static post, a wheel (radius 0.5, axis z) and a second post: the cable
@@ -110,9 +110,9 @@ TEST(RestLength, MovingTheWheelWithoutTurningItOnlyRollsTheTangentPoint) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_rest_length
 
-namespace reeve {
+namespace reeve::test_rest_length {
 namespace {
 
 TEST(RestLength, TheFramesOutputAgreesWithItsPosesNotASubstepLate) {
@@ -183,9 +183,9 @@ TEST(CableSetup, ACableThatCannotBeBuiltLeavesTheWorldUntouched) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_rest_length
 
-namespace reeve {
+namespace reeve::test_rest_length {
 namespace {
 
 TEST(CableSetup, DefaultSectionsAreTheShapesCutByTheCablePlane) {
@@ -214,4 +214,4 @@ TEST(CableSetup, DefaultSectionsAreTheShapesCutByTheCablePlane) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_rest_length

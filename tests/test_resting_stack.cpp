@@ -16,7 +16,7 @@
 #include "contact_fixture.h"
 #include "solver_budgets.h"
 
-namespace reeve {
+namespace reeve::test_resting_stack {
 namespace {
 
 using namespace test;
@@ -168,4 +168,4 @@ TEST(RestingStack, AHeavyBoxStandsOnALightOne) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_resting_stack

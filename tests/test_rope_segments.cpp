@@ -10,7 +10,7 @@
 #include "reeve/scene/scene.h"
 #include "reeve/machines/segment_scene.h"
 
-namespace reeve {
+namespace reeve::test_rope_segments {
 namespace {
 
 std::string atwoodFile() { return std::string(REEVE_SCENES_DIR) + "/atwood.json"; }
@@ -86,9 +86,9 @@ TEST(RopeSegments, UnknownCableListsTheCables) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_rope_segments
 
-namespace reeve {
+namespace reeve::test_rope_segments {
 namespace {
 
 TEST(RopeSegments, TheShippedSceneIsWhatTheGeneratorMakesToday) {
@@ -106,4 +106,4 @@ TEST(RopeSegments, TheShippedSceneIsWhatTheGeneratorMakesToday) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_rope_segments

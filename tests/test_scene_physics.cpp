@@ -9,7 +9,7 @@
 
 #include "reeve/scene/scene.h"
 
-namespace reeve {
+namespace reeve::test_scene_physics {
 namespace {
 
 const std::string kScenes = REEVE_SCENES_DIR;
@@ -63,9 +63,9 @@ TEST(AtwoodScene, FallsWithTheAnalyticAcceleration) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_scene_physics
 
-namespace reeve {
+namespace reeve::test_scene_physics {
 namespace {
 
 // The two knobs (DESIGN.md): one step with many iterations (the paper),
@@ -136,4 +136,4 @@ TEST(SpringsScene, EachSpringHoldsTheMomentBeyondItAndTheBlockRestsAtWeightOverS
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_scene_physics

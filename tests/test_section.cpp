@@ -13,7 +13,7 @@
 
 #include "reeve/cable/section.h"
 
-namespace reeve {
+namespace reeve::test_section {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -544,4 +544,4 @@ TEST(SectionBoundary, CircleArcPointsStepAtMostTheGivenAngle) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_section

@@ -4,7 +4,7 @@
 
 #include "reeve/cable/cable.h"
 
-namespace reeve {
+namespace reeve::test_slack {
 namespace {
 
 TEST(Slack, BodyFallsFreelyUntilTheCableIsTaut) {
@@ -65,4 +65,4 @@ TEST(Slack, BodyFallsFreelyUntilTheCableIsTaut) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_slack

@@ -16,7 +16,7 @@
 
 #include "solver_budgets.h"
 
-namespace reeve {
+namespace reeve::test_solver_price {
 namespace {
 
 constexpr double kG = 9.81;
@@ -127,4 +127,4 @@ TEST(SolverPrice, ADrivenBeltKeepsItsRatioWithTheDirectSolverAtOneSweep) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_solver_price

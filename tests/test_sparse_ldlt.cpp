@@ -14,7 +14,7 @@
 
 #include "../engine/src/direct/sparse_ldlt.h"
 
-namespace reeve {
+namespace reeve::test_sparse_ldlt {
 namespace {
 
 using Dense = Eigen::MatrixXd;
@@ -214,4 +214,4 @@ TEST(SparseLdlt, FactorsAQuasiDefiniteMatrixWithItsNegativePivots) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_sparse_ldlt

@@ -12,7 +12,7 @@
 #include "scene_fixture.h"
 #include "solver_budgets.h"
 
-namespace reeve {
+namespace reeve::test_spool {
 namespace {
 
 TEST(Spool, AWeightUnwindingASpoolFallsWithTheAnalyticAcceleration) {
@@ -257,4 +257,4 @@ TEST(Spool, ALoadHauledUpIntoItsDrumIsReportedWhenItsTiePointIsDrawnInside) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_spool

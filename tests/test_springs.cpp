@@ -24,7 +24,7 @@
 
 #include "run_frames.h"
 
-namespace reeve {
+namespace reeve::test_springs {
 namespace {
 
 using std::numbers::pi;
@@ -655,4 +655,4 @@ INSTANTIATE_TEST_SUITE_P(BothSolvers, Springs, ::testing::Values(SolverKind::Dir
                          });
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_springs

@@ -8,7 +8,7 @@
 #include "reeve/cable/cable.h"
 #include "scene_fixture.h"
 
-namespace reeve {
+namespace reeve::test_square_wheel {
 namespace {
 
 TEST(SquareWheel, OneFullTurnPaysOutExactlyThePerimeter) {
@@ -75,4 +75,4 @@ TEST(SquareWheel, TheWeightUnwindsTheSquareAndTheCableStaysTautAndWhole) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_square_wheel

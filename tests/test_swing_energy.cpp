@@ -15,7 +15,7 @@
 #include "atwood_machine.h"
 #include "reeve/scene/scene.h"
 
-namespace reeve {
+namespace reeve::test_swing_energy {
 namespace {
 
 constexpr double kG = 9.81;
@@ -284,4 +284,4 @@ TEST(SwingEnergy, ADoublePendulumKeepsItsEnergyAtTheStartProjection) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_swing_energy

@@ -9,7 +9,7 @@
 
 #include "reeve/cable/section.h"
 
-namespace reeve {
+namespace reeve::test_tangent {
 namespace {
 
 Vec2 perp(const Vec2& v) { return Vec2(-v.y(), v.x()); }
@@ -114,4 +114,4 @@ TEST(WrappedArc, MeasuresInTheOrientationSenseOverAFullTurn) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_tangent

@@ -19,7 +19,7 @@
 // includes, defines _res, a name in Eigen's headers.
 #include <httplib.h>
 
-namespace reeve {
+namespace reeve::test_view_server {
 namespace {
 
 using namespace std::chrono_literals;
@@ -211,4 +211,4 @@ TEST(ViewServer, AtMostFourPagesWatchAndStopEndsTheirStreams) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_view_server

@@ -11,7 +11,7 @@
 
 #include "reeve/engine/world.h"
 
-namespace reeve {
+namespace reeve::test_weighted_path {
 namespace {
 
 struct Hang {
@@ -101,4 +101,4 @@ TEST(WeightedPath, AnElasticCableStretchesByTheWeightedComplianceAtRest) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_weighted_path

@@ -14,7 +14,7 @@
 #include "reeve/cable/cable.h"
 #include "solver_budgets.h"
 
-namespace reeve {
+namespace reeve::test_winch {
 namespace {
 
 constexpr double kG = 9.81;
@@ -523,4 +523,4 @@ TEST(Winch, AnOverloadedWinchPayingOutBrakesAtItsMaximumPullOnceTheLoadCatchesUp
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_winch

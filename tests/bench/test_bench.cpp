@@ -24,7 +24,7 @@
 #include "reeve/scene/scene.h"
 #include "temp_dir.h"
 
-namespace reeve {
+namespace reeve::test_bench {
 namespace {
 
 namespace fs = std::filesystem;
@@ -483,4 +483,4 @@ TEST(BenchOutputs, PlotsAPng) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_bench

@@ -11,7 +11,7 @@
 
 #include "reeve/scene/scene.h"
 
-namespace reeve {
+namespace reeve::test_joint_scenes {
 namespace {
 
 // Five bodies, two hinges (a motor, a servo with a limit) and one joint of
@@ -486,4 +486,4 @@ TEST(JointErrors, SwingLimitOnAFixedJointIsUnknown) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_joint_scenes

@@ -19,7 +19,7 @@
 #include "reeve/cable/cable.h"
 #include "scene_fixture.h"
 
-namespace reeve {
+namespace reeve::test_bow {
 namespace {
 
 struct Budget {
@@ -518,4 +518,4 @@ TEST(Bow, AtThePapersTenSubstepsOfTenIterationsTheShotStaysFinite) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_bow

@@ -14,7 +14,7 @@
 #include "reeve/cable/cable.h"
 #include "scene_fixture.h"
 
-namespace reeve {
+namespace reeve::test_gym {
 namespace {
 
 // Cables in file order; the press arm is tied at the end of joint 9 of the
@@ -273,4 +273,4 @@ TEST(Gym, AtOneSubstepAFrameEveryOneOf225LandingsStaysOnItsStop) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_gym

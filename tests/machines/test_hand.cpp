@@ -18,7 +18,7 @@
 #include "reeve/cable/cable.h"
 #include "scene_fixture.h"
 
-namespace reeve {
+namespace reeve::test_hand {
 namespace {
 
 // `extensor`: the relative error allowed the extensor's wound cable and
@@ -492,9 +492,9 @@ TEST(Hand, FeatherweightPhalangesStillBalance) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_hand
 
-namespace reeve {
+namespace reeve::test_hand {
 namespace {
 
 TEST(Hand, EverySubstepOfAMovingHandSolvesAgainForNewtonsResidual) {
@@ -516,4 +516,4 @@ TEST(Hand, EverySubstepOfAMovingHandSolvesAgainForNewtonsResidual) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_hand

@@ -17,7 +17,7 @@
 #include "reeve/machines/scene_json.h"
 #include "scene_fixture.h"
 
-namespace reeve {
+namespace reeve::test_hilbert {
 namespace {
 
 std::string readFile(const std::string& name) {
@@ -244,4 +244,4 @@ TEST(Hilbert, LooseTheWheelsStartOneByOneAsTheSlackIsTakenUp) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_hilbert

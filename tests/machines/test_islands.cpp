@@ -12,7 +12,7 @@
 #include "reeve/machines/machines.h"
 #include "reeve/scene/scene.h"
 
-namespace reeve {
+namespace reeve::test_islands {
 namespace {
 
 using machines::ScalingSpec;
@@ -221,4 +221,4 @@ TEST(Islands, ShippedScenesGiveTheSameBitsOnOneAndTwoThreads) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_islands

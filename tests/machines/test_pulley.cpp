@@ -13,7 +13,7 @@
 #include "reeve/cable/cable.h"
 #include "scene_fixture.h"
 
-namespace reeve {
+namespace reeve::test_pulley {
 namespace {
 
 // Joint j of the rope leaves link j: tie, lower_a, upper_a, lower_b,
@@ -173,4 +173,4 @@ TEST(Pulley, TheLightBlockUnderAHeavyHookKeepsStillAtOneSubstep) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_pulley

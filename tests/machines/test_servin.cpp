@@ -14,7 +14,7 @@
 #include "reeve/cable/cable.h"
 #include "scene_fixture.h"
 
-namespace reeve {
+namespace reeve::test_servin {
 namespace {
 
 struct Budget {
@@ -227,4 +227,4 @@ TEST(Servin, CableLengthIsConservedAndTheDrumsPayOutRTimesTheirTurn) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_servin

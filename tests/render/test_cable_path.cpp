@@ -10,7 +10,7 @@
 #include "reeve/render/slack_curve.h"
 #include "rigs.h"
 
-namespace reeve {
+namespace reeve::test_cable_path {
 namespace {
 
 using test::AtwoodRig;
@@ -446,4 +446,4 @@ TEST(SectionOutline, MatchesTheShapeOnlyWhereTheBodyShowsTheSection) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_cable_path

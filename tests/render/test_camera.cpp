@@ -5,7 +5,7 @@
 
 #include "atwood_rig.h"
 
-namespace reeve {
+namespace reeve::test_camera {
 namespace {
 
 using test::AtwoodRig;
@@ -74,4 +74,4 @@ TEST(FrameSceneView, EmptySceneGivesTheDefaultCamera) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_camera

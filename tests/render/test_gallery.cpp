@@ -15,7 +15,7 @@
 #include "reeve/render/renderer.h"
 #include "rigs.h"
 
-namespace reeve {
+namespace reeve::test_gallery {
 namespace {
 
 std::filesystem::path galleryDir() {
@@ -108,4 +108,4 @@ TEST(Gallery, WritesFramesOfEveryRig) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_gallery

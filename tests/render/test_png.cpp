@@ -5,7 +5,7 @@
 #include "reeve/render/image.h"
 #include "temp_dir.h"
 
-namespace reeve {
+namespace reeve::test_png {
 namespace {
 
 Image gradient(int width, int height) {
@@ -62,4 +62,4 @@ TEST(WritePng, InconsistentImageIsRejected) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_png

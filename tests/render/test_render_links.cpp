@@ -12,7 +12,7 @@
 #include "reeve/render/renderer.h"
 #include "rigs.h"
 
-namespace reeve {
+namespace reeve::test_render_links {
 namespace {
 
 using test::distance;
@@ -215,4 +215,4 @@ TEST(RenderLinks, ABodySmallerThanAMarkerGetsARingInItsColourAndALargeOneDoesNot
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_render_links

@@ -7,7 +7,7 @@
 #include "image_pixels.h"
 #include "reeve/render/renderer.h"
 
-namespace reeve {
+namespace reeve::test_renderer {
 namespace {
 
 using test::AtwoodRig;
@@ -185,4 +185,4 @@ TEST(Renderer, RendersAnEmptyWorld) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_renderer

@@ -5,7 +5,7 @@
 
 #include "reeve/render/slack_curve.h"
 
-namespace reeve {
+namespace reeve::test_slack_curve {
 namespace {
 
 constexpr int kSegments = 48;
@@ -142,4 +142,4 @@ TEST(SlackCurve, IsSlackBeyondOnePartInTenThousand) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_slack_curve

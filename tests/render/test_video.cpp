@@ -11,7 +11,7 @@
 #include "reeve/render/video.h"
 #include "temp_dir.h"
 
-namespace reeve {
+namespace reeve::test_video {
 namespace {
 
 // Stream facts from ffprobe: key -> value (width, height, nb_read_frames).
@@ -122,4 +122,4 @@ TEST(VideoWriter, RejectsBadSizesAndFrames) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_video

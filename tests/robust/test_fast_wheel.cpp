@@ -9,7 +9,7 @@
 
 #include "run_machine.h"
 
-namespace reeve {
+namespace reeve::test_fast_wheel {
 namespace {
 
 TEST(FastWheel, OneMillimetreWheelOnA1To100AtwoodAtOneStepOfOneIteration) {
@@ -49,4 +49,4 @@ TEST(FastWheel, OneMillimetreWheelOnA1To100AtwoodAtOneStepOfOneIteration) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_fast_wheel

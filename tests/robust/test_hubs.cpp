@@ -14,7 +14,7 @@
 #include "reeve/cable/cable.h"
 #include "reeve/machines/machines.h"
 
-namespace reeve {
+namespace reeve::test_hubs {
 namespace {
 
 constexpr double kG = 10.0;
@@ -231,4 +231,4 @@ TEST(Hubs, ManyRopesOverOneDrumMeetTheAtwoodClosedFormAtEveryDrumMass) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_hubs

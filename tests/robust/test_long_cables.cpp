@@ -8,7 +8,7 @@
 
 #include "run_machine.h"
 
-namespace reeve {
+namespace reeve::test_long_cables {
 namespace {
 
 TEST(LongCables, ZigZagOverManyWheelsMeetsItsClosedFormAtOneStepOfTenIterations) {
@@ -74,4 +74,4 @@ TEST(LongCables, ABeltOverWheelsOfEveryMassSpinsUpAtTheMotorsTorque) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_long_cables

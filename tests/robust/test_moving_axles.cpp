@@ -5,7 +5,7 @@
 
 #include "run_machine.h"
 
-namespace reeve {
+namespace reeve::test_moving_axles {
 namespace {
 
 using test::Bound;
@@ -89,4 +89,4 @@ TEST(MovingAxles, AtwoodOnASwingingArmMeetsItsClosedFormForAnyWheelMass) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_moving_axles

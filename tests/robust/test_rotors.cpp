@@ -11,7 +11,7 @@
 #include "reeve/engine/world.h"
 #include "reeve/machines/machines.h"
 
-namespace reeve {
+namespace reeve::test_rotors {
 namespace {
 
 const SolverKind kBoth[] = {SolverKind::GaussSeidel, SolverKind::Direct};
@@ -288,4 +288,4 @@ TEST(Rotors, AMotorDrivingALongCableNeverPassesItsTorque) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_rotors

@@ -9,7 +9,7 @@
 
 #include "run_machine.h"
 
-namespace reeve {
+namespace reeve::test_snap_taut {
 namespace {
 
 // No gravity: the 2 kg heavy box moves away from the wheel at 10 m/s, the
@@ -129,4 +129,4 @@ TEST(SnapTaut, MoreIterationsNeverMakeAFastJerkWorse) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_snap_taut

@@ -11,7 +11,7 @@
 #include "reeve/scene/scene.h"
 #include "run_machine.h"
 
-namespace reeve {
+namespace reeve::test_wheel_mass {
 namespace {
 
 using machines::AtwoodSpec;
@@ -178,4 +178,4 @@ TEST(WheelMass, AWheelThatTurnsFurtherThanTheSpanHoldsSlipsOnIt) {
 }
 
 }  // namespace
-}  // namespace reeve
+}  // namespace reeve::test_wheel_mass

@@ -81,8 +81,8 @@ inline std::vector<double> timeOnEachCore(const std::function<double()>& timed, 
 /// (unpinned for -1, or where pinning fails) and all started together:
 /// each thread's time (ms). A VM's cores can slow each other while all
 /// are busy (the host's other work), which timeOnEachCore, one core at a
-/// time, does not show. `timed` must be safe to run on several threads at once (each run
-/// stepping a World of its own).
+/// time, does not show. `timed` must be safe to run on several threads at
+/// once (each run stepping a World of its own).
 inline std::vector<double> timeOnCoresAtOnce(const std::function<double()>& timed, const std::vector<int>& cores) {
   std::vector<double> ms(cores.size());
   std::latch start(static_cast<std::ptrdiff_t>(cores.size()));

@@ -318,6 +318,10 @@ class DirectSolver {
   std::vector<double> axial_stiffness_;  // per rotor: u . stiffness_ . u (Entry::axial)
   double shift_size_ = 0.0;      // the largest |dx0|, |dphi0| (m, rad) of newtonShift
   bool stiffened_ = false;       // newtonShift added |K| to some body's W
+  double last_step_ = 0.0;       // the last step's largest |dx|, |dphi| (m, rad), as solved; 0: none
+  double last_rho_ = 0.0;        // the last step's size over the one before; 0: not measured
+  bool extrapolated_ = false;    // the last step was scaled (extrapolation())
+  bool extrapolates_ = false;    // nothing but this solver moves the island's bodies between its iterations
   bool plain_solve_ = false;     // the last iteration was the substep's first, solved with every plain W
   double moved_size_ = 0.0;      // the largest |moved_x_|, |moved_phi_| (m, rad) then
   std::vector<char> reweigh_;    // per body: its W changed in newtonShift
@@ -329,6 +333,10 @@ class DirectSolver {
   /// Whether every row's gradient stays as it is while the bodies move:
   /// spans linear in the solve's turns (linear_) and a rotor's hinge rows.
   bool linearRows(const World& world) const;
+  /// Aitken's extrapolation of the step solveActiveSet left (dx_ + shift_x_,
+  /// dphi_ + shift_phi_, dlambda_): scales dlambda_ and returns the factor
+  /// omega >= 1 for the bodies' step (1: a plain step).
+  double extrapolation();
   /// For an iteration that solves: the entries weighed with W~, and C_ +=
   /// J dx0, the rows as the residual's motion leaves them.
   void shiftValues();

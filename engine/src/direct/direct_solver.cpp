@@ -619,23 +619,25 @@ void DirectSolver::shiftValues() {
 }
 
 double DirectSolver::extrapolation() {
-  // Aitken's delta-squared process on the iteration's step (Irons and
-  // Tuck 1969; as dynamic relaxation in Kuettler and Wall 2008). Where the
-  // iteration converges linearly (Newton's residual under |K|: DESIGN,
-  // "Newton's residual and geometric stiffness"; a span whose held end
-  // only approximates its rolling one), its error near the solution obeys
+  // Aitken's delta-squared process on the sizes of the iteration's steps
+  // (the scalar form of Irons and Tuck's 1969 accelerator, Kuettler and
+  // Wall's 2008 dynamic relaxation). Where the iteration converges
+  // linearly (Newton's residual under |K|: DESIGN, "Newton's residual and
+  // geometric stiffness"), its error near the solution obeys
   // e_{k+1} = T e_k, and the slowest mode of T, contracting by rho a step,
   // soon leads: the steps s_k = (T - I) e_k shrink by rho too, and
   // e_k = -s_k / (1 - rho) along it. A step of s_k / (1 - rho) takes that
-  // mode out. T's eigenvalues are real and in [0, rho] (the constrained W~
-  // times 2 K+, both semidefinite), so a faster mode is overshot by at most
-  // omega - 1 of itself, and the plain steps between extrapolated ones
-  // damp it. Only a steady geometric tail is extrapolated: two plain steps'
-  // ratios within kAitkenSteady of each other, a step under kAitkenTail of
-  // the substep's motion, an active set that settled, and no lambda
-  // pushed past its bound; a solve that does not converge (a bow's string
-  // snapping taut, steps bouncing by 0.5 to 1.5) was thrown away by
-  // extrapolating its bounces. The stop (iterate()) is unchanged: this
+  // mode out. For the residual T is the constrained W~ times 2 K+, both
+  // semidefinite, so its eigenvalues are real and in [0, rho]: a faster
+  // mode is overshot by at most omega - 1 of itself, and the plain steps
+  // between extrapolated ones damp it. Only a steady geometric tail is
+  // extrapolated: a plain step's ratio within kAitkenSteady of the last
+  // one measured (rho is T's, so the one before an extrapolation still
+  // counts), a step under kAitkenTail of the substep's motion, an active
+  // set that settled, and no lambda pushed past its bound. Without the
+  // first two the bow at 10 x 10 blew up after its release: a solve that
+  // does not converge (its steps bouncing by 0.5 to 1.5) was thrown away
+  // by extrapolating its bounces. The stop (iterate()) is unchanged: this
   // changes how many iterations meet it, not where.
   if (first_solve_) {  // the projection: nothing to compare its step with
     last_step_ = 0.0;
@@ -650,11 +652,12 @@ double DirectSolver::extrapolation() {
   }
   const double step = std::sqrt(step2);
   // After an extrapolated step the next one measures the extrapolation,
-  // not T: its ratio is not kept.
-  const double rho = last_step_ > 0.0 && !extrapolated_ ? step / last_step_ : 0.0;
+  // not T: it is not extrapolated, and the ratio before it is kept.
+  const bool after = extrapolated_;
+  const double rho = last_step_ > 0.0 && !after ? step / last_step_ : 0.0;
   const bool steady = std::abs(rho - last_rho_) <= kAitkenSteady * rho;
   last_step_ = step;
-  last_rho_ = rho;
+  if (!after) last_rho_ = rho;
   extrapolated_ = false;
   if (!extrapolates_ || !settled_ || !steady || !(rho > kAitkenLeast && rho < kAitkenMost) ||
       step2 > kAitkenTail * kAitkenTail * moved2)

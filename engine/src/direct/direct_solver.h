@@ -319,7 +319,7 @@ class DirectSolver {
   double shift_size_ = 0.0;      // the largest |dx0|, |dphi0| (m, rad) of newtonShift
   bool stiffened_ = false;       // newtonShift added |K| to some body's W
   double last_step_ = 0.0;       // the last step's largest |dx|, |dphi| (m, rad), as solved; 0: none
-  double last_rho_ = 0.0;        // the last step's size over the one before; 0: not measured
+  double last_rho_ = 0.0;        // the last measured ratio of a plain step's size to the one before; 0: none
   bool extrapolated_ = false;    // the last step was scaled (extrapolation())
   bool extrapolates_ = false;    // nothing but this solver moves the island's bodies between its iterations
   bool plain_solve_ = false;     // the last iteration was the substep's first, solved with every plain W

@@ -521,8 +521,8 @@ TEST(Hand, AtRestTheDirectSolverMeetsItsStopInFewIterations) {
   // the stop (the rows met, the residual's motion under 1e-3 of the
   // solve's) took 6 or 7 solves a substep (7 the most of any finger).
   // Aitken's extrapolation (DirectSolver::extrapolation) takes that
-  // slowest mode out once two steps' ratios show it: 5, with the statics
-  // test's balance unchanged.
+  // slowest mode out once two steps' ratios show it: 6 at most, with the
+  // statics test's balance unchanged.
   Scene s = load(kBudgets[1]);
   ASSERT_EQ(s.world->settings().substeps, 1);
   EXPECT_LE(run(s, 2.5), 1e-6);

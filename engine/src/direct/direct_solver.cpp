@@ -49,17 +49,17 @@ constexpr double kNewtonTurn = 0.2;
 // Newton's residual is met when its motion is below this fraction of what
 // the solve moved the bodies in the substep (iterate()): 1e-2 let the
 // hand's other fingers drift 1.1e-5 rad as one closed (its test allows
-// 1e-5); 1e-3 runs the hand at 1 x 20 in 7.7 iterations a frame.
+// 1e-5); 1e-3 runs the hand at 1 x 20 in 6.0 iterations a frame (7.7
+// before extrapolation()).
 constexpr double kNewtonRelative = 1e-3;
 // The contraction a step's size must show against the last's for it to be
 // extrapolated (extrapolation()): below the least the gain is under 11 %;
-// above the most (a step 5 times its own) the iteration is not yet in its
-// linear tail.
+// above the most (omega = 5) the iteration is not yet in its linear tail.
 constexpr double kAitkenLeast = 0.1;
 constexpr double kAitkenMost = 0.8;
-// A geometric tail: the last two ratios agree to this fraction, and the
-// step is under this fraction of what the solve moved the bodies in the
-// substep (a wrong extrapolation then costs little).
+// A geometric tail: the step's ratio agrees with the last one measured to
+// this fraction, and the step is under this fraction of what the solve has
+// moved the bodies in the substep (a wrong extrapolation then costs little).
 constexpr double kAitkenSteady = 0.25;
 constexpr double kAitkenTail = 0.05;
 

@@ -523,7 +523,7 @@ TEST(Hand, MoreIterationsBringTheRestingHandNearerItsConvergedPose) {
   // worst: it never grows with the budget beyond 1 % + 1e-9 rad (the
   // extremes map's rule). (Against the closed-form statics the error is
   // XPBD's h^2 g offset, 7.1e-3 of a flexor torque once converged, which
-  // a budget of 2 happens to meet more nearly: AtRestEachJoints... .)
+  // a budget of 2 happens to meet more nearly: the statics test above.)
   std::vector<double> converged;
   {
     Scene s = load(Budget{1, 20, 0.0});

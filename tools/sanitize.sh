@@ -19,7 +19,7 @@ export LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp:print_suppressions=1"
 # Left out here, run in the release phase: tests that take code the shipped
 # scenes' whole runs take through the sanitizers already, over long
 # simulated spans, to check its accuracy (DESIGN, "CI time": 4 minutes of
-# the 7 this phase's tests took). One pattern a line, joined into one
+# the 7 this phase's tests took). Their names' patterns, joined into one
 # regular expression below; no pattern holds a group of its own, since
 # CMake's regular expressions take at most 9 (with more the expression
 # silently excluded nothing, which the check below catches).

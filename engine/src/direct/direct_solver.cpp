@@ -645,11 +645,9 @@ double DirectSolver::extrapolation() {
     extrapolated_ = false;
     return 1.0;
   }
-  double step2 = 0.0, moved2 = 0.0;
-  for (std::size_t i = 0; i < frames_.size(); ++i) {
+  double step2 = 0.0;
+  for (std::size_t i = 0; i < frames_.size(); ++i)
     step2 = std::max({step2, (dx_[i] + shift_x_[i]).squaredNorm(), (dphi_[i] + shift_phi_[i]).squaredNorm()});
-    moved2 = std::max({moved2, moved_x_[i].squaredNorm(), moved_phi_[i].squaredNorm()});
-  }
   const double step = std::sqrt(step2);
   // After an extrapolated step the next one measures the extrapolation,
   // not T: it is not extrapolated, and the ratio before it is kept.
@@ -659,8 +657,9 @@ double DirectSolver::extrapolation() {
   last_step_ = step;
   if (!after) last_rho_ = rho;
   extrapolated_ = false;
+  // moved_size_: the substep's motion before this step (newtonShift).
   if (!extrapolates_ || !settled_ || !steady || !(rho > kAitkenLeast && rho < kAitkenMost) ||
-      step2 > kAitkenTail * kAitkenTail * moved2)
+      step > kAitkenTail * moved_size_)
     return 1.0;
   const double omega = 1.0 / (1.0 - rho);
   for (std::size_t r = 0; r < rows_.size(); ++r) {

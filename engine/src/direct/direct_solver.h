@@ -323,7 +323,7 @@ class DirectSolver {
   bool extrapolated_ = false;    // the last step was scaled (extrapolation())
   bool extrapolates_ = false;    // nothing but this solver moves the island's bodies between its iterations
   bool plain_solve_ = false;     // the last iteration was the substep's first, solved with every plain W
-  double moved_size_ = 0.0;      // the largest |moved_x_|, |moved_phi_| (m, rad) then
+  double moved_size_ = 0.0;      // the largest |moved_x_|, |moved_phi_| (m, rad) as newtonShift last found them
   std::vector<char> reweigh_;    // per body: its W changed in newtonShift
   /// Newton's residual g = M (x - x~) - J^T lambda and the rows' geometric
   /// stiffness K (DESIGN "Newton's residual and geometric stiffness"): sets

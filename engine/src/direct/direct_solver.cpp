@@ -405,6 +405,7 @@ void DirectSolver::prepare(World& world, const Island& island, double h, bool ag
   std::fill(moved_phi_.begin(), moved_phi_.end(), Vec3::Zero());
   first_iteration_ = true;
   plain_solve_ = false;
+  met_ = false;
   last_step_ = 0.0;
   last_rho_ = 0.0;
   extrapolated_ = false;
@@ -673,6 +674,10 @@ double DirectSolver::extrapolation() {
 
 bool DirectSolver::iterate(World& world, double h) {
   if (rows_.empty()) return false;
+  if (met_) {  // the last iteration's motion met every row: this one would find so and end the substep
+    met_ = plain_solve_ = false;
+    return false;
+  }
   evaluate(world, h);
   if (!start_.empty()) {
     if (first_iteration_) chooseStartRows();
@@ -748,6 +753,25 @@ bool DirectSolver::iterate(World& world, double h) {
       *linear_a_[r] -= dl * dir_[r].head<3>();
       *angular_a_[r] += dl * dir_[r].tail<3>();
     }
+  }
+  // A plain solve of linear rows moved the bodies by dx, and each row now
+  // stands at C + J dx exactly (predictSpan): that is what the next
+  // iteration would evaluate, find met and stop at (Hilbert3's second
+  // evaluation a substep, a sixth of its solve). Where a contact or a
+  // weighted path may move a body in between, or a damped row's C is not
+  // linear, the next iteration evaluates.
+  met_ = plain_solve_ && extrapolates_ && settled_ && !damped_ && omega == 1.0 && tolerance > 0.0 &&
+         metAsSolved(tolerance);
+  return true;
+}
+
+bool DirectSolver::metAsSolved(double tolerance) const {
+  for (std::size_t r = 0; r < rows_.size(); ++r) {
+    const double value = predictedValue(static_cast<int>(r));
+    if ((hi_[r] == 0.0 && value > tolerance) || (lo_[r] == 0.0 && value < -tolerance)) return false;  // violated
+    const double residual = value + alpha_[r] * lambda_[r];
+    if ((lambda_[r] >= hi_[r] && residual <= 0.0) || (lambda_[r] <= lo_[r] && residual >= 0.0)) continue;
+    if (!(std::abs(residual) <= tolerance)) return false;  // NaN is not met
   }
   return true;
 }

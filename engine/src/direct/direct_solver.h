@@ -323,6 +323,8 @@ class DirectSolver {
   bool extrapolated_ = false;    // the last step was scaled (extrapolation())
   bool extrapolates_ = false;    // nothing but this solver moves the island's bodies between its iterations
   bool plain_solve_ = false;     // the last iteration was the substep's first, solved with every plain W
+  bool met_ = false;             // the last iteration left every row met (metAsSolved): the next one ends the substep
+  bool damped_ = false;          // the last evaluation damped a row (evaluatePath): its C and alpha~ are not linear
   double moved_size_ = 0.0;      // the largest |moved_x_|, |moved_phi_| (m, rad) as newtonShift last found them
   std::vector<char> reweigh_;    // per body: its W changed in newtonShift
   /// Newton's residual g = M (x - x~) - J^T lambda and the rows' geometric
@@ -337,6 +339,15 @@ class DirectSolver {
   /// dphi_ + shift_phi_, dlambda_): scales dlambda_ and returns the factor
   /// omega >= 1 for the bodies' step (1: a plain step).
   double extrapolation();
+  /// After a plain solve of linear rows (plain_solve_), with nothing but
+  /// this solver to move the bodies before the next iteration: whether
+  /// every row is met at C + J dx, its value once the bodies made the motion
+  /// solved, which is what the next evaluation would find (to rounding).
+  /// Stricter than converged() on that evaluation: a row counts as met only
+  /// within `tolerance` or held at a bound it presses against, and no
+  /// one-sided row violated, so the next iteration is skipped only where it
+  /// would end the substep anyway.
+  bool metAsSolved(double tolerance) const;
   /// For an iteration that solves: the entries weighed with W~, and C_ +=
   /// J dx0, the rows as the residual's motion leaves them.
   void shiftValues();

@@ -241,6 +241,7 @@ void DirectSolver::evaluatePath(const World& world, int r, double h) {
     alpha_[r] = alpha_tilde;
     return;
   }
+  damped_ = true;
   const DampedRow damped = dampedRow(C_[r], alpha_tilde, alpha_tilde * h * damping, C_[r] - start_length);
   C_[r] = damped.C;
   alpha_[r] = damped.alpha_tilde;
@@ -423,6 +424,7 @@ void DirectSolver::driveAgainstLimit(int first_clamped, const JointRowSet& set) 
 }
 
 void DirectSolver::evaluate(World& world, double h) {
+  damped_ = false;
   evaluateBodies();
   const int n = static_cast<int>(rows_.size());
   for (int r = 0; r < n;) {

@@ -869,9 +869,9 @@ void World::rotorWrenches(const Island& island, double h) {
     const BodyState& r = bodies_[id];
     const Vec3 u = r.q * r.rotor_axis;
     const Vec3& anchor = on_a ? j.frame.anchor_a : j.frame.anchor_b;
-    const Vec3 rho = anchor.isZero() ? Vec3::Zero() : Vec3(r.q * anchor);  // most axles pass through the centre
     const Vec3 F = -(r.impulse + mass_[id] * h * h * settings_.gravity);
-    Vec3 L = -(r.angular_impulse + rho.cross(F));
+    Vec3 L = -r.angular_impulse;
+    if (!anchor.isZero()) L -= Vec3(r.q * anchor).cross(F);  // most axles pass through the centre
     L -= u * u.dot(L);
     j.impulse_point = on_a ? F : Vec3(-F);
     j.impulse_axis += on_a ? L : Vec3(-L);

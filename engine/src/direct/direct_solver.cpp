@@ -757,9 +757,10 @@ bool DirectSolver::iterate(World& world, double h) {
   // A plain solve of linear rows moved the bodies by dx, and each row now
   // stands at C + J dx exactly (predictSpan): that is what the next
   // iteration would evaluate, find met and stop at (Hilbert3's second
-  // evaluation a substep, a sixth of its solve). Where a contact or a
-  // weighted path may move a body in between, or a damped row's C is not
-  // linear, the next iteration evaluates.
+  // evaluation a substep: 5 % of its solve). Where a contact or a weighted
+  // path may move a body in between, or a row is damped (its C and alpha~
+  // the damping's, which the prediction does not redo), the next
+  // iteration evaluates.
   met_ = plain_solve_ && extrapolates_ && settled_ && !damped_ && omega == 1.0 && tolerance > 0.0 &&
          metAsSolved(tolerance);
   return true;

@@ -466,18 +466,26 @@ void DirectSolver::chooseStartRows() {
   }
 }
 
+bool DirectSolver::violated(int r, double value, double tolerance) const {
+  return (hi_[r] == 0.0 && value > tolerance) || (lo_[r] == 0.0 && value < -tolerance);
+}
+
+bool DirectSolver::met(int r, double value, double tolerance) const {
+  const double residual = value + alpha_[r] * lambda_[r];
+  // A row held at a bound is met when it asks to go further.
+  if ((lambda_[r] >= hi_[r] && residual <= 0.0) || (lambda_[r] <= lo_[r] && residual >= 0.0)) return true;
+  return std::abs(residual) <= tolerance;  // NaN is not met
+}
+
 bool DirectSolver::converged(double tolerance) const {
   if (!(tolerance > 0.0)) return false;
   for (std::size_t r = 0; r < rows_.size(); ++r) {
+    const int row = static_cast<int>(r);
     if (state_[r] == State::Off) {  // met unless violated (a limit its drive is to lift off)
-      if ((hi_[r] == 0.0 && C_[r] > tolerance) || (lo_[r] == 0.0 && C_[r] < -tolerance)) return false;
+      if (violated(row, C_[r], tolerance)) return false;
       continue;
     }
-    if (state_[r] != State::Free) continue;
-    const double residual = C_[r] + alpha_[r] * lambda_[r];
-    // A row held at a bound is met when it asks to go further.
-    if ((lambda_[r] >= hi_[r] && residual <= 0.0) || (lambda_[r] <= lo_[r] && residual >= 0.0)) continue;
-    if (!(std::abs(residual) <= tolerance)) return false;  // NaN is not met
+    if (state_[r] == State::Free && !met(row, C_[r], tolerance)) return false;
   }
   return true;
 }
@@ -767,12 +775,9 @@ bool DirectSolver::iterate(World& world, double h) {
 }
 
 bool DirectSolver::metAsSolved(double tolerance) const {
-  for (std::size_t r = 0; r < rows_.size(); ++r) {
-    const double value = predictedValue(static_cast<int>(r));
-    if ((hi_[r] == 0.0 && value > tolerance) || (lo_[r] == 0.0 && value < -tolerance)) return false;  // violated
-    const double residual = value + alpha_[r] * lambda_[r];
-    if ((lambda_[r] >= hi_[r] && residual <= 0.0) || (lambda_[r] <= lo_[r] && residual >= 0.0)) continue;
-    if (!(std::abs(residual) <= tolerance)) return false;  // NaN is not met
+  for (int r = 0; r < static_cast<int>(rows_.size()); ++r) {
+    const double value = predictedValue(r);
+    if (violated(r, value, tolerance) || !met(r, value, tolerance)) return false;
   }
   return true;
 }

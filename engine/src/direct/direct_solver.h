@@ -143,6 +143,12 @@ class DirectSolver {
   /// Every free row meets its equation C + alpha~ lambda = 0 to within
   /// `tolerance` (m or rad), or is held at a bound it presses against.
   bool converged(double tolerance) const;
+  /// Row r at `value` (its C, m or rad): a one-sided row past its side by
+  /// more than `tolerance`.
+  bool violated(int r, double value, double tolerance) const;
+  /// Row r at `value`: its residual value + alpha~ lambda within
+  /// `tolerance`, or held at a bound it presses against.
+  bool met(int r, double value, double tolerance) const;
   /// A path's or distance constraint's row in a substep of `h` s: C, alpha~
   /// (both damped, when it is, and in the set) and its state.
   void evaluatePath(const World& world, int row, double h);

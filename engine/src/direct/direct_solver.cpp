@@ -159,29 +159,52 @@ void DirectSolver::build(World& world) {
   rows_.clear();
   entries_.clear();
   bodies_.clear();
-  body_index_.assign(world.bodyCount(), -1);
-  const auto bodyIndex = [&](BodyId id) {
-    if (body_index_[id] < 0) {
-      body_index_[id] = static_cast<int>(bodies_.size());
-      bodies_.push_back(id);
+  // A block's moving bodies, into block_bodies; returns where the next
+  // block starts.
+  std::vector<BodyId> block_bodies;
+  const auto block = [&](std::size_t k) {
+    block_bodies.clear();
+    if (static_cast<Source>(signature_[k]) == Source::Path) {
+      block_bodies.assign(signature_.begin() + k + 4, signature_.begin() + k + 4 + signature_[k + 3]);
+      return k + 4 + signature_[k + 3];
     }
-    return body_index_[id];
+    for (const BodyId id : {signature_[k + 3], signature_[k + 4]})
+      if (id != kWorldBody) block_bodies.push_back(id);
+    return k + 5;
+  };
+  // The window of ids the bodies lie in, where it is at most a few times
+  // their number (slotOf).
+  BodyId lowest = std::numeric_limits<BodyId>::max(), highest = -1;
+  std::size_t listed = 0;
+  for (std::size_t k = 0; k < signature_.size();) {
+    k = block(k);
+    for (const BodyId id : block_bodies) lowest = std::min(lowest, id), highest = std::max(highest, id);
+    listed += block_bodies.size();
+  }
+  const bool none = highest < lowest;
+  const bool window = none || static_cast<std::size_t>(highest - lowest) < 4 * listed + 64;
+  body_base_ = none ? 0 : lowest;
+  body_index_.assign(window && !none ? highest - lowest + 1 : 0, -1);
+  body_ids_.clear();
+  const auto bodyIndex = [&](BodyId id) {
+    if (window) {
+      int& slot = body_index_[id - body_base_];
+      if (slot < 0) slot = static_cast<int>(bodies_.size()), bodies_.push_back(id);
+      return slot;
+    }
+    const auto it = std::lower_bound(body_ids_.begin(), body_ids_.end(), std::pair{id, -1});
+    if (it != body_ids_.end() && it->first == id) return it->second;
+    body_ids_.insert(it, {id, static_cast<int>(bodies_.size())});
+    bodies_.push_back(id);
+    return static_cast<int>(bodies_.size()) - 1;
   };
   for (std::size_t k = 0; k < signature_.size();) {
     const auto source = static_cast<Source>(signature_[k]);
     const int index = signature_[k + 1], count = signature_[k + 2];
-    std::vector<BodyId> moving;
-    if (source == Source::Path) {
-      moving.assign(signature_.begin() + k + 4, signature_.begin() + k + 4 + signature_[k + 3]);
-      k += 4 + signature_[k + 3];
-    } else {
-      for (const BodyId id : {signature_[k + 3], signature_[k + 4]})
-        if (id != kWorldBody) moving.push_back(id);
-      k += 5;
-    }
+    k = block(k);
     for (int r = 0; r < count; ++r) {
-      Row row{source, index, static_cast<int>(entries_.size()), static_cast<int>(moving.size()), 0, 0, 0, 0};
-      for (const BodyId id : moving) {
+      Row row{source, index, static_cast<int>(entries_.size()), static_cast<int>(block_bodies.size()), 0, 0, 0, 0};
+      for (const BodyId id : block_bodies) {
         Entry e;
         e.body = bodyIndex(id);
         e.row = static_cast<int>(rows_.size());

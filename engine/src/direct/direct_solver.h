@@ -52,7 +52,9 @@
 // sum dlambda_k^2 delta_k, equal shares for K equal cables.
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <utility>
 #include <vector>
 
 #include "reeve/engine/body.h"
@@ -269,7 +271,16 @@ class DirectSolver {
   std::vector<int> leaf_entries_;   // per hub, from first_leaf: its leaves' entries
   std::vector<Mat3> hub_inertia_;   // per hub: world inertia this iteration
   std::vector<BodyId> bodies_;    // moving bodies in some row
-  std::vector<int> body_index_;   // per world body: its index in bodies_, or -1
+  // Each world body's index in bodies_ (-1: none), read by slotOf(): a
+  // window of world ids from body_base_ where the island's ids lie close
+  // together, as a scene's machines usually do, else the (id, index)
+  // pairs sorted by id. One slot per world body in each island was
+  // islands x bodies: 200 MB for 4096 Atwood machines, and the time a
+  // machine took grew with their number.
+  BodyId body_base_ = 0;
+  std::vector<int> body_index_;
+  std::vector<std::pair<BodyId, int>> body_ids_;
+  int slotOf(BodyId id) const;
   SparseLdlt ldlt_;
   // Per row: value, compliance term, bounds, accumulated and new lambda,
   // its state in the active set, where its lambda is mirrored, and for
@@ -358,5 +369,15 @@ class DirectSolver {
   /// J dx0, the rows as the residual's motion leaves them.
   void shiftValues();
 };
+
+inline int DirectSolver::slotOf(BodyId id) const {
+  if (!body_ids_.empty()) {
+    const auto it = std::lower_bound(body_ids_.begin(), body_ids_.end(), std::pair{id, -1});
+    return it != body_ids_.end() && it->first == id ? it->second : -1;
+  }
+  // kWorldBody and ids below the window wrap to above it.
+  const auto k = static_cast<std::size_t>(static_cast<unsigned>(id - body_base_));
+  return k < body_index_.size() ? body_index_[k] : -1;
+}
 
 }  // namespace reeve

@@ -111,8 +111,7 @@ SolvePoint DirectSolver::endPoint(const World& world, const PathPoint& point, in
 void DirectSolver::evaluateSpan(const World& world, int r, const PathPoint& p0, const PathPoint& p1) {
   // A plain span: C = |p1 - p0| - rest, gradient -u at p0 and u at p1.
   const Row& row = rows_[r];
-  const int s0 = p0.body == kWorldBody ? -1 : body_index_[p0.body];
-  const int s1 = p1.body == kWorldBody ? -1 : body_index_[p1.body];
+  const int s0 = slotOf(p0.body), s1 = slotOf(p1.body);
   const SolvePoint e0 = endPoint(world, p0, s0), e1 = endPoint(world, p1, s1);
   const Vec3 &a0 = e0.arm, &a1 = e1.arm;
   const Vec3& x0 = s0 >= 0 ? frames_[s0].state->x : world.body(p0.body).x;
@@ -145,7 +144,7 @@ void DirectSolver::evaluateSpan(const World& world, int r, const PathPoint& p0, 
 }
 
 bool DirectSolver::linearEnd(const PathPoint& point) const {
-  const int slot = point.body == kWorldBody ? -1 : body_index_[point.body];
+  const int slot = slotOf(point.body);
   if (slot < 0) return true;
   const BodyFrame& f = frames_[slot];
   const Vec3& centre = point.roll_centre;
@@ -263,7 +262,7 @@ void DirectSolver::evaluateRun(const World& world, int r, const PathPoint* point
   SolvePoint ends[2];
   for (std::size_t i = 0; i < count; ++i) {
     const BodyId id = points[i].body;
-    const int slot = id == kWorldBody ? -1 : body_index_[id];
+    const int slot = slotOf(id);
     const SolvePoint p = endPoint(world, points[i], slot);
     if (i == 0 || i + 1 == count) ends[i == 0 ? 0 : 1] = p;  // rolling ends are a run's ends
     arm[i] = p.arm;

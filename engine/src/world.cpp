@@ -744,7 +744,7 @@ void World::beginSolve(double h) {
   for (const auto& island : islands_) {
     if (!island->driven) continue;
     for (const int i : island->hinges)
-      if (hinges_[i].drive.mode != HingeDrive::Mode::None) hinge_braking_[i] = brakingInverseInertia(i);
+      if (hinges_[i].drive.mode != HingeDrive::Mode::None) hinge_braking_[i] = brakingInverseInertia(*island, i);
     for (const int i : island->prismatics)
       if (prismatics_[i].drive.mode != PrismaticDrive::Mode::None) prismatic_braking_[i] = brakingInverseMass(i);
   }

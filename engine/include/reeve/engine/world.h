@@ -390,8 +390,10 @@ class World {
   /// `other` (a closed loop). Empty when start is ground.
   bool driveAssembly(BodyId start, BodyId other, int skip_edge) const;
   /// 1 / (kg m^2): driveAssembly(start, ...) as one rigid body, about the
-  /// world axis `u` through `anchor`; 0 for none, -1 for a closed loop.
-  double assemblyInverseInertia(BodyId start, BodyId other, int skip_edge, const Vec3& anchor, const Vec3& u) const;
+  /// world axis `u` through `anchor`, with the loads its cables in `island`
+  /// hang from it; 0 for none, -1 for a closed loop.
+  double assemblyInverseInertia(const Island& island, BodyId start, BodyId other, int skip_edge, const Vec3& anchor,
+                                const Vec3& u) const;
   /// 1 / kg: driveAssembly's total mass; 0 for none, -1 for a closed loop.
   double assemblyInverseMass(BodyId start, BodyId other, int skip_edge) const;
   /// What a capped angle drive on hinge `hinge` brakes in time for
@@ -400,7 +402,8 @@ class World {
   /// joints, carried as if welded (an upper bound on the inertia, so the
   /// drive never brakes too late for what its joints carry; cables are
   /// not followed). 1 / (kg m^2); the two bodies alone in a closed loop.
-  double brakingInverseInertia(int hinge) const;
+  /// `island`: the hinge's.
+  double brakingInverseInertia(const Island& island, int hinge) const;
   /// The same for a capped position drive on prismatic joint
   /// `prismatic`: 1 / kg, the two sides' total masses.
   double brakingInverseMass(int prismatic) const;
@@ -614,7 +617,8 @@ class World {
   // driveAssembly's and assemblyInverseInertia's scratch, kept between calls.
   mutable std::vector<BodyId> assembly_;
   mutable std::vector<char> assembly_member_;  // per body: in assembly_
-  mutable std::vector<double> hung_lever2_;    // per body: m^2, hung from assembly_ at that lever squared
+  mutable std::vector<double> hung_lever2_;    // per body: m^2, hung from assembly_ at that lever squared (else 0)
+  mutable std::vector<BodyId> hung_;           // the bodies hung_lever2_ holds a lever for
 };
 
 }  // namespace reeve

@@ -50,7 +50,8 @@ const std::vector<Series>& allSeries() {
       {"tackle_stuck", [](const ScalingSpec& s) { return machines::tackleRolling(s, false); }},
       {"star_rigid", [](const ScalingSpec& s) { return machines::star(s, false); }},
       {"star_compliant", [](const ScalingSpec& s) { return machines::star(s, true); }},
-      {"islands", machines::islands},
+      {"islands", [](const ScalingSpec& s) { return machines::islands(s); }},
+      {"islands_braked", [](const ScalingSpec& s) { return machines::islands(s, true); }},
       {"wound", machines::wound},
   };
   return series;
@@ -60,7 +61,8 @@ const Series& findSeries(const std::string& name) {
   for (const Series& s : allSeries())
     if (s.name == name) return s;
   throw std::invalid_argument("--series: no series called '" + name +
-                              "' (chain, tackle_hinged, tackle_rolling, tackle_stuck, star_rigid, star_compliant, islands, wound)");
+                              "' (chain, tackle_hinged, tackle_rolling, tackle_stuck, star_rigid, star_compliant, "
+                              "islands, islands_braked, wound)");
 }
 
 // "SxI": substeps x iterations per frame.

@@ -186,17 +186,23 @@ StaticMachine star(const ScalingSpec& spec, bool compliant) {
   return m;
 }
 
-StaticMachine islands(const ScalingSpec& spec) {
+StaticMachine islands(const ScalingSpec& spec, bool braked) {
   if (spec.count < 1) throw std::invalid_argument("islands: needs at least 1 machine");
   StaticMachine m{detail::emptyScene("islands (generated)", spec.gravity, spec.budget), spec.load_kg * spec.gravity};
-  m.scene.description = "K separate balanced Atwood machines (reeve/machines/machines.h).";
+  m.scene.description = std::string("K separate balanced Atwood machines") + (braked ? ", each wheel braked" : "") +
+                        " (reeve/machines/machines.h).";
+  HingeDrive brake;
+  if (braked) {
+    brake.mode = HingeDrive::Mode::Angle;
+    brake.max_torque = 1.0;
+  }
   World& world = *m.scene.world;
   const double r = 0.3, box = 0.1, drop = 2.0;
   for (int k = 0; k < spec.count; ++k) {
     const std::string n = std::to_string(k);
     const Vec3 at(1.0 * k, 0.0, 0.0);
     const BodyId wheel = detail::addWheel(world, "wheel" + n, r, 2.0, at);
-    world.addHinge({wheel, kWorldBody, at, Vec3::UnitZ()});
+    world.addHinge({wheel, kWorldBody, at, Vec3::UnitZ(), 0.0, {}, brake});
     const BodyId left = detail::addBox(world, "left" + n, Vec3::Constant(box), spec.load_kg, at + Vec3(-r, -drop, 0.0));
     const BodyId right = detail::addBox(world, "right" + n, Vec3::Constant(box), spec.load_kg, at + Vec3(r, -drop, 0.0));
     CableDef cable;

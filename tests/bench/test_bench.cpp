@@ -326,6 +326,7 @@ TEST(ScalingMachines, MeetTheirClosedFormStaticsAtFourWithTheDirectSolver) {
   expectStatics(machines::tackleRolling(spec), "tackle_rolling");
   expectStatics(machines::tackleRolling(spec, false), "tackle_stuck");
   expectStatics(machines::islands(spec), "islands");
+  expectStatics(machines::islands(spec, true), "islands_braked");  // each brake holds with no torque
   expectStatics(machines::wound(spec), "wound");
   EXPECT_DOUBLE_EQ(machines::tackleHinged(spec).tension_N, 15.0);  // W / K: the block weighs K m
 }

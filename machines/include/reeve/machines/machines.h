@@ -211,8 +211,11 @@ StaticMachine star(const ScalingSpec& spec, bool compliant);
 
 /// islands: K Atwood machines (wheels 0.3 m in radius, 2 kg, hinged to
 /// the world, 1 m apart in x) with m on both sides, in one scene: 2 K
-/// spans, tension m g each.
-StaticMachine islands(const ScalingSpec& spec);
+/// spans, tension m g each. `braked`: each wheel also held at 0 rad by an
+/// angle drive of at most 1 N m (a brake the balanced loads never slip),
+/// whose braking inertia the step finds every substep
+/// (World::brakingInverseInertia).
+StaticMachine islands(const ScalingSpec& spec, bool braked = false);
 
 /// wound: one cable wound back and forth between two wheels 1 m apart
 /// (hinged to the world at (0, 0, 0) and (1, 0, 0)) in K wraps (K even),

@@ -374,14 +374,15 @@ TEST_F(Cli, AWheelCarriedFurtherThanItsSizeInASubstepIsSaidToBeTheCause) {
   EXPECT_NE(r.err.find("body 'small' moved 3.2 m in that substep, more than its own size (0.25 m)"),
             std::string::npos) << r.err;
   EXPECT_EQ(r.err.find("The solve diverged"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("Gauss-Seidel"), std::string::npos) << r.err;  // it ran direct: no hint to use it
 }
 
 TEST_F(Cli, ARunThatBlowsUpUnderGaussSeidelPointsToTheDirectSolver) {
   // The bow's trapezoidal limb springs (omega h above 1 at 600 Hz) under
   // Gauss-Seidel at the paper's 10 x 10: its sweeps do not converge, and a
   // cam is thrown 2e7 m at 0.255 s (the cable bookkeeping breaks). The
-  // direct solver runs the same budget through, and a run that fails
-  // under it is not told to use it.
+  // direct solver runs the same budget through (a run that fails under it
+  // is not told to use it: the gear above).
   const std::string bow = std::string(REEVE_SCENES_DIR) + "/bow.json";
   const Result gs = reeve("run " + bow + " --frames 20 --substeps 10 --iterations 10 --solver gauss-seidel");
   EXPECT_EQ(gs.code, 1) << gs.err;
@@ -390,10 +391,6 @@ TEST_F(Cli, ARunThatBlowsUpUnderGaussSeidelPointsToTheDirectSolver) {
   EXPECT_NE(gs.err.find("--solver direct"), std::string::npos) << gs.err;
   const Result direct = reeve("run " + bow + " --frames 20 --substeps 10 --iterations 10 --solver direct");
   EXPECT_EQ(direct.code, 0) << direct.err;
-  const std::string gear = std::string(REEVE_FUZZ_REGRESSIONS_DIR) + "/gear_belt_at_18000_g.json";
-  const Result blown = reeve("run " + gear + " --frames 3 --substeps 4 --iterations 4");
-  EXPECT_EQ(blown.code, 1) << blown.err;
-  EXPECT_EQ(blown.err.find("Gauss-Seidel"), std::string::npos) << blown.err;
 }
 
 TEST_F(Cli, ASpoolThatRunsOutOfCableStopsTheRunSayingSo) {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "direct/direct_solver.h"
+#include "gauss_seidel/span_ends.h"
 #include "reeve/engine/body.h"
 #include "reeve/engine/energy.h"
 
@@ -30,6 +31,7 @@ struct Island {
   std::vector<int> hinges, prismatics, sphericals, fixeds, distances, paths;
   std::vector<int> manifolds;  // this substep's contact manifolds on them (World::contactManifolds)
   DirectSolver direct;
+  std::vector<SpanEnds> span_ends;  // Gauss-Seidel's, by paths' order, for one solve (World::sweepGaussSeidel)
   int iterations = 0;        // the last solve's
   bool interrupted = false;  // the last solve stopped for the interrupt flag
   bool non_finite = false;   // a body state (or tension) not finite after the last pass

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "reeve/engine/correction.h"
+#include "gauss_seidel/span_ends.h"
 
 namespace reeve {
 namespace {
@@ -82,6 +83,11 @@ SolvePoint solvePoint(const BodyState& body, const PathPoint& point, bool in_sol
 
 namespace {
 
+// A path the span kernel below solves.
+bool isSpan(const PathConstraint& path) {
+  return path.points.size() == 2 && path.points[0].body != path.points[1].body && path.scales.empty();
+}
+
 // The kernel below for a span between two bodies, the common case (every
 // span of a cable over wheels): the same maths without its per-point
 // arrays and per-body sums, each rolling end's pay-out per radian taken
@@ -89,10 +95,29 @@ namespace {
 //   C = |p_1 - p_0| + pay-outs - L,
 //   w = sum_i m_i^-1 g_i . f_i + t(g_i) . I_i^-1 t(f_i),
 // t the moment (SolvePoint::moment, linear in its argument).
-void solveSpan(PathConstraint& path, BodyState& b0, BodyState& b1, double alpha_tilde, double h) {
+// `ends`: the span's steady ends (span_ends.h), or none.
+void solveSpan(PathConstraint& path, BodyState& b0, BodyState& b1, double alpha_tilde, double h,
+               const SpanEnds* ends) {
   const PathPoint &p0 = path.points[0], &p1 = path.points[1];
-  const Mat3 R0 = b0.q.toRotationMatrix(), R1 = b1.q.toRotationMatrix();
-  const SolvePoint first = solvePointRotated(b0, R0, p0), last = solvePointRotated(b1, R1, p1);
+  // A steady end needs no rotation matrix: its rotor's inverse inertia
+  // (below) is along its axle.
+  const bool steady0 = ends && ends->steady[0], steady1 = ends && ends->steady[1];
+  Mat3 R0, R1;
+  if (!steady0) R0 = b0.q.toRotationMatrix();
+  if (!steady1) R1 = b1.q.toRotationMatrix();
+  const auto point = [&](int k, const BodyState& b, const Mat3& R, const PathPoint& p) {
+    if (!(ends && ends->steady[k])) return solvePointRotated(b, R, p);
+    // The turn since the solve's start as the rotor's orientation has it,
+    // not as the visits' turn vectors add up: rotateBy turns by 2 atan(|dphi|
+    // / 2), not |dphi|, so the sum would count cable the rotor never wound
+    // (the lever turned back from the rotor's pose, solvePointRotated,
+    // keeps the two in step).
+    SolvePoint s = ends->end[k];
+    const Quat dq = b.q * ends->start_q[k].conjugate();
+    s.turn = ends->start_turn[k] + 2.0 * atan2Small(dq.vec().dot(s.axis), dq.w());
+    return s;
+  };
+  const SolvePoint first = point(0, b0, R0, p0), last = point(1, b1, R1, p1);
   const Vec3 d = (b1.x + last.arm) - (b0.x + first.arm);
   const double l = d.norm();
   const Vec3 u = l < 1e-12 ? Vec3::Zero() : Vec3(d / l);
@@ -107,14 +132,16 @@ void solveSpan(PathConstraint& path, BodyState& b0, BodyState& b1, double alpha_
   // rotor's I_body^-1 is a a^T / I_a (body.h), so in the world a_w (a_w .
   // v) / I_a with a_w = R a and 1 / I_a its trace: one product with R,
   // not three.
-  // A rolling end on the rotor's own axle has a_w already.
+  // A rolling end on the rotor's own axle has a_w already (a steady one
+  // to rounding).
   const auto invInertia = [](const BodyState& b, const Mat3& R, const PathPoint& p, const SolvePoint& s,
-                             const Vec3& v) {
+                             bool steady, const Vec3& v) {
     if (!b.isRotor()) return Vec3(R * (b.inv_inertia * (R.transpose() * v)));
-    const Vec3 axle = p.roll_axis == b.rotor_axis ? s.axis : Vec3(R * b.rotor_axis);
+    const Vec3 axle = steady || p.roll_axis == b.rotor_axis ? s.axis : Vec3(R * b.rotor_axis);
     return Vec3(axle * (axle.dot(v) * b.inv_inertia.trace()));
   };
-  const Vec3 turn0 = invInertia(b0, R0, p0, first, weight * t0), turn1 = invInertia(b1, R1, p1, last, weight * t1);
+  const Vec3 turn0 = invInertia(b0, R0, p0, first, steady0, weight * t0),
+             turn1 = invInertia(b1, R1, p1, last, steady1, weight * t1);
   const double w = weight * u.squaredNorm() * (b0.inv_mass + b1.inv_mass) + t0.dot(turn0) + t1.dot(turn1);
   const DampedRow row = dampedRow(C, alpha_tilde, alpha_tilde * h * path.damping, length - path.start_length);
   if (!(w + row.alpha_tilde > 0.0)) return;
@@ -142,8 +169,7 @@ void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double a
   assert(n >= 2);
   assert(path.weights.empty() || path.weights.size() == n - 1);
   assert(path.scales.empty() || path.scales.size() == n - 1);
-  if (n == 2 && path.points[0].body != path.points[1].body && path.scales.empty())
-    return solveSpan(path, bodies(path.points[0].body), bodies(path.points[1].body), alpha_tilde, h);
+  if (isSpan(path)) return solveSpan(path, bodies(path.points[0].body), bodies(path.points[1].body), alpha_tilde, h, nullptr);
   // World arm r_i, gradient of the length g_i = dC/dp_i and force direction
   // f_i (the weighted gradient; f = g without weights).
   scratch.fit(n);
@@ -241,6 +267,43 @@ double pathStartLength(const PathConstraint& path, const BodyTable& bodies) {
               (bodies(q.body).toWorldAtSubstepStart(q.local) - bodies(p.body).toWorldAtSubstepStart(p.local)).norm();
   }
   return length;
+}
+
+// A steady end's circle lies about its rotor's axle to this (squared:
+// 1e-12 relative), which rounding meets and a circle set on another axis
+// or off the axle does not.
+constexpr double kSteadyParallel2 = 1e-24;
+
+void prepareSpanEnds(const std::vector<int>& paths, const std::vector<PathConstraint>& all,
+                     const BodyTable& bodies, std::vector<SpanEnds>& ends) {
+  ends.resize(paths.size());
+  for (std::size_t k = 0; k < paths.size(); ++k) {
+    const PathConstraint& path = all[paths[k]];
+    SpanEnds& e = ends[k];
+    for (int i = 0; i < 2; ++i) {
+      e.steady[i] = false;
+      if (!isSpan(path)) continue;
+      const PathPoint& p = path.points[i];
+      const BodyState& b = bodies(p.body);
+      // Its circle about the rotor's axle, to rounding: the axle's turn
+      // moves neither its axis nor its centre.
+      const Vec3& a = b.rotor_axis;
+      if (!b.isRotor() || p.roll_axis.isZero() || p.roll_axis.cross(a).squaredNorm() > kSteadyParallel2 ||
+          (p.roll_centre - p.roll_centre.dot(a) * a).squaredNorm() > kSteadyParallel2 * (1.0 + p.roll_centre.squaredNorm()))
+        continue;
+      e.end[i] = solvePointRotated(b, b.q.toRotationMatrix(), p);
+      e.start_q[i] = b.q;
+      e.start_turn[i] = e.end[i].turn;
+      e.steady[i] = true;
+    }
+  }
+}
+
+void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double alpha_tilde, double h,
+                         const SpanEnds& ends) {
+  if (path.enabled && isSpan(path))
+    return solveSpan(path, bodies(path.points[0].body), bodies(path.points[1].body), alpha_tilde, h, &ends);
+  solvePathConstraint(path, bodies, alpha_tilde, h);
 }
 
 }  // namespace reeve

@@ -5,6 +5,7 @@
 // travels one constraint per visit: right while the bodies in a chain
 // are about as heavy as each other (README, "Substeps and iterations").
 #include "../island.h"
+#include "span_ends.h"
 #include "reeve/engine/world.h"
 
 namespace reeve {
@@ -16,6 +17,7 @@ void World::sweepGaussSeidel(Island& island, double h) {
   const auto visit = [&](const std::vector<int>& list, auto& joints, auto solve) {
     for (const int i : list) solve(joints[i], body(joints[i].a), body(joints[i].b), h);
   };
+  prepareSpanEnds(island.paths, paths_, table, island.span_ends);
   for (int it = 0; it < settings_.iterations; ++it) {
     ++island.iterations;
     // Joints first (all types), then distances and paths (cables).
@@ -27,7 +29,10 @@ void World::sweepGaussSeidel(Island& island, double h) {
       DistanceConstraint& c = distances_[i];
       solveDistanceConstraint(c, body(c.a), body(c.b), c.compliance * inv_h2, h);
     }
-    for (const int i : island.paths) solvePathConstraint(paths_[i], table, paths_[i].compliance * inv_h2, h);
+    for (std::size_t k = 0; k < island.paths.size(); ++k) {
+      PathConstraint& p = paths_[island.paths[k]];
+      solvePathConstraint(p, table, p.compliance * inv_h2, h, island.span_ends[k]);
+    }
     for (const int i : island.manifolds) {
       ContactManifold& m = manifolds_[i];
       const Contact& c = contacts_[m.first];

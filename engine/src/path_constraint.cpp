@@ -169,7 +169,8 @@ void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double a
   assert(n >= 2);
   assert(path.weights.empty() || path.weights.size() == n - 1);
   assert(path.scales.empty() || path.scales.size() == n - 1);
-  if (isSpan(path)) return solveSpan(path, bodies(path.points[0].body), bodies(path.points[1].body), alpha_tilde, h, nullptr);
+  if (isSpan(path))
+    return solveSpan(path, bodies(path.points[0].body), bodies(path.points[1].body), alpha_tilde, h, nullptr);
   // World arm r_i, gradient of the length g_i = dC/dp_i and force direction
   // f_i (the weighted gradient; f = g without weights).
   scratch.fit(n);
@@ -288,8 +289,9 @@ void prepareSpanEnds(const std::vector<int>& paths, const std::vector<PathConstr
       // Its circle about the rotor's axle, to rounding: the axle's turn
       // moves neither its axis nor its centre.
       const Vec3& a = b.rotor_axis;
+      const Vec3 off_axle = p.roll_centre - p.roll_centre.dot(a) * a;
       if (!b.isRotor() || p.roll_axis.isZero() || p.roll_axis.cross(a).squaredNorm() > kSteadyParallel2 ||
-          (p.roll_centre - p.roll_centre.dot(a) * a).squaredNorm() > kSteadyParallel2 * (1.0 + p.roll_centre.squaredNorm()))
+          off_axle.squaredNorm() > kSteadyParallel2 * (1.0 + p.roll_centre.squaredNorm()))
         continue;
       e.end[i] = solvePointRotated(b, b.q.toRotationMatrix(), p);
       e.start_q[i] = b.q;

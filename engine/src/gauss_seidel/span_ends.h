@@ -9,13 +9,14 @@
 namespace reeve {
 
 /// The two ends of a span (a two-point path between two bodies) as one
-/// Gauss-Seidel solve sees them. A rolling end on a rotor whose circle is
-/// centred on the rotor and turns about its axle (PathPoint::roll_axis ==
-/// BodyState::rotor_axis) is `steady`: the rotor turns about that axle
-/// alone, which stays put in the world, and the end's lever is turned back
-/// by the solve's turn (solvePoint), so its world axle, lever and arm stay
-/// what they were at the solve's start, and a visit reads only its turn
-/// since then, from the rotor's orientation. Every visit otherwise builds both rotation
+/// Gauss-Seidel solve sees them. A rolling end on a rotor whose circle
+/// lies about the rotor's axle (PathPoint::roll_axis along
+/// BodyState::rotor_axis, roll_centre on it, both to rounding) is
+/// `steady`: the rotor turns about that axle alone, which stays put in the
+/// world, and the end's lever is turned back by the solve's turn
+/// (solvePoint), so its world axle, lever and arm stay what they were at
+/// the solve's start, and a visit reads only its turn since then, from
+/// the rotor's orientation. Every visit otherwise builds both rotation
 /// matrices and turns both levers back (sin, cos, Rodrigues): a third of
 /// a visit of a span between two wheels.
 struct SpanEnds {

@@ -111,10 +111,14 @@ void solveSpan(PathConstraint& path, BodyState& b0, BodyState& b1, double alpha_
     // not as the visits' turn vectors add up: rotateBy turns by 2 atan(|dphi|
     // / 2), not |dphi|, so the sum would count cable the rotor never wound
     // (the lever turned back from the rotor's pose, solvePointRotated,
-    // keeps the two in step).
+    // keeps the two in step). The orientation gives it up to whole turns
+    // (a jerk spins a wheel radians in one solve); the sum, off by
+    // |dphi|^3 / 12 a visit, picks the turn.
     SolvePoint s = ends->end[k];
     const Quat dq = b.q * ends->start_q[k].conjugate();
-    s.turn = ends->start_turn[k] + 2.0 * atan2Small(dq.vec().dot(s.axis), dq.w());
+    const double summed = s.axis.dot(b.solve_turn) - ends->start_turn[k];
+    const double turned = 2.0 * atan2Small(dq.vec().dot(s.axis), dq.w());
+    s.turn = ends->start_turn[k] + summed + wrapAngle(turned - summed);
     return s;
   };
   const SolvePoint first = point(0, b0, R0, p0), last = point(1, b1, R1, p1);

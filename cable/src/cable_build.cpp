@@ -34,8 +34,10 @@ const char* eventName(CableEvent::Kind kind) {
 CableSystem::CableSystem(World& world) : world_(world) {
   world_.addSubstepHook(World::IslandHook{
       [this](World&, double h) { beginUpdate(h); },
-      [this](World& w, double h, int island) { updateIsland(island, w.time() + h, h); },
-      [this](World& w, double h) { endUpdate(w.time() + h); }});
+      [this](World&, double h, int island, const World::SubstepClock& clock) {
+        return updateIsland(island, clock.time_s + h, h, clock.substep);
+      },
+      [this](World& w, double h) { endUpdate(w.time() + h); }, true});
 }
 
 int CableSystem::addCable(const CableDef& def) {

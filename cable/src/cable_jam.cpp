@@ -90,8 +90,9 @@ bool CableSystem::jam(Cable& cable, int c, int j) {
   return true;
 }
 
-void CableSystem::addJamJoints() {
+void CableSystem::addJamJoints(double time_s) {
   for (int c = 0; c < static_cast<int>(cables_.size()); ++c) {
+    if (updates_[c].news_at > time_s) continue;  // a later substep's (endUpdate)
     for (const JamRequest& r : updates_[c].jams) {
       const std::pair key{r.wheel, r.tie};
       if (std::find(jams_.begin(), jams_.end(), key) != jams_.end()) continue;

@@ -84,14 +84,15 @@ double CableSystem::turnSinceUpdate(BodyId b, double spin) const {
   return unwrappedTurn(body.q * last_q_[b].conjugate(), planeNormal(body.q), spin);
 }
 
-void CableSystem::measureTurns(int island, double h) {
+void CableSystem::measureTurns(int island, double h, int substep) {
   // Whole turns from the last solve's own turn (BodyState::solve_turn, as
   // far as the direct solver turned it) and this substep's integration
   // (h omega).
   for (int k = rolling_begin_[island + 1]; k < rolling_begin_[island + 2]; ++k) {
     const BodyId b = rolling_by_island_[k];
     const BodyState& body = world_.body(b);
-    const Vec3 solved = measure_solve_turn_ ? body.solve_turn : Vec3::Zero();
+    // An update by hand between steps counted the last solve's turn.
+    const Vec3 solved = substep > 0 || !solve_turn_counted_ ? body.solve_turn : Vec3::Zero();
     const Vec3 n = planeNormal(body.q);
     const Quat dq = body.q * last_q_[b].conjugate();
     turn_[b] = unwrappedTurn(dq, n, (h * body.omega + solved).dot(n));
@@ -130,12 +131,9 @@ void groupByIsland(int n, IslandOf island_of, std::vector<int>& order, std::vect
 }  // namespace
 
 void CableSystem::beginUpdate(double h) {
+  // Nothing here changes when called again within a step (World::
+  // IslandHook::whole_steps).
   poses_predicted_ = h > 0.0;
-  ++update_count_;
-  // An update by hand between steps (h = 0) counts the last solve's turn;
-  // the next substep's must not count it again.
-  measure_solve_turn_ = !solve_turn_counted_;
-  solve_turn_counted_ = h == 0.0;
   if (updates_.size() != cables_.size()) {
     const std::size_t added = updates_.size();
     updates_.resize(cables_.size());
@@ -166,40 +164,59 @@ void CableSystem::reserveSlice(int c) {
   updates_[c].slice.vertices.reserve(2 * room);
 }
 
-void CableSystem::updateIsland(int island, double time_s, double h) {
+bool CableSystem::updateIsland(int island, double time_s, double h, int substep) {
   if (island + 2 >= static_cast<int>(rolling_begin_.size()) && island + 2 >= static_cast<int>(cable_begin_.size()))
-    return;  // no cable on it
-  if (island + 2 < static_cast<int>(rolling_begin_.size())) measureTurns(island, h);
+    return false;  // no cable on it
+  if (island + 2 < static_cast<int>(rolling_begin_.size())) measureTurns(island, h, substep);
+  bool news = false;
   if (island + 2 < static_cast<int>(cable_begin_.size()))
     for (int k = cable_begin_[island + 1]; k < cable_begin_[island + 2]; ++k)
-      updateCable(cables_by_island_[k], time_s, h);
+      news |= updateCable(cables_by_island_[k], time_s, h);
+  return news;
 }
 
 void CableSystem::update(double time_s, double h) {
   const int islands = world_.islandCount();
   beginUpdate(h);
-  for (int i = -1; i < islands; ++i) updateIsland(i, time_s, h);
+  for (int i = -1; i < islands; ++i) updateIsland(i, time_s, h, 0);
   endUpdate(time_s);
+  solve_turn_counted_ = h == 0.0;
 }
 
 void CableSystem::endUpdate(double time_s) {
+  if (poses_predicted_) solve_turn_counted_ = false;  // a substep's update, after its integration
   poses_predicted_ = false;
   // Only a cable's event, jam or broken invariant is news: without any,
   // this thread reads no cable's record (each stays in the cache of the
   // thread that updates it).
   if (!news_.exchange(false, std::memory_order_relaxed)) return;
+  // The news of updates that ended by time_s; an island running ahead on
+  // its own (World::IslandHook::whole_steps) leaves its later news to the
+  // endUpdate of its substep.
+  const auto due = [&](const CableUpdate& u) { return u.news_at <= time_s; };
+  bool later = false;
   for (CableUpdate& u : updates_) {
+    const bool news = !u.events.empty() || !u.jams.empty() || u.breached;
+    if (news && !due(u)) later = true;
+    if (!due(u)) continue;
     events_.insert(events_.end(), u.events.begin(), u.events.end());
     u.events.clear();
   }
-  addJamJoints();
+  if (later) news_.store(true, std::memory_order_relaxed);
+  addJamJoints(time_s);
   if (breach_) return;  // the first one says what went wrong
   // Each cable checked its own (updateCable); the first in cable order is
   // the one found.
-  if (std::none_of(updates_.begin(), updates_.end(), [](const CableUpdate& u) { return u.breached; })) return;
-  if (auto b = findBreach()) {
+  int breached = -1;
+  for (int c = 0; c < static_cast<int>(updates_.size()) && breached < 0; ++c)
+    if (updates_[c].breached && due(updates_[c])) breached = c;
+  if (breached < 0) return;
+  if (auto b = cableBreach(breached)) {
     b->time_s = time_s;
-    for (const BodyId body : rolling_bodies_) {
+    // Its own rolling bodies: another island's may be at another substep.
+    for (const Link& link : cables_[breached].links) {
+      if (!link.rolls()) continue;
+      const BodyId body = link.body;
       if (b->fastest < 0 || std::abs(turn_[body]) > std::abs(b->fastest_turn)) {
         b->fastest = body;
         b->fastest_turn = turn_[body];
@@ -208,8 +225,9 @@ void CableSystem::endUpdate(double time_s) {
       // radius of a circle of the same perimeter).
       double radius = std::numeric_limits<double>::infinity();
       for (const Cable& c : cables_)
-        for (const Link& link : c.links)
-          if (link.body == body && link.rolls()) radius = std::min(radius, link.section.perimeter() / (2.0 * std::numbers::pi));
+        for (const Link& other : c.links)
+          if (other.body == body && other.rolls())
+            radius = std::min(radius, other.section.perimeter() / (2.0 * std::numbers::pi));
       if (b->farthest < 0 || move_[body] / radius > b->farthest_move / b->farthest_radius) {
         b->farthest = body;
         b->farthest_move = move_[body];
@@ -220,9 +238,10 @@ void CableSystem::endUpdate(double time_s) {
   }
 }
 
-void CableSystem::updateCable(int c, double time_s, double h) {
+bool CableSystem::updateCable(int c, double time_s, double h) {
   Cable& cable = cables_[c];
   CableUpdate& out = updates_[c];
+  ++out.count;
   if (out.fixed.size() != cable.joints.size()) out.fixed.assign(cable.joints.size(), FixedSpan{});
   out.winch_work = 0.0;  // this substep's, added to winch_total below
   const std::size_t events_before = out.events.size();
@@ -245,7 +264,7 @@ void CableSystem::updateCable(int c, double time_s, double h) {
     for (int j = 0; j < static_cast<int>(cable.joints.size()); ++j) {
       const CableJoint& joint = cable.joints[j];
       PathConstraint& path = world_.path(joint.path);
-      if (joint.run == j && path.enabled && path.points.size() == 2 && out.fixed[j].update == update_count_)
+      if (joint.run == j && path.enabled && path.points.size() == 2 && out.fixed[j].update == out.count)
         path.placement = out.fixed[j].found;
     }
   // A junction's path once a substep, from its branches' new runs: its
@@ -255,7 +274,12 @@ void CableSystem::updateCable(int c, double time_s, double h) {
     buildJunction(junctions_[cable.junction]);
   out.winch_total += out.winch_work;
   out.breached = cableBreach(c).has_value();
-  if (out.breached || !out.events.empty() || !out.jams.empty()) news_.store(true, std::memory_order_relaxed);
+  const bool news = out.breached || !out.events.empty() || !out.jams.empty();
+  if (news) {
+    out.news_at = time_s;
+    news_.store(true, std::memory_order_relaxed);
+  }
+  return news;
 }
 
 bool CableSystem::keepsTangents(const Cable& cable, int c, int j) const {
@@ -265,7 +289,7 @@ bool CableSystem::keepsTangents(const Cable& cable, int c, int j) const {
   const CableJoint& joint = cable.joints[j];
   const FixedSpan& fixed = updates_[c].fixed[j];
   const Link &from = cable.links[j], &to = cable.links[joint.to];
-  return fixed.update == update_count_ - 1 && fixed.to == joint.to && from.rolls() && to.rolls() &&
+  return fixed.update == updates_[c].count - 1 && fixed.to == joint.to && from.rolls() && to.rolls() &&
          fixed.sides == from.orientation * 2 + to.orientation && in_place_[from.body] && in_place_[to.body];
 }
 
@@ -287,9 +311,9 @@ void CableSystem::updateJoint(Cable& cable, int c, int j, double time_s) {
     if (!kept) {  // found afresh; kept ones stay as they were in the world, not rounded through the poses
       fixed.a = from_body.toWorld(anchors->first);
       fixed.b = to_body.toWorld(anchors->second);
-      fixed.found = update_count_;
+      fixed.found = updates_[c].count;
     }
-    fixed.update = update_count_;
+    fixed.update = updates_[c].count;
     fixed.to = joint.to;
     fixed.sides = from.orientation * 2 + to.orientation;
   } else {

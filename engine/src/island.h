@@ -8,12 +8,14 @@
 // integration, velocities and ledger flows are its own.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "direct/direct_solver.h"
 #include "gauss_seidel/span_ends.h"
 #include "reeve/engine/body.h"
 #include "reeve/engine/energy.h"
+#include "reeve/engine/world.h"
 
 namespace reeve {
 
@@ -34,9 +36,17 @@ struct Island {
   std::vector<SpanEnds> span_ends;  // Gauss-Seidel's, by paths' order, for one solve (World::sweepGaussSeidel)
   int iterations = 0;        // the last solve's
   bool interrupted = false;  // the last solve stopped for the interrupt flag
-  bool non_finite = false;   // a body state (or tension) not finite after the last pass
   bool driven = false;       // a joint of it has a drive this substep (World::beginSolve)
   bool moved = false;        // the hooks moved a row of it onto other bodies' island (World::rowsMoved)
+  bool news = false;         // the hooks' island parts left news this substep (World::IslandHook)
+  // Where it is in the step: the substep it is at (done with those
+  // before), and whether that one's first pass has run (World::
+  // startIsland). Islands running whole steps are at different substeps.
+  int at = 0;
+  bool started = false;
+  bool cut = false;  // the interrupt flag cut one of its solves or substeps short this step
+  std::optional<NonFiniteFind> non_finite;  // the first this step
+  std::vector<int> substep_iterations;      // per substep of a whole step: its solve's iterations
   // Its share of the time of the threads that ran it (their time over the
   // islands each ran), since the last World::balanceIslandRuns.
   double ns = 0.0;

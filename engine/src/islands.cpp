@@ -101,11 +101,21 @@ void World::refreshIslands() {
 void World::buildIslands() {
   islands_dirty_ = false;
   ++islands_built_;
+  const int n = bodyCount();
+  // What each island holds for the step under way goes to the World, or
+  // with its bodies to their new island: a whole step's islands may be at
+  // different substeps (World::stepWhole).
+  body_progress_.assign(n, -1);  // -1: on no island
   for (auto& island : islands_) {  // their bodies may be others' now
     addFlows(flows_, island->flows);
     island->flows = WorldEnergy{};
+    if (island->non_finite && (!non_finite_found_ || *island->non_finite < *non_finite_found_))
+      non_finite_found_ = island->non_finite;
+    island->non_finite.reset();
+    for (std::size_t s = 0; s < island->substep_iterations.size() && s < substep_iterations_.size(); ++s)
+      substep_iterations_[s] = std::max(substep_iterations_[s], island->substep_iterations[s]);
+    for (const BodyId id : island->bodies) body_progress_[id] = 4 * island->at + 2 * island->cut + island->started;
   }
-  const int n = bodyCount();
   // Moving and kinematic bodies are the nodes; static bodies and the world
   // join nothing.
   const auto node = [&](BodyId id) { return id != kWorldBody && (mass_[id] > 0.0 || bodies_[id].kinematic); };
@@ -156,6 +166,20 @@ void World::buildIslands() {
     islands_[island]->bodies.push_back(id);
   }
   islands_.resize(count);
+  for (auto& island : islands_) {
+    int progress = -1;  // its bodies' islands' (a body new to islands has none)
+    for (const BodyId id : island->bodies) {
+      if (body_progress_[id] < 0) continue;
+      if (progress >= 0 && body_progress_[id] != progress)  // IslandHook::whole_steps promised it would not
+        throw std::logic_error("World: a substep hook joined islands that were at different substeps");
+      progress = body_progress_[id];
+    }
+    progress = std::max(progress, 0);
+    island->at = progress / 4;
+    island->cut = progress / 2 % 2 == 1;
+    island->started = progress % 2 == 1;
+    island->substep_iterations.assign(substep_iterations_.size(), 0);
+  }
   island_cost_.assign(count, 0.0);  // an island's bodies may be others now
   island_manifolds_ = true;         // sortManifolds clears the lists
   // Room for 2 touching pairs a body, as findContacts has.

@@ -465,57 +465,203 @@ void World::step(double dt) {
   interrupted_ = false;
   const double h = dt / settings_.substeps;
   const bool start_pairing = pairsAtStart();  // the ledger's (energy.cpp)
-  for (int s = 0; s < settings_.substeps && !interrupted_; ++s) {
-    // Each island's passes run together, on its thread (forEachIsland);
-    // what joins islands or is on none runs between, on this one.
-    if (start_pairing) {
-      if (pre_v_.size() != bodies_.size()) pre_v_.resize(bodies_.size()), pre_omega_.resize(bodies_.size());
-      for (BodyId id = 0; id < bodyCount(); ++id)
-        if (island_of_[id] < 0) pre_v_[id] = bodies_[id].v, pre_omega_[id] = bodies_[id].omega;
+  hinge_braking_.resize(hinges_.size());
+  prismatic_braking_.resize(prismatics_.size());
+  loose_at_ = 0;
+  loose_started_ = false;
+  for (auto& island : islands_) {
+    island->at = 0;
+    island->started = island->cut = false;
+    island->substep_iterations.clear();
+  }
+  substep_iterations_.clear();
+  if (runsWholeSteps()) {
+    stepWhole(h, start_pairing);
+  } else {
+    for (int s = 0; s < settings_.substeps && !interrupted_; ++s) {
+      substep(s, h, start_pairing, false);
+      if (progress_) progress_(s + 1, settings_.substeps);
+      if (!interrupted_ && s + 1 < settings_.substeps) interrupted_ = interruptRequested();
     }
-    updateDrives(loose_hinges_, loose_prismatics_, h);
-    poses_solved_ = false;
+  }
+  recordNonFinite();
+  last_h_ = h;
+}
+
+bool World::runsWholeSteps() const {
+  // Nothing may join the islands within a step, nor run between their
+  // passes on the caller's thread.
+  if (islands_.empty() || !resolve_checks_.empty() || hasContacts()) return false;
+  if (!loose_distances_.empty() || !loose_paths_.empty() || !loose_hinges_.empty() || !loose_prismatics_.empty())
+    return false;
+  if (!std::all_of(hooks_.begin(), hooks_.end(), [](const IslandHook& hook) { return hook.whole_steps; }))
+    return false;
+  // A braked drive's inertia is found over its assembly in the World's
+  // scratch (drive_assembly.cpp), on the caller's thread (beginSolve).
+  for (const HingeJoint& j : hinges_)
+    if (j.drive.mode == HingeDrive::Mode::Angle && j.drive.stiffness == 0.0 && j.drive.max_torque > 0.0 &&
+        std::isfinite(j.drive.max_torque))
+      return false;
+  for (const PrismaticJoint& j : prismatics_)
+    if (j.drive.mode == PrismaticDrive::Mode::Position && j.drive.stiffness == 0.0 && j.drive.max_force > 0.0 &&
+        std::isfinite(j.drive.max_force))
+      return false;
+  return true;
+}
+
+void World::substep(int s, double h, bool start_pairing, bool catching_up) {
+  const SubstepClock clock{s, time_};
+  // Each island's passes run together, on its thread (forEachIsland);
+  // what joins islands or is on none runs between, on this one. An island
+  // not at this substep (Island::at: a whole step ran it on) sits out.
+  if (start_pairing && !catching_up) {
+    if (pre_v_.size() != bodies_.size()) pre_v_.resize(bodies_.size()), pre_omega_.resize(bodies_.size());
+    for (BodyId id = 0; id < bodyCount(); ++id)
+      if (island_of_[id] < 0) pre_v_[id] = bodies_[id].v, pre_omega_[id] = bodies_[id].omega;
+  }
+  updateDrives(loose_hinges_, loose_prismatics_, clock.time_s, h);
+  poses_solved_ = false;
+  for (auto& hook : hooks_)
+    if (hook.before) hook.before(*this, h);
+  if (loose_at_ == s) {
+    if (!loose_started_)
+      for (auto& hook : hooks_)
+        if (hook.island) hook.island(*this, h, -1, clock);
+    loose_at_ = s + 1;
+    loose_started_ = false;
+  }
+  forEachIsland([&](int i) {
+    Island& island = *islands_[i];
+    if (island.at != s) {
+      island.moved = island.driven = island.interrupted = false;
+      island.iterations = 0;
+    } else if (!island.started) {
+      startIsland(i, clock, h, start_pairing);
+    }
+  });
+  for (auto& hook : hooks_)
+    if (hook.after) hook.after(*this, h);
+  if (rotors_dirty_) refreshRotors();  // a hook added a joint (a cable's jam) to a rotor
+  // The joint, or a span moved on to a new body (each island checked its
+  // own rows).
+  if (!hooks_.empty()) {
+    islands_dirty_ = islands_dirty_ || gatherNews().moved || rowsMoved(loose_distances_, loose_paths_);
+    if (islands_dirty_) buildIslands();
+  }
+  const bool contacts = hasContacts();
+  if (contacts) findContacts();
+  else if (!contacts_.empty()) {  // the ground was removed
+    contacts_.clear();
+    manifolds_.clear();
+    previous_manifolds_.clear();
+  }
+  sortManifolds();
+  // A ResolveCheck reads every island's solve: the solves run first, on
+  // their own.
+  const bool checked = !resolve_checks_.empty();
+  if (checked) solvePositionsChecked(h);
+  else beginSolve(h);
+  forEachIsland([&](int i) {
+    if (islands_[i]->at == s) finishIsland(i, clock, h, !checked, start_pairing);
+  });
+  if (!checked && !catching_up) endSolve();
+  addConstraintDampingLoss(loose_distances_, loose_paths_, h, flows_);
+  for (const int i : loose_distances_) {
+    const DistanceConstraint& d = distances_[i];
+    const NonFiniteFind find{s, 1, bodyCount() + i, NonFiniteState{d.a, d.b, NonFiniteState::Quantity::Tension, time_ + h}};
+    if (!std::isfinite(d.lambda / (h * h)) && (!non_finite_found_ || find < *non_finite_found_)) non_finite_found_ = find;
+  }
+  time_ += h;
+}
+
+void World::stepWhole(double h, bool start_pairing) {
+  const int substeps = settings_.substeps;
+  substep_start_.resize(substeps + 1);
+  substep_start_[0] = time_;
+  for (int s = 0; s < substeps; ++s) substep_start_[s + 1] = substep_start_[s] + h;
+  substep_iterations_.assign(substeps, 0);
+  for (auto& island : islands_) island->substep_iterations.assign(substeps, 0);
+  if (start_pairing) {  // bodies on no island are static: their velocities stay
+    if (pre_v_.size() != bodies_.size()) pre_v_.resize(bodies_.size()), pre_omega_.resize(bodies_.size());
+    for (BodyId id = 0; id < bodyCount(); ++id)
+      if (island_of_[id] < 0) pre_v_[id] = bodies_[id].v, pre_omega_[id] = bodies_[id].omega;
+  }
+  poses_solved_ = false;
+  for (auto& hook : hooks_)
+    if (hook.before) hook.before(*this, h);
+  step_thread_ = std::this_thread::get_id();
+  progress_units_ = 0;
+  progress_reported_ = 0;
+  const bool shared = runsShared();
+  progress_planned_ = std::max<long long>(
+      1, static_cast<long long>(shared ? island_runs_[1] - island_runs_[0] : islands_.size()) * substeps);
+  forEachIsland([&](int i) { runIslandWhole(i, h, start_pairing); });
+  // Cut short by the interrupt flag: those behind are stepped up to the
+  // island furthest on, so that all end at one time.
+  int target = substeps;
+  bool cut = false;
+  for (const auto& island : islands_) cut |= island->cut;
+  if (cut) {
+    target = 0;
+    for (const auto& island : islands_) target = std::max(target, island->at + (island->started ? 1 : 0));
+  }
+  // What is on no island (nothing in it moves), up to its news.
+  for (; loose_at_ < target; ++loose_at_) {
+    const SubstepClock clock{loose_at_, substep_start_[loose_at_]};
+    bool news = false;
     for (auto& hook : hooks_)
-      if (hook.before) hook.before(*this, h);
-    for (auto& hook : hooks_)
-      if (hook.island) hook.island(*this, h, -1);
-    forEachIsland([&](int i) { startIsland(i, h, start_pairing); });
-    // Found after the hooks' island parts, which move no body: the same
-    // first body as checked before them.
-    if (!non_finite_ && gatherNews().non_finite) checkFinite(time_ + h, false, h);
+      if (hook.island) news |= hook.island(*this, h, -1, clock);
+    if (news) {
+      loose_started_ = true;
+      break;
+    }
+  }
+  int from = loose_at_;
+  for (const auto& island : islands_) from = std::min(from, island->at);
+  for (int s = from; s < target; ++s) {
+    time_ = substep_start_[s];
+    substep(s, h, start_pairing, true);
+  }
+  if (from >= target) {  // the hooks' substep ends, as the last substep's
+    time_ = substep_start_[target - 1];
     for (auto& hook : hooks_)
       if (hook.after) hook.after(*this, h);
-    if (rotors_dirty_) refreshRotors();  // a hook added a joint (a cable's jam) to a rotor
-    // The joint, or a span moved on to a new body (each island checked its
-    // own rows).
-    if (!hooks_.empty()) {
-      islands_dirty_ = islands_dirty_ || gatherNews().moved || rowsMoved(loose_distances_, loose_paths_);
-      if (islands_dirty_) buildIslands();
-    }
-    const bool contacts = hasContacts();
-    if (contacts) findContacts();
-    else if (!contacts_.empty()) {  // the ground was removed
-      contacts_.clear();
-      manifolds_.clear();
-      previous_manifolds_.clear();
-    }
-    sortManifolds();
-    // A ResolveCheck reads every island's solve: the solves run first, on
-    // their own.
-    const bool checked = !resolve_checks_.empty();
-    if (checked) solvePositionsChecked(h);
-    else beginSolve(h);
-    forEachIsland([&](int i) { finishIsland(i, h, !checked, start_pairing); });
-    if (!checked) endSolve();
-    addConstraintDampingLoss(loose_distances_, loose_paths_, h, flows_);
-    bool finite = !gatherNews().non_finite;
-    for (const int i : loose_distances_) finite &= std::isfinite(distances_[i].lambda / (h * h));
-    if (!non_finite_ && !finite) checkFinite(time_ + h, true, h);
-    time_ += h;
-    if (progress_) progress_(s + 1, settings_.substeps);
-    if (!interrupted_ && s + 1 < settings_.substeps) interrupted_ = interruptRequested();
   }
-  last_h_ = h;
+  time_ = substep_start_[target];
+  poses_solved_ = true;
+  for (const auto& island : islands_) {
+    for (int s = 0; s < substeps; ++s)
+      substep_iterations_[s] = std::max(substep_iterations_[s], island->substep_iterations[s]);
+    interrupted_ |= island->cut;
+  }
+  for (int s = 0; s < target; ++s) last_iterations_ += substep_iterations_[s];
+  interrupted_ |= target < substeps;
+  if (progress_ && progress_reported_ < target) progress_(target, substeps);
+}
+
+void World::runIslandWhole(int i, double h, bool start_pairing) {
+  Island& island = *islands_[i];
+  const int substeps = settings_.substeps;
+  const bool reports = progress_ && std::this_thread::get_id() == step_thread_;
+  for (int s = island.at; s < substeps; ++s) {
+    const SubstepClock clock{s, substep_start_[s]};
+    startIsland(i, clock, h, start_pairing);
+    if (island.news || island.moved) return;  // for the World, before this substep's solve
+    if (island.driven) prepareBraking(island);
+    finishIsland(i, clock, h, true, start_pairing);
+    if (reports) reportProgress();
+    // A flag raised during the last substep cuts nothing.
+    if (island.cut || (s + 1 < substeps && interruptRequested())) {
+      island.cut = true;
+      return;
+    }
+  }
+}
+
+void World::reportProgress() {
+  const int substeps = settings_.substeps;
+  const auto done = static_cast<int>(std::min<long long>(substeps, ++progress_units_ * substeps / progress_planned_));
+  if (done > progress_reported_) progress_(progress_reported_ = done, substeps);
 }
 
 template <class Fn>
@@ -524,7 +670,6 @@ void World::forEachIsland(const Fn& fn) {
   // What the islands report, gathered by the thread that ran them: the
   // caller then reads one line a thread, not each island's.
   const auto fold = [](RunNews& news, const Island& island) {
-    news.non_finite |= island.non_finite;
     news.moved |= island.moved;
     news.driven |= island.driven;
     news.interrupted |= island.interrupted;
@@ -576,7 +721,6 @@ void World::forEachIsland(const Fn& fn) {
 World::RunNews World::gatherNews() const {
   RunNews all;
   for (const RunNews& news : news_) {
-    all.non_finite |= news.non_finite;
     all.moved |= news.moved;
     all.driven |= news.driven;
     all.interrupted |= news.interrupted;
@@ -585,25 +729,25 @@ World::RunNews World::gatherNews() const {
   return all;
 }
 
-void World::startIsland(int i, double h, bool start_pairing) {
+void World::startIsland(int i, const SubstepClock& clock, double h, bool start_pairing) {
   Island& island = *islands_[i];
   if (start_pairing)
     for (const BodyId id : island.bodies) pre_v_[id] = bodies_[id].v, pre_omega_[id] = bodies_[id].omega;
-  updateDrives(island.hinges, island.prismatics, h);
+  updateDrives(island.hinges, island.prismatics, clock.time_s, h);
   island.driven = std::any_of(island.hinges.begin(), island.hinges.end(),
                               [&](int j) { return hinges_[j].drive.mode != HingeDrive::Mode::None; }) ||
                   std::any_of(island.prismatics.begin(), island.prismatics.end(),
                               [&](int j) { return prismatics_[j].drive.mode != PrismaticDrive::Mode::None; });
-  integrate(island, h);
-  // Born before any constraint spreads it (checkFinite).
-  island.non_finite = !non_finite_ && !finite(island, false, h);
-  island.moved = false;
+  integrate(island, clock.time_s, h);
+  findNonFinite(island, clock, 0, h);  // born before any constraint spreads it
+  island.moved = island.news = false;
   for (auto& hook : hooks_)
-    if (hook.island) hook.island(*this, h, i);
+    if (hook.island) island.news |= hook.island(*this, h, i, clock);
   if (!hooks_.empty()) island.moved = rowsMoved(island.distances, island.paths);
+  island.started = true;
 }
 
-void World::finishIsland(int i, double h, bool solve, bool start_pairing) {
+void World::finishIsland(int i, const SubstepClock& clock, double h, bool solve, bool start_pairing) {
   Island& island = *islands_[i];
   WorldEnergy& flows = island.flows;
   if (solve) solveIsland(island, h, false);
@@ -612,10 +756,15 @@ void World::finishIsland(int i, double h, bool solve, bool start_pairing) {
   addWork(island, h, start_pairing, flows);
   addConstraintDampingLoss(island.distances, island.paths, h, flows);
   contactVelocityPass(island, h, flows);
-  addKinematicWork(island, h, start_pairing, flows);
+  addKinematicWork(island, clock.time_s, h, start_pairing, flows);
   rotorWrenches(island, h);
   limitSpeeds(island);  // last, so no later pass can push past the guard
-  island.non_finite = !non_finite_ && !finite(island, true, h);
+  findNonFinite(island, clock, 1, h);
+  island.cut |= island.interrupted;
+  if (clock.substep < static_cast<int>(island.substep_iterations.size()))
+    island.substep_iterations[clock.substep] = island.iterations;
+  island.at = clock.substep + 1;
+  island.started = false;
 }
 
 void World::contactVelocityPass(const Island& island, double h, WorldEnergy& flows) {
@@ -636,7 +785,7 @@ void World::contactVelocityPass(const Island& island, double h, WorldEnergy& flo
   }
 }
 
-void World::addKinematicWork(const Island& island, double h, bool start_pairing, WorldEnergy& flows) {
+void World::addKinematicWork(const Island& island, double start_s, double h, bool start_pairing, WorldEnergy& flows) {
   for (const BodyId id : island.bodies) {
     if (!start_pairing || !bodies_[id].kinematic) {
       flows.kinematic_work += kinematicWork(id, h);
@@ -645,19 +794,20 @@ void World::addKinematicWork(const Island& island, double h, bool start_pairing,
     // Under the start projection with its motion's velocity at the
     // substep's start, where addWork books a force (the middle's, which
     // integrate() moves it by, differs on a ramp or a swing).
-    const MotionKeyframe m = motionAt(defs_[id].motion, time_);
+    const MotionKeyframe m = motionAt(defs_[id].motion, start_s);
     const BodyState& b = bodies_[id];
     flows.kinematic_work -= (b.impulse.dot(m.velocity) + b.angular_impulse.dot(m.angular_velocity)) / h;
   }
 }
 
-void World::updateDrives(const std::vector<int>& hinges, const std::vector<int>& prismatics, double h) {
-  // Released half a substep early, so that rounding in time_ cannot keep a
+void World::updateDrives(const std::vector<int>& hinges, const std::vector<int>& prismatics, double start_s,
+                         double h) {
+  // Released half a substep early, so that rounding in the time cannot keep a
   // drive one substep too long. A scheduled velocity is the ramp's value at
   // the substep's middle (its mean over the substep), a scheduled position
   // the value at its end (where the solve puts the joint): a ramp is then
   // followed exactly.
-  const double middle = time_ + 0.5 * h, end = time_ + h;
+  const double middle = start_s + 0.5 * h, end = start_s + h;
   for (const int i : hinges) {
     HingeDrive& d = hinges_[i].drive;
     if (d.mode != HingeDrive::Mode::None && middle >= d.until) d = HingeDrive{};
@@ -671,14 +821,14 @@ void World::updateDrives(const std::vector<int>& hinges, const std::vector<int>&
   }
 }
 
-void World::integrate(const Island& island, double h) {
+void World::integrate(const Island& island, double start_s, double h) {
   const Vec3 g = settings_.gravity;
   for (const BodyId id : island.bodies) {
     BodyState& b = bodies_[id];
     if (b.kinematic) {
       // Its motion's velocities at the substep's middle, so that a ramp
       // moves it by exactly the ramp's integral.
-      const MotionKeyframe m = motionAt(defs_[id].motion, time_ + 0.5 * h);
+      const MotionKeyframe m = motionAt(defs_[id].motion, start_s + 0.5 * h);
       b.x_prev = b.x;
       b.q_prev = b.q;
       b.v = m.velocity;
@@ -741,14 +891,16 @@ void World::beginSolve(double h) {
   hinge_braking_.resize(hinges_.size());
   prismatic_braking_.resize(prismatics_.size());
   if (!gatherNews().driven) return solveLooseRows(h);
-  for (const auto& island : islands_) {
-    if (!island->driven) continue;
-    for (const int i : island->hinges)
-      if (hinges_[i].drive.mode != HingeDrive::Mode::None) hinge_braking_[i] = brakingInverseInertia(*island, i);
-    for (const int i : island->prismatics)
-      if (prismatics_[i].drive.mode != PrismaticDrive::Mode::None) prismatic_braking_[i] = brakingInverseMass(i);
-  }
+  for (const auto& island : islands_)
+    if (island->driven) prepareBraking(*island);
   solveLooseRows(h);
+}
+
+void World::prepareBraking(const Island& island) {
+  for (const int i : island.hinges)
+    if (hinges_[i].drive.mode != HingeDrive::Mode::None) hinge_braking_[i] = brakingInverseInertia(island, i);
+  for (const int i : island.prismatics)
+    if (prismatics_[i].drive.mode != PrismaticDrive::Mode::None) prismatic_braking_[i] = brakingInverseMass(i);
 }
 
 void World::endSolve() {
@@ -920,31 +1072,38 @@ const char* quantityName(NonFiniteState::Quantity quantity) {
   return "?";
 }
 
-void World::checkFinite(double end_s, bool tensions, double h) {
+void World::findNonFinite(Island& island, const SubstepClock& clock, int pass, double h) const {
   using Q = NonFiniteState::Quantity;
-  for (BodyId id = 0; id < bodyCount(); ++id) {
-    const BodyState& b = bodies_[id];
-    const auto found = [&](Q quantity) { non_finite_ = NonFiniteState{id, kWorldBody, quantity, end_s}; };
-    if (!b.x.allFinite()) return found(Q::Position);
-    if (!b.q.coeffs().allFinite()) return found(Q::Orientation);
-    if (!b.v.allFinite()) return found(Q::Velocity);
-    if (!b.omega.allFinite()) return found(Q::AngularVelocity);
+  if (non_finite_ || island.non_finite) return;  // only the first is kept
+  const double end_s = clock.time_s + h;
+  const auto body = std::find_if(island.bodies.begin(), island.bodies.end(),
+                                 [&](BodyId id) { return !finiteState(bodies_[id]); });
+  if (body != island.bodies.end()) {
+    const BodyState& b = bodies_[*body];
+    const Q quantity = !b.x.allFinite()              ? Q::Position
+                       : !b.q.coeffs().allFinite()   ? Q::Orientation
+                       : !b.v.allFinite()            ? Q::Velocity
+                                                     : Q::AngularVelocity;
+    island.non_finite = NonFiniteFind{clock.substep, pass, *body, NonFiniteState{*body, kWorldBody, quantity, end_s}};
+    return;
   }
-  if (!tensions) return;
-  for (const DistanceConstraint& d : distances_)
-    if (!std::isfinite(d.lambda / (h * h))) {
-      non_finite_ = NonFiniteState{d.a, d.b, Q::Tension, end_s};
-      return;
-    }
+  if (pass == 0) return;
+  const auto row = std::find_if(island.distances.begin(), island.distances.end(),
+                                [&](int i) { return !std::isfinite(distances_[i].lambda / (h * h)); });
+  if (row == island.distances.end()) return;
+  const DistanceConstraint& d = distances_[*row];
+  island.non_finite =
+      NonFiniteFind{clock.substep, pass, bodyCount() + *row, NonFiniteState{d.a, d.b, Q::Tension, end_s}};
 }
 
-bool World::finite(const Island& island, bool tensions, double h) const {
-  for (const BodyId id : island.bodies)
-    if (!finiteState(bodies_[id])) return false;
-  if (tensions)
-    for (const int i : island.distances)
-      if (!std::isfinite(distances_[i].lambda / (h * h))) return false;
-  return true;
+void World::recordNonFinite() {
+  std::optional<NonFiniteFind> first = std::exchange(non_finite_found_, std::nullopt);
+  for (auto& island : islands_)
+    if (island->non_finite) {
+      if (!first || *island->non_finite < *first) first = island->non_finite;
+      island->non_finite.reset();
+    }
+  if (first && !non_finite_) non_finite_ = first->state;
 }
 
 std::optional<BodyId> World::firstNonFiniteBody() const {

@@ -11,9 +11,13 @@
 
 #include "reeve/machines/machines.h"
 #include "reeve/scene/scene.h"
+#include "state_bytes.h"
 
 namespace reeve::test_islands {
 namespace {
+
+using test::eventBytes;
+using test::stateBytes;
 
 using machines::ScalingSpec;
 using machines::StaticMachine;
@@ -36,35 +40,6 @@ StaticMachine atwoods(int count, SolverKind solver, int iterations, int threads)
   for (int k = 0; k < count; ++k) world.setMass(*world.findBody("right" + std::to_string(k)), rightMass(k));
   world.setThreads(threads, 0.0);  // shared however short the runs
   return m;
-}
-
-// Everything a step leaves behind, as bytes: poses, velocities, tensions,
-// hinge wrenches, the iterations run, the whole energy ledger (the flows
-// are summed by island and by cable: energy(), frictionLoss(),
-// winchWork()).
-std::vector<unsigned char> stateBytes(const Scene& scene) {
-  std::vector<unsigned char> bytes;
-  const auto put = [&](const auto& value) {
-    const auto* p = reinterpret_cast<const unsigned char*>(&value);
-    bytes.insert(bytes.end(), p, p + sizeof value);
-  };
-  const World& world = *scene.world;
-  for (BodyId id = 0; id < world.bodyCount(); ++id) {
-    const BodyState& b = world.body(id);
-    put(b.x), put(b.q.coeffs()), put(b.v), put(b.omega);
-  }
-  for (const auto& cable : scene.cables->cables())
-    for (const auto& joint : cable.joints) put(world.pathTension(joint.path));
-  for (int h = 0; h < static_cast<int>(world.hinges().size()); ++h) put(world.hingeWrench(h).force);
-  put(world.lastStepIterations());
-  const WorldEnergy e = world.energy();
-  for (const double v : {e.kinetic, e.gravity, e.elastic, e.drive_work, e.load_work, e.kinematic_work, e.damping_loss,
-                         e.contact_loss, e.cable_damping_loss})
-    put(v);
-  put(scene.cables->frictionLoss());
-  put(scene.cables->winchWork());
-  put(scene.cables->storedElasticEnergy());
-  return bytes;
 }
 
 TEST(Islands, MachinesHungFromOneAnchorAreIslandsOfTheirOwn) {
@@ -271,11 +246,8 @@ TEST(Islands, ShippedScenesGiveTheSameBitsOnOneAndTwoThreads) {
         scene.world->step(1.0 / scene.frame_rate_hz);
         const std::vector<unsigned char> now = stateBytes(scene);
         all.insert(all.end(), now.begin(), now.end());
-        for (const CableEvent& e : scene.cables->takeEvents()) {  // in cable order, each cable's in time
-          const double fields[] = {static_cast<double>(e.kind), e.time_s, double(e.cable), double(e.link), e.tension};
-          const auto* p = reinterpret_cast<const unsigned char*>(fields);
-          all.insert(all.end(), p, p + sizeof fields);
-        }
+        const std::vector<unsigned char> events = eventBytes(scene.cables->takeEvents());
+        all.insert(all.end(), events.begin(), events.end());
       }
       runs.push_back(std::move(all));
     }

@@ -498,12 +498,14 @@ class CableSystem {
   /// endUpdate: what the cables' updates give the whole, in cable order
   /// (events, friction, winch work, jams), and the invariants' check.
   void beginUpdate(double h);
-  void updateIsland(int island, double time_s, double h);
+  /// `substep`: its index in the step (0 for an update by hand). Returns
+  /// whether it left news for endUpdate.
+  bool updateIsland(int island, double time_s, double h, int substep);
   void endUpdate(double time_s);
   /// turn_[b]: how far (rad, unwrapped) each rolling body b of island
   /// `island` turned about its cable plane's normal (local z) since the
   /// last update.
-  void measureTurns(int island, double h);
+  void measureTurns(int island, double h, int substep);
   /// Whether joint j keeps the tangent points of the last update
   /// (FixedSpan: world points a, b): its links roll on circles about axles
   /// that stay put, and both bodies stayed in place since.
@@ -526,10 +528,10 @@ class CableSystem {
   bool jamAtPinhole(Cable& cable, int c, int j, double time_s);
   /// The ball joints of this update's jams, in cable order; a span whose
   /// joint the World refuses does not jam.
-  void addJamJoints();
+  void addJamJoints(double time_s);
   /// One cable's part of update(): what it gives the whole goes to
   /// updates_[c], as islands' cables update side by side (updateIsland).
-  void updateCable(int c, double time_s, double h);
+  bool updateCable(int c, double time_s, double h);  // whether it left news (CableUpdate::news_at)
   /// The winch's substep (WinchDef) of `h` (s) starting at `start_s`: what
   /// it paid out stalled in the last solve, then what it reels in this one.
   void reel(Cable& cable, double start_s, double h);
@@ -629,7 +631,8 @@ class CableSystem {
   // A span's tangent points in the world as an update left them, where both
   // its links roll on circles about axles that stay put (steady_): the next
   // update keeps them if its bodies only turned about those axles since
-  // (updateJoint). `update`: update_count_ then, -1 for none; `found`: the
+  // (updateJoint). `update`: its cable's update count then (CableUpdate::
+  // count), -1 for none; `found`: the
   // update that found them afresh (kept since), the span's path's
   // PathConstraint::placement; `to` and `sides` (the links'
   // orientations): the span they were found for.
@@ -639,6 +642,15 @@ class CableSystem {
     int to = -1, sides = 0;
   };
   struct CableUpdate {
+    // Its updates so far: every update updates every cable, so each
+    // cable's count is the same as one for the system would be, and an
+    // island stepping its substeps on its own (World::IslandHook::
+    // whole_steps) counts its cables' alone.
+    long long count = 0;
+    // The end (s) of the update that left its news (events, jams, a
+    // breach) for endUpdate: that substep's endUpdate takes them, not an
+    // earlier one's.
+    double news_at = 0.0;
     std::vector<FixedSpan> fixed;  // per joint
     std::vector<CableEvent> events;
     double friction_loss = 0.0;  // J, since the system was made: its part of frictionLoss()
@@ -664,9 +676,9 @@ class CableSystem {
   // the last update (measureTurns: it kept its position and turned about
   // that axle alone).
   std::vector<char> steady_, in_place_;
-  long long update_count_ = 0;  // updates begun
-  bool solve_turn_counted_ = false;     // the last update was by hand, after the solve
-  bool measure_solve_turn_ = true;      // this update counts the last solve's turn (beginUpdate)
+  // The last update was by hand, after the solve: the next one's first
+  // substep does not count that solve's turn again (measureTurns).
+  bool solve_turn_counted_ = false;
   // beginUpdate's sort: cable indices and rolling bodies by island (-1
   // first), island i's from *_begin_[i + 1] to *_begin_[i + 2].
   std::vector<int> cables_by_island_, cable_begin_;

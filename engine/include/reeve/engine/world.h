@@ -11,6 +11,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "reeve/engine/body.h"
@@ -102,6 +103,18 @@ struct NonFiniteState {
 };
 /// "position", "orientation", "velocity", "angular velocity", "tension".
 const char* quantityName(NonFiniteState::Quantity quantity);
+/// A non-finite value as a step finds it, island by island: the first is
+/// the least (substep, then pass: 0 after integration, 1 after the solve,
+/// then item: a body's id, or the body count plus a distance constraint's
+/// index), as one scan of the whole World after each pass would find it.
+struct NonFiniteFind {
+  int substep = 0, pass = 0;
+  long long item = 0;
+  NonFiniteState state;
+  bool operator<(const NonFiniteFind& o) const {
+    return substep != o.substep ? substep < o.substep : pass != o.pass ? pass < o.pass : item < o.item;
+  }
+};
 
 
 class World {
@@ -110,20 +123,39 @@ class World {
   /// solve, with the substep h (s). The seam through which cable/ moves the
   /// anchors and rest lengths of its distance constraints (DESIGN.md).
   using SubstepHook = std::function<void(World&, double h)>;
+  /// Which substep of a step an island is in: its index (0 first) and
+  /// the simulated time (s) at its start. Islands that run whole steps
+  /// (IslandHook::whole_steps) are at different substeps at one moment,
+  /// so their hooks read the time here, not from World::time().
+  struct SubstepClock {
+    int substep = 0;
+    double time_s = 0.0;
+  };
   /// A substep hook whose work splits by island (cable/: each cable's
   /// update), at the same point of the substep. `before` runs on the
-  /// caller's thread; then `island(w, h, i)` once with i = -1 (what is on
-  /// no island: cables between static anchors) on the caller's thread,
-  /// and once for each island i (0 <= i < islandCount()), side by side on
-  /// the World's threads, right after that island's integration: it may
-  /// touch only island i's bodies and constraints and its own records for
-  /// island i, read static bodies, and must compute the same whichever
-  /// thread runs it; then `after` on the caller's thread. Any part may be
-  /// empty.
+  /// caller's thread; then `island(w, h, i, clock)` once with i = -1
+  /// (what is on no island: cables between static anchors) on the
+  /// caller's thread, and once for each island i (0 <= i < islandCount()),
+  /// side by side on the World's threads, right after that island's
+  /// integration: it may touch only island i's bodies and constraints and
+  /// its own records for island i, read static bodies, and must compute
+  /// the same whichever thread runs it; it returns true when it left news
+  /// for `after` (an event, a joint to add, a broken invariant). Then
+  /// `after` on the caller's thread. Any part may be empty.
+  ///
+  /// With `whole_steps`, the hook lets each island run all the substeps
+  /// of a step on its own, without the others (World::step: one join a
+  /// step instead of two a substep). It then promises: `before` may run
+  /// again before any substep of the same step and changes nothing the
+  /// second time; the island part reads the time from `clock` alone and
+  /// joins no island to another (coupleBodies); `after` handles only the
+  /// news of updates that ended by its substep's end (World::time() + h),
+  /// leaving later ones for a later `after`.
   struct IslandHook {
     SubstepHook before;
-    std::function<void(World&, double h, int island)> island;
+    std::function<bool(World&, double h, int island, const SubstepClock& clock)> island;
     SubstepHook after;
+    bool whole_steps = false;
   };
   /// Called after each substep's position solve, with h (s). Returns true
   /// when it changed the constraints of this substep because the solve
@@ -227,8 +259,11 @@ class World {
   /// substep. Once it is non-zero the substep under way ends after the
   /// iteration in progress (velocities, contacts and checks as after any
   /// substep, so the world can step on), no further substep starts, and
-  /// stepInterrupted() is true until the next step(). nullptr, the
-  /// default, never stops. The flag must outlive its use here.
+  /// stepInterrupted() is true until the next step(). Where the islands
+  /// run whole steps (IslandHook::whole_steps), each island ends its
+  /// substep under way, and those behind are then stepped up to the one
+  /// furthest on, so that all end at one time. nullptr, the default,
+  /// never stops. The flag must outlive its use here.
   void setInterruptFlag(const std::atomic<int>* flag) { interrupt_ = flag; }
   /// Whether the interrupt flag cut the last step() short (an iteration or
   /// a substep left out; a flag raised during its last iteration cuts
@@ -236,6 +271,8 @@ class World {
   bool stepInterrupted() const { return interrupted_; }
   /// Called after each substep of a step() with the substeps done and the
   /// substeps it has (a progress bar inside a long frame); empty: none.
+  /// Where the islands run whole steps, `done` is the share of its islands'
+  /// substeps the caller's thread has run, in substeps.
   void setSubstepProgress(std::function<void(int done, int substeps)> progress) {
     progress_ = std::move(progress);
   }
@@ -248,7 +285,13 @@ class World {
   /// solve, velocities, the contacts' velocity pass and the ledger's
   /// flows (summed by island, in island order). What joins islands runs
   /// between on the caller's thread: the hooks' other parts, contact
-  /// detection, the re-solves a ResolveCheck asks for. The threads start
+  /// detection, the re-solves a ResolveCheck asks for. Where nothing does
+  /// (no contacts, no ResolveCheck, no row or driven joint on no island,
+  /// every hook IslandHook::whole_steps), each island runs all the
+  /// substeps of a step in one run, and the threads join once a step; an
+  /// island whose hook has news stops before that substep's solve, and
+  /// goes on substep by substep with the World (runsWholeSteps). The
+  /// threads start
   /// with the first step that has two islands or more, and share a run
   /// only while its islands' work, timed at each step, is at least
   /// `min_shared_run_us` (us; half that once shared; 0: always): below,
@@ -260,6 +303,9 @@ class World {
   int threads() const { return threads_; }
   /// Whether the last step's runs were shared between the threads.
   bool runsShared() const { return pool_ && share_runs_ && islands_.size() > 1; }
+  /// Whether the next step runs each island's substeps in one run
+  /// (setThreads): the same bits as substep by substep.
+  bool runsWholeSteps() const;
 
   SolverSettings& settings() { return settings_; }
   const SolverSettings& settings() const { return settings_; }
@@ -417,22 +463,37 @@ class World {
   /// At the start of a substep of h s: removes these joints' drives whose
   /// `until` has come (HingeDrive::until) and sets scheduled drives'
   /// targets.
-  void updateDrives(const std::vector<int>& hinges, const std::vector<int>& prismatics, double h);
-  void integrate(const Island& island, double h);
+  void updateDrives(const std::vector<int>& hinges, const std::vector<int>& prismatics, double start_s, double h);
+  /// An island's bodies over the substep of h s starting at `start_s`.
+  void integrate(const Island& island, double start_s, double h);
   /// Runs fn(i) for every island i, on the World's threads when it has
   /// them, each thread its run of islands (island_runs_).
   template <class Fn>
   void forEachIsland(const Fn& fn);
+  /// One substep of h s (World::time() its start) for the islands at it
+  /// (Island::at), and what joins them; `catching_up`: of a whole step
+  /// (stepWhole), whose iterations and interrupt are counted there.
+  void substep(int s, double h, bool start_pairing, bool catching_up);
+  /// A step of h s substeps whose islands each run their substeps in one
+  /// run, until done, interrupted, or the hooks have news for the World;
+  /// the islands stopped are then stepped with it, substep by substep.
+  void stepWhole(double h, bool start_pairing);
+  /// Island i's part of stepWhole, from its substep on.
+  void runIslandWhole(int i, double h, bool start_pairing);
   /// The first of a substep's two passes over island i: its bodies'
   /// velocities kept for the ledger (`start_pairing`), its integration,
-  /// its finite check, the hooks' island parts and whether they moved a
-  /// row to another island (Island::moved).
-  void startIsland(int i, double h, bool start_pairing);
+  /// its finite check, the hooks' island parts, whether they moved a
+  /// row to another island (Island::moved) and had news (Island::news).
+  void startIsland(int i, const SubstepClock& clock, double h, bool start_pairing);
   /// The second: its position solve (when `solve`; else it was solved
   /// already, solvePositionsChecked), velocities, hinge angles, contacts'
   /// velocity pass, ledger flows, rotor wrenches, speed guard and finite
   /// check.
-  void finishIsland(int i, double h, bool solve, bool start_pairing);
+  void finishIsland(int i, const SubstepClock& clock, double h, bool solve, bool start_pairing);
+  /// The braking inverse inertias of an island's drives (beginSolve).
+  void prepareBraking(const Island& island);
+  /// The caller's thread's share of a whole step done, to progress_.
+  void reportProgress();
   /// `again`: the substep's solve done again (ResolveCheck). Prepares
   /// the rows, then one of the two methods' solves of the substep:
   /// beginSolve, each island's solveIsland, endSolve.
@@ -491,7 +552,7 @@ class World {
   /// crediting its loss.
   void contactVelocityPass(const Island& island, double h, WorldEnergy& flows);
   /// The work of an island's kinematic bodies over the substep.
-  void addKinematicWork(const Island& island, double h, bool start_pairing, WorldEnergy& flows);
+  void addKinematicWork(const Island& island, double start_s, double h, bool start_pairing, WorldEnergy& flows);
   /// Kinetic energy (J) of body `id` now.
   double kineticEnergy(BodyId id) const;
   /// Work (J) kinematic body `id` has done on the rest over the substep of
@@ -500,12 +561,13 @@ class World {
   /// other body.
   double kinematicWork(BodyId id, double h) const;
   void limitSpeeds(const Island& island);
-  /// Whether an island's body states (and, with `tensions`, its distance
-  /// constraints' tensions) are all finite.
-  bool finite(const Island& island, bool tensions, double h) const;
-  // Records the first non-finite body state (and, with `tensions`, distance
-  // constraint tension) at the end of the substep ending at `end_s`.
-  void checkFinite(double end_s, bool tensions, double h);
+  /// Island i's first non-finite body state (and, after the solve, pass
+  /// 1, distance constraint tension) at the end of the clock's substep,
+  /// unless it found one before (Island::non_finite).
+  void findNonFinite(Island& island, const SubstepClock& clock, int pass, double h) const;
+  /// The first non-finite value the step found, of any island, to
+  /// firstNonFinite() unless one is there.
+  void recordNonFinite();
   /// Broad phase (sort and sweep of bounding spheres along x over the
   /// colliding bodies) and narrow phase (collide.h) into contacts_.
   void findContacts();
@@ -546,10 +608,24 @@ class World {
   // the bodies by): from a solve's start until the next integration.
   bool poses_solved_ = false;
   std::optional<NonFiniteState> non_finite_;
+  std::optional<NonFiniteFind> non_finite_found_;  // this step's on no island, or of islands since rebuilt
   int last_iterations_ = 0;
   const std::atomic<int>* interrupt_ = nullptr;  // setInterruptFlag
   bool interrupted_ = false;
   std::function<void(int, int)> progress_;
+  // A whole step (stepWhole): each substep's start (s, from time_ by
+  // adding h, as substep by substep), the iterations of each substep's
+  // solves (the most of any island; islands' since rebuilt), where the
+  // hooks' parts on no island are (as Island::at, started), and the
+  // caller's thread's progress (reportProgress).
+  std::vector<double> substep_start_;
+  std::vector<int> substep_iterations_;
+  int loose_at_ = 0;
+  bool loose_started_ = false;
+  std::thread::id step_thread_;
+  long long progress_units_ = 0, progress_planned_ = 1;
+  int progress_reported_ = 0;
+  std::vector<int> body_progress_;  // buildIslands' scratch: per body, its island's at and started
   std::vector<double> mass_;  // kg per body, 0 when static
   WorldEnergy flows_;         // work and losses (energy.h) of islands since rebuilt and of loose rows; not its state fields
   // The ledger's start pairing (ledgerLag): the direct solver projecting at
@@ -596,7 +672,6 @@ class World {
   /// What a thread's islands reported in its last run (forEachIsland),
   /// each on a cache line of its own.
   struct alignas(64) RunNews {
-    bool non_finite = false;   // Island::non_finite
     bool moved = false;        // Island::moved
     bool driven = false;       // Island::driven
     bool interrupted = false;  // Island::interrupted

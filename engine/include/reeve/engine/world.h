@@ -470,6 +470,12 @@ class World {
   /// them, each thread its run of islands (island_runs_).
   template <class Fn>
   void forEachIsland(const Fn& fn);
+  /// The same by groups: fn(group, count) for groups of up to `size`
+  /// (<= kMaxIslandGroup) islands a thread takes together.
+  template <class Fn>
+  void forEachIslandGroup(int size, const Fn& fn);
+  static constexpr int kMaxIslandGroup = 16;
+  static constexpr int kWholeStepGroup = 4;  // runIslandsWhole's, measured (DESIGN.md, "Whole steps")
   /// One substep of h s (World::time() its start) for the islands at it
   /// (Island::at), and what joins them; `catching_up`: of a whole step
   /// (stepWhole), whose iterations and interrupt are counted there.
@@ -478,8 +484,8 @@ class World {
   /// run, until done, interrupted, or the hooks have news for the World;
   /// the islands stopped are then stepped with it, substep by substep.
   void stepWhole(double h, bool start_pairing);
-  /// Island i's part of stepWhole, from its substep on.
-  void runIslandWhole(int i, double h, bool start_pairing);
+  /// A group of islands' part of stepWhole, together substep by substep.
+  void runIslandsWhole(const int* group, int count, double h, bool start_pairing);
   /// The first of a substep's two passes over island i: its bodies'
   /// velocities kept for the ledger (`start_pairing`), its integration,
   /// its finite check, the hooks' island parts, whether they moved a

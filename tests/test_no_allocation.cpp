@@ -200,7 +200,9 @@ TEST(NoAllocation, IslandsSolvedOnTwoThreadsAllocateNothing) {
   // 16 Atwood machines in one scene (16 islands) on 2 threads under both
   // solvers: after the first frame (which starts the threads and sizes the
   // islands' solvers), frames allocate nothing, the cables' updates side
-  // by side included.
+  // by side included; each island running the whole step on its thread
+  // (World::runsWholeSteps) and substep by substep as well.
+  for (const bool whole : {true, false})
   for (const SolverKind solver : {SolverKind::Direct, SolverKind::GaussSeidel}) {
     machines::ScalingSpec spec;
     spec.count = 16;
@@ -209,7 +211,9 @@ TEST(NoAllocation, IslandsSolvedOnTwoThreadsAllocateNothing) {
     World& world = *m.scene.world;
     for (int k = 0; k < spec.count; ++k) world.setMass(*world.findBody("right" + std::to_string(k)), 1.0 + 0.5 * (k % 4));
     world.setThreads(2, 0.0);  // shared however short the runs
+    if (!whole) world.addSubstepHook([](World&, double) {});  // a hook that is not whole_steps
     ASSERT_EQ(world.islandCount(), 16);
+    EXPECT_EQ(world.runsWholeSteps(), whole);
     int exempt = 0;
     EXPECT_EQ(allocationsAfterFirstFrame(m.scene, exempt), 0) << (solver == SolverKind::Direct ? "direct" : "gauss-seidel");
   }

@@ -303,8 +303,10 @@ class World {
   int threads() const { return threads_; }
   /// Whether the last step's runs were shared between the threads.
   bool runsShared() const { return pool_ && share_runs_ && islands_.size() > 1; }
-  /// Whether the next step runs each island's substeps in one run
-  /// (setThreads): the same bits as substep by substep.
+  /// Whether a step runs each island's substeps in one run (setThreads):
+  /// the same bits as substep by substep. Read from the islands as the
+  /// last step or islandCount() built them, and the hooks, checks, ground
+  /// and drives as they are now.
   bool runsWholeSteps() const;
 
   SolverSettings& settings() { return settings_; }

@@ -287,12 +287,12 @@ class World {
   /// between on the caller's thread: the hooks' other parts, contact
   /// detection, the re-solves a ResolveCheck asks for. Where nothing does
   /// (no contacts, no ResolveCheck, no row or driven joint on no island,
-  /// every hook IslandHook::whole_steps), each island runs all the
-  /// substeps of a step in one run, and the threads join once a step; an
-  /// island whose hook has news stops before that substep's solve, and
-  /// goes on substep by substep with the World (runsWholeSteps). The
-  /// threads start
-  /// with the first step that has two islands or more, and share a run
+  /// no braked drive, every hook IslandHook::whole_steps), each island
+  /// runs all the substeps of a step in one run, and the threads join once
+  /// a step; an island whose hook has news stops before that substep's
+  /// solve, and goes on substep by substep with the World
+  /// (runsWholeSteps). The threads start with the first step that has two
+  /// islands or more, and share a run
   /// only while its islands' work, timed at each step, is at least
   /// `min_shared_run_us` (us; half that once shared; 0: always): below,
   /// a run's join costs more than the threads save. The results are the

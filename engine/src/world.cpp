@@ -34,6 +34,16 @@ int takeIsland(std::atomic<std::uint64_t>& left, bool front) {
   }
 }
 
+// The velocities at the substep's start of the bodies on no island (an
+// island's pass keeps its own: startIsland), for the ledger's start
+// pairing (energy.cpp). pre_v and pre_omega grow with the world.
+void keepLooseVelocities(const std::vector<BodyState>& bodies, const std::vector<int>& island_of,
+                         std::vector<Vec3>& pre_v, std::vector<Vec3>& pre_omega) {
+  if (pre_v.size() != bodies.size()) pre_v.resize(bodies.size()), pre_omega.resize(bodies.size());
+  for (std::size_t id = 0; id < bodies.size(); ++id)
+    if (island_of[id] < 0) pre_v[id] = bodies[id].v, pre_omega[id] = bodies[id].omega;
+}
+
 // The body's pose and velocities are all finite: 0 x each is 0 but for an
 // infinity or a NaN, which makes the sum NaN (one test, not thirteen).
 bool finiteState(const BodyState& b) {
@@ -514,11 +524,7 @@ void World::substep(int s, double h, bool start_pairing, bool catching_up) {
   // Each island's passes run together, on its thread (forEachIsland);
   // what joins islands or is on none runs between, on this one. An island
   // not at this substep (Island::at: a whole step ran it on) sits out.
-  if (start_pairing && !catching_up) {
-    if (pre_v_.size() != bodies_.size()) pre_v_.resize(bodies_.size()), pre_omega_.resize(bodies_.size());
-    for (BodyId id = 0; id < bodyCount(); ++id)
-      if (island_of_[id] < 0) pre_v_[id] = bodies_[id].v, pre_omega_[id] = bodies_[id].omega;
-  }
+  if (start_pairing && !catching_up) keepLooseVelocities(bodies_, island_of_, pre_v_, pre_omega_);
   updateDrives(loose_hinges_, loose_prismatics_, clock.time_s, h);
   poses_solved_ = false;
   for (auto& hook : hooks_)
@@ -581,11 +587,7 @@ void World::stepWhole(double h, bool start_pairing) {
   for (int s = 0; s < substeps; ++s) substep_start_[s + 1] = substep_start_[s] + h;
   substep_iterations_.assign(substeps, 0);
   for (auto& island : islands_) island->substep_iterations.assign(substeps, 0);
-  if (start_pairing) {  // bodies on no island are static: their velocities stay
-    if (pre_v_.size() != bodies_.size()) pre_v_.resize(bodies_.size()), pre_omega_.resize(bodies_.size());
-    for (BodyId id = 0; id < bodyCount(); ++id)
-      if (island_of_[id] < 0) pre_v_[id] = bodies_[id].v, pre_omega_[id] = bodies_[id].omega;
-  }
+  if (start_pairing) keepLooseVelocities(bodies_, island_of_, pre_v_, pre_omega_);
   poses_solved_ = false;
   for (auto& hook : hooks_)
     if (hook.before) hook.before(*this, h);

@@ -494,6 +494,10 @@ void World::step(double dt) {
       if (!interrupted_ && s + 1 < settings_.substeps) interrupted_ = interruptRequested();
     }
   }
+  // A rotor's hinge wrench is read after the step only (hingeWrench, the
+  // last substep's): from what that substep's solve left on the rotor,
+  // which stays until the next step's solve, so once a step.
+  for (const auto& island : islands_) rotorWrenches(*island, h);
   recordNonFinite();
   last_h_ = h;
 }
@@ -804,7 +808,6 @@ void World::finishIsland(int i, const SubstepClock& clock, double h, bool solve,
   addConstraintDampingLoss(island.distances, island.paths, h, flows);
   contactVelocityPass(island, h, flows);
   addKinematicWork(island, clock.time_s, h, start_pairing, flows);
-  rotorWrenches(island, h);
   limitSpeeds(island);  // last, so no later pass can push past the guard
   findNonFinite(island, clock, 1, h);
   island.cut |= island.interrupted;

@@ -35,18 +35,21 @@ inline void rotateBy(Quat& q, const Vec3& dphi) {
 /// over a substep: the first-order rotateBy() loses O(|phi|^3) per call,
 /// which shows up as a spurious drag on spinning bodies.
 inline void rotateExactly(Quat& q, const Vec3& phi) {
-  const double angle = phi.norm();
-  if (angle == 0.0) return;
+  const double angle2 = phi.squaredNorm();
+  if (angle2 == 0.0) return;
   // sin(a/2) / a and cos(a/2); below a = 0.1 their Taylor series to the
   // a^8 term, exact in double precision (the next terms are under 1e-18),
   // and several times cheaper than sin and cos: solvers turn every body
-  // by small angles many times per frame.
+  // by small angles many times per frame. In a^2, with the coefficients'
+  // reciprocals: no square root or division on the way (a call 18.6 ->
+  // 10.6 ns, DESIGN "Twenty-third session").
   double s, c;
-  if (angle < 0.1) {
-    const double x2 = 0.25 * angle * angle;  // (a/2)^2
-    s = 0.5 * (1.0 - x2 / 6.0 * (1.0 - x2 / 20.0 * (1.0 - x2 / 42.0 * (1.0 - x2 / 72.0))));
-    c = 1.0 - x2 / 2.0 * (1.0 - x2 / 12.0 * (1.0 - x2 / 30.0 * (1.0 - x2 / 56.0)));
+  if (angle2 < 0.01) {
+    const double x2 = 0.25 * angle2;  // (a/2)^2
+    s = 0.5 * (1.0 - x2 * (1.0 / 6.0) * (1.0 - x2 * (1.0 / 20.0) * (1.0 - x2 * (1.0 / 42.0) * (1.0 - x2 * (1.0 / 72.0)))));
+    c = 1.0 - x2 * 0.5 * (1.0 - x2 * (1.0 / 12.0) * (1.0 - x2 * (1.0 / 30.0) * (1.0 - x2 * (1.0 / 56.0))));
   } else {
+    const double angle = std::sqrt(angle2);
     s = std::sin(0.5 * angle) / angle;
     c = std::cos(0.5 * angle);
   }

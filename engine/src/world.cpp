@@ -47,10 +47,11 @@ void keepLooseVelocities(const std::vector<BodyState>& bodies, const std::vector
 // The body's pose and velocities are all finite: 0 x each is 0 but for an
 // infinity or a NaN, which makes the sum NaN (one test, not thirteen).
 bool finiteState(const BodyState& b) {
-  double probe = 0.0;
-  for (int k = 0; k < 3; ++k) probe += 0.0 * b.x[k] + 0.0 * b.v[k] + 0.0 * b.omega[k];
-  for (int k = 0; k < 4; ++k) probe += 0.0 * b.q.coeffs()[k];
-  return probe == 0.0;
+  // Summed as a tree, not a chain of 13 additions: a body's test is a few
+  // additions deep, and the next body's overlaps it.
+  const auto zero = [](const auto& v) { return 0.0 * v[0] + 0.0 * v[1] + 0.0 * v[2]; };
+  const Eigen::Vector4d& q = b.q.coeffs();
+  return (zero(b.x) + zero(b.v)) + (zero(b.omega) + (0.0 * q[0] + 0.0 * q[1]) + (0.0 * q[2] + 0.0 * q[3])) == 0.0;
 }
 
 // Checks of joint definitions at the boundary (World::add...): a clear
@@ -1089,7 +1090,8 @@ void World::updateVelocities(const Island& island, double h, WorldEnergy& flows)
     // per substep: the integrated omega plus the solve's correction, that
     // too taken round as far as the solver turned the body (solve_turn).
     Vec3 correction = rotationVector(b.q * b.q_pred.conjugate());
-    if (const double turned = b.solve_turn.norm(); turned > 0.5 * kPi) {
+    if (b.solve_turn.squaredNorm() > 0.25 * kPi * kPi) {
+      const double turned = b.solve_turn.norm();
       const Vec3 n = b.solve_turn / turned;
       const double along = correction.dot(n);
       correction += n * (turned + wrapAngle(along - turned) - along);
@@ -1104,6 +1106,7 @@ void World::updateVelocities(const Island& island, double h, WorldEnergy& flows)
 }
 
 void World::limitSpeeds(const Island& island) {
+  if (std::isinf(settings_.max_linear_speed) && std::isinf(settings_.max_angular_speed)) return;  // the default
   for (const BodyId id : island.bodies) {
     BodyState& b = bodies_[id];
     if (const double v = b.v.norm(); v > settings_.max_linear_speed) b.v *= settings_.max_linear_speed / v;

@@ -384,6 +384,30 @@ FixedId World::addFixed(const FixedDef& def) {
   return static_cast<FixedId>(fixeds_.size() - 1);
 }
 
+JointWrench World::hingeWrench(HingeId id) const {
+  const HingeJoint& j = hinges_.at(id);
+  const double h = last_h_;
+  const bool on_a = body(j.a).isRotor();
+  if (!(h > 0.0) || (!on_a && !body(j.b).isRotor())) return reeve::hingeWrench(j, h);
+  // A rotor's centre stays put and it turns only about its axle, so the
+  // axle took the rest of what the constraints gave it, and its weight:
+  // the impulse F = -(impulse + m g h^2) at the anchor (arm rho from the
+  // centre) and the angular impulse off the axle -(angular_impulse +
+  // rho x F); along the axle the hinge's drive and limit rows act, whose
+  // part the solve left in impulse_axis. From the rotor's state, which the
+  // last substep left (read when asked: a step does not pay for it).
+  const BodyId id_r = on_a ? j.a : j.b;
+  const BodyState& r = bodies_[id_r];
+  const Vec3 u = r.q * r.rotor_axis;
+  const Vec3& anchor = on_a ? j.frame.anchor_a : j.frame.anchor_b;
+  const Vec3 F = -(r.impulse + mass_[id_r] * h * h * settings_.gravity);
+  Vec3 L = -r.angular_impulse;
+  if (!anchor.isZero()) L -= Vec3(r.q * anchor).cross(F);  // most axles pass through the centre
+  L -= u * u.dot(L);
+  const Vec3 point = on_a ? F : Vec3(-F), axis = j.impulse_axis + (on_a ? L : Vec3(-L));
+  return {point / (h * h), axis / (h * h)};  // as reeve::hingeWrench
+}
+
 double World::hingeAngle(HingeId id) const {
   const HingeJoint& j = hinges_.at(id);
   return hingeAngleTotal(j, body(j.a).q, body(j.b).q);
@@ -495,10 +519,6 @@ void World::step(double dt) {
       if (!interrupted_ && s + 1 < settings_.substeps) interrupted_ = interruptRequested();
     }
   }
-  // A rotor's hinge wrench is read after the step only (hingeWrench, the
-  // last substep's): from what that substep's solve left on the rotor,
-  // which stays until the next step's solve, so once a step.
-  for (const auto& island : islands_) rotorWrenches(*island, h);
   recordNonFinite();
   last_h_ = h;
 }
@@ -1054,30 +1074,6 @@ void World::solvePositionsChecked(double h) {
     contacts_ = start.contacts;
     manifolds_ = start.manifolds;
     solvePositions(h, true);
-  }
-}
-
-void World::rotorWrenches(const Island& island, double h) {
-  // A rotor's centre stays put and it turns only about its axle, so the
-  // axle took the rest of what the constraints gave it, and its weight:
-  // the impulse F = -(impulse + m g h^2) at the anchor (arm rho from the
-  // centre) and the angular impulse off the axle -(angular_impulse +
-  // rho x F); along the axle the hinge's drive and limit rows act, whose
-  // part the solve has added already.
-  for (const int i : island.hinges) {
-    HingeJoint& j = hinges_[i];
-    const bool on_a = body(j.a).isRotor();
-    if (!on_a && !body(j.b).isRotor()) continue;
-    const BodyId id = on_a ? j.a : j.b;
-    const BodyState& r = bodies_[id];
-    const Vec3 u = r.q * r.rotor_axis;
-    const Vec3& anchor = on_a ? j.frame.anchor_a : j.frame.anchor_b;
-    const Vec3 F = -(r.impulse + mass_[id] * h * h * settings_.gravity);
-    Vec3 L = -r.angular_impulse;
-    if (!anchor.isZero()) L -= Vec3(r.q * anchor).cross(F);  // most axles pass through the centre
-    L -= u * u.dot(L);
-    j.impulse_point = on_a ? F : Vec3(-F);
-    j.impulse_axis += on_a ? L : Vec3(-L);
   }
 }
 

@@ -342,11 +342,14 @@ class World {
   // Joints, by type, in the order added. Changing a joint's drive or limit
   // between steps is allowed (a drive's target, max torque); its body-local
   // geometry is what it was made with. Forces and torques are those of the
-  // last substep, on the joint's body a (JointWrench).
+  // last substep, on the joint's body a (JointWrench); a rotor's hinge
+  // (which has no point or axis rows) takes what the rotor's impulses and
+  // weight leave for its axle, found when read from the state the last
+  // substep left (so a pose or mass set since the step is seen there).
   const std::vector<HingeJoint>& hinges() const { return hinges_; }
   HingeJoint& hinge(HingeId id) { return hinges_.at(id); }
   const HingeJoint& hinge(HingeId id) const { return hinges_.at(id); }
-  JointWrench hingeWrench(HingeId id) const { return reeve::hingeWrench(hinges_.at(id), last_h_); }
+  JointWrench hingeWrench(HingeId id) const;
   /// Hinge angle (rad) of body a relative to b, 0 when added, counted
   /// through whole turns (2 pi after one turn; HingeJoint::angle_total).
   double hingeAngle(HingeId id) const;
@@ -459,9 +462,6 @@ class World {
   /// hinge made compliant frees the wheel, a wheel's made rigid may make
   /// it a rotor.
   bool hingeRigidityChanged() const;
-  /// The hinge wrenches of an island's rotors, which have no point or axis
-  /// rows.
-  void rotorWrenches(const Island& island, double h);
   /// At the start of a substep of h s: removes these joints' drives whose
   /// `until` has come (HingeDrive::until) and sets scheduled drives'
   /// targets.

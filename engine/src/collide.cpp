@@ -112,6 +112,16 @@ void collideGround(const GroundPlane& ground, BodyId id, const Shape& shape,
 void collideBodies(BodyId id_a, const Shape& shape_a, const BodyState& a, BodyId id_b,
                    const Shape& shape_b, const BodyState& b, const ContactMaterial& material,
                    std::vector<Contact>& out) {
+  // The features clipped below. Room, at the first pair tested, for the
+  // largest primitive feature clipped (a cylinder's 16-gon cap cut by
+  // another: at most 32 points) and most hulls' faces: a feature first met
+  // after the first frame then allocates nothing (NoAllocation:
+  // rope_segments under Gauss-Seidel first met a cap in its second frame).
+  thread_local Face ref_face, inc_face;
+  thread_local std::vector<Vec3> scratch;
+  constexpr std::size_t kFaceRoom = 4 * kCapVertices;
+  for (std::vector<Vec3>* v : {&ref_face.vertices, &inc_face.vertices, &scratch})
+    if (v->capacity() < kFaceRoom) v->reserve(kFaceRoom);
   // a grows by the margin, so MPR finds pairs up to that far apart; depth
   // below is the true one, negative for a gap.
   const double margin = contactMargin(shape_a, shape_b);
@@ -171,8 +181,6 @@ void collideBodies(BodyId id_a, const Shape& shape_a, const BodyState& a, BodyId
     const Shape& ref_shape = ref_a ? shape_a : shape_b;
     const Shape& inc_shape = ref_a ? shape_b : shape_a;
     const Vec3 out_ref = ref_a ? n : Vec3(-n);  // outward normal of the reference face
-    thread_local Face ref_face, inc_face;
-    thread_local std::vector<Vec3> scratch;
     supportingFace(ref_shape, reference->q.conjugate() * out_ref, ref_face);
     supportingFace(inc_shape, incident.q.conjugate() * -out_ref, inc_face);
     for (Vec3& v : ref_face.vertices) v = reference->toWorld(v);

@@ -47,11 +47,13 @@ void keepLooseVelocities(const std::vector<BodyState>& bodies, const std::vector
 // The body's pose and velocities are all finite: 0 x each is 0 but for an
 // infinity or a NaN, which makes the sum NaN (one test, not thirteen).
 bool finiteState(const BodyState& b) {
-  // Summed as a tree, not a chain of 13 additions: a body's test is a few
+  // Summed as a tree, not a chain of 13 additions: a body's test is four
   // additions deep, and the next body's overlaps it.
-  const auto zero = [](const auto& v) { return 0.0 * v[0] + 0.0 * v[1] + 0.0 * v[2]; };
-  const Eigen::Vector4d& q = b.q.coeffs();
-  return (zero(b.x) + zero(b.v)) + (zero(b.omega) + (0.0 * q[0] + 0.0 * q[1]) + (0.0 * q[2] + 0.0 * q[3])) == 0.0;
+  const double* q = b.q.coeffs().data();
+  const double x = (0.0 * b.x[0] + 0.0 * b.x[1]) + (0.0 * b.x[2] + 0.0 * b.v[0]);
+  const double v = (0.0 * b.v[1] + 0.0 * b.v[2]) + (0.0 * b.omega[0] + 0.0 * b.omega[1]);
+  const double w = (0.0 * b.omega[2] + 0.0 * q[0]) + (0.0 * q[1] + 0.0 * q[2]);
+  return (x + v) + (w + 0.0 * q[3]) == 0.0;
 }
 
 // Checks of joint definitions at the boundary (World::add...): a clear

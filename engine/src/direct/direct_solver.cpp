@@ -44,7 +44,7 @@ double leastMomentBound(const Mat3& inertia) {
 }
 
 // A body turned further than this (rad) within one solve takes XPBD's
-// steps (newtonShift).
+// steps (newtonStep).
 constexpr double kNewtonTurn = 0.2;
 // Newton's residual is met when its motion is below this fraction of what
 // the solve moved the bodies in the substep (iterate()): 1e-2 let the
@@ -372,6 +372,7 @@ void DirectSolver::build(World& world) {
   dphi_.assign(m, Vec3::Zero());
   for (auto* v : {&moved_x_, &moved_phi_, &shift_x_, &shift_phi_}) v->assign(m, Vec3::Zero());
   stiffness_.assign(m, Mat3::Zero());
+  world_inertia_.assign(m, Mat3::Zero());
   axial_stiffness_.assign(m, 0.0);
   reweigh_.assign(m, 0);
 }
@@ -513,7 +514,29 @@ bool DirectSolver::converged(double tolerance) const {
   return true;
 }
 
-void DirectSolver::newtonShift() {
+void DirectSolver::warmStiffness(BodyFrame& f, const Mat3& K, std::size_t i) {
+  const BodyState& b = *f.state;
+  // The start projection's rows were weighed at the substep's start poses
+  // (start_): they take this W, whatever it is.
+  reweigh_[i] = !start_.empty();
+  // Every |eigenvalue| of K (at most its Frobenius norm) below v . I v:
+  // none is kept, without the eigenvectors.
+  if (K.norm() < 0.5 * leastMomentBound(b.inertia)) return;
+  const Mat3 inertia = f.R * b.inertia * f.R.transpose();
+  Eigen::SelfAdjointEigenSolver<Mat3> eig;
+  eig.computeDirect(K);
+  Vec3 k = eig.eigenvalues().cwiseAbs();
+  for (int a = 0; a < 3; ++a) {
+    const Vec3 v = eig.eigenvectors().col(a);
+    if (k[a] <= v.dot(inertia * v)) k[a] = 0.0;
+  }
+  if (k.isZero()) return;
+  stiffened_ = true;
+  f.inv_inertia = (inertia + eig.eigenvectors() * k.asDiagonal() * eig.eigenvectors().transpose()).inverse();
+  reweigh_[i] = 1;
+}
+
+double DirectSolver::newtonResidual(bool bounded) {
   // Newton's step on M (x - x~) = J(x)^T lambda, C(x) + alpha~ lambda = 0
   // (XPBD eq. 8-9) from the iterate x, lambda:
   //   [M - K  -J^T] [dx     ]     [g           ]   g = M (x - x~) - J^T lambda,
@@ -554,13 +577,62 @@ void DirectSolver::newtonShift() {
     if (frames_[e.body].inv_axial > 0.0) axial_stiffness_[e.body] += stiff[e.row] * e.axial;
     else stiffness_[e.body] += stiff[e.row] * e.curvature;
   }
+  // Per body: its g, which newtonStep() turns into dx0 = -W~ g in place,
+  // and a bound on |dx0| for any W~ <= W (|K| only adds to M): m or rad,
+  // 1 % above the largest |W g| so that rounding in W~ cannot pass it.
   // The sizes' squares, and one square root at the end: the same bits, as
   // the root is monotonic and correctly rounded.
-  double shift2 = 0.0, moved2 = 0.0;
+  moved_size_ = 0.0;
+  if (first_solve_) return 0.0;  // no lambda and no motion yet: g = 0
+  double moved2 = 0.0, bound2 = 0.0;
   for (std::size_t i = 0; i < m; ++i) {
-    BodyFrame& f = frames_[i];
+    const BodyFrame& f = frames_[i];
     const BodyState& b = *f.state;
     moved2 = std::max({moved2, moved_x_[i].squaredNorm(), moved_phi_[i].squaredNorm()});
+    if (moved_phi_[i].norm() > kNewtonTurn) continue;  // XPBD's steps: no residual
+    Vec3 &g_x = shift_x_[i], &g_phi = shift_phi_[i];
+    if (f.inv_mass > 0.0) g_x += moved_x_[i] / f.inv_mass;
+    if (f.inv_axial == 0.0) {  // a rotor's is its turn about its axle alone (newtonStep)
+      world_inertia_[i] = f.R * b.inertia * f.R.transpose();
+      g_phi += world_inertia_[i] * moved_phi_[i];
+    }
+    if (!bounded) continue;
+    double turn_bound;
+    if (f.inv_axial > 0.0) {
+      const double g_u = f.axle.dot(moved_phi_[i]) * f.axial_inertia + f.axle.dot(g_phi);
+      turn_bound = std::abs(g_u) / f.axial_inertia;
+    } else {
+      if (hub_of_[i] < 0 && f.inv_mass > 0.0 && !stiffness_[i].isZero()) {  // W~ = (I + |K|)^-1 <= W
+        const double least = leastMomentBound(b.inertia);  // at most the world inertia's least eigenvalue
+        turn_bound = least > 0.0 ? g_phi.norm() / least : kInf;
+      } else {  // W~ = W
+        turn_bound = (f.inv_inertia * g_phi).norm();
+      }
+    }
+    const double x2 = (f.inv_mass * g_x).squaredNorm(), turn2 = turn_bound * turn_bound;
+    if (x2 < kInf && turn2 < kInf) bound2 = std::max({bound2, x2, turn2});
+    else bounded = false;  // not finite (NaN included): never met by the bound
+  }
+  moved_size_ = std::sqrt(moved2);
+  return bounded ? 1.01 * std::sqrt(bound2) : kInf;
+}
+
+void DirectSolver::newtonStep() {
+  const std::size_t m = frames_.size();
+  const bool warm = first_solve_ && last_lambda_.size() == lambda_.size();
+  double shift2 = 0.0;
+  for (std::size_t i = 0; i < m; ++i) {
+    BodyFrame& f = frames_[i];
+    if (first_solve_ && f.inv_axial == 0.0) {
+      // The substep's first solve: g = 0, and dx0 = 0 (the signed zeros
+      // the general case below gives). W stays the plain one
+      // (evaluateBodies) but where the last substep's K exceeds the
+      // inertia along an eigenvector of K.
+      if (hub_of_[i] < 0 && f.inv_mass > 0.0 && !stiffness_[i].isZero()) warmStiffness(f, stiffness_[i], i);
+      shift_x_[i] = -f.inv_mass * shift_x_[i];
+      shift_phi_[i] = -(f.inv_inertia * shift_phi_[i]);
+      continue;
+    }
     if (moved_phi_[i].norm() > kNewtonTurn) {  // XPBD's steps, W and no residual
       if (f.inv_axial > 0.0 && f.inv_axial != f.axial_inv0) {
         f.inv_axial = f.axial_inv0;
@@ -570,8 +642,7 @@ void DirectSolver::newtonShift() {
       shift_phi_[i].setZero();
       continue;
     }
-    Vec3 g_x = shift_x_[i], g_phi = shift_phi_[i];
-    if (f.inv_mass > 0.0) g_x += moved_x_[i] / f.inv_mass;
+    const Vec3 g_x = shift_x_[i], g_phi = shift_phi_[i];
     if (f.inv_axial > 0.0) {  // a rotor: its turn about its axle alone
       const double inertia = f.axial_inertia;
       const double g_u = f.axle.dot(moved_phi_[i]) * inertia + f.axle.dot(g_phi);
@@ -590,30 +661,19 @@ void DirectSolver::newtonShift() {
       shift_x_[i].setZero();
       shift_phi_[i] = -f.axle * (f.inv_axial * g_u);
     } else {
-      const Mat3 inertia = f.R * b.inertia * f.R.transpose();
-      g_phi += inertia * moved_phi_[i];
       if (hub_of_[i] < 0 && f.inv_mass > 0.0 && !stiffness_[i].isZero()) {
+        const Mat3& inertia = world_inertia_[i];
         const Mat3& K = stiffness_[i];
-        double sign = 0.0;
-        if (warm && K.norm() < 0.5 * leastMomentBound(b.inertia)) {
-          // Every |eigenvalue| of K (at most its Frobenius norm) is below
-          // v . I v, so the warm loop below would keep none: the same
-          // inverse, without the eigenvectors.
-          f.inv_inertia = inertia.inverse();
-        } else if (!warm && (sign = semidefinite(K)) != 0.0) {
-          stiffened_ = true;
-          // Later iterations keep all of |K|: K itself where it is positive
-          // semidefinite (every principal minor >= 0), -K where negative.
+        stiffened_ = true;
+        // Every iteration after the first keeps all of |K|: K itself where
+        // it is positive semidefinite (every principal minor >= 0), -K
+        // where negative, else its eigenvalues made positive.
+        if (const double sign = semidefinite(K); sign != 0.0) {
           f.inv_inertia = (inertia + sign * K).inverse();
         } else {
           Eigen::SelfAdjointEigenSolver<Mat3> eig;
           eig.computeDirect(K);
-          Vec3 k = eig.eigenvalues().cwiseAbs();
-          for (int a = 0; a < 3 && warm; ++a) {
-            const Vec3 v = eig.eigenvectors().col(a);
-            if (k[a] <= v.dot(inertia * v)) k[a] = 0.0;
-          }
-          stiffened_ = stiffened_ || !k.isZero();
+          const Vec3 k = eig.eigenvalues().cwiseAbs();
           f.inv_inertia = (inertia + eig.eigenvectors() * k.asDiagonal() * eig.eigenvectors().transpose()).inverse();
         }
         reweigh_[i] = 1;
@@ -624,7 +684,6 @@ void DirectSolver::newtonShift() {
     shift2 = std::max({shift2, shift_x_[i].squaredNorm(), shift_phi_[i].squaredNorm()});
   }
   shift_size_ = std::sqrt(shift2);
-  moved_size_ = std::sqrt(moved2);
 }
 
 bool DirectSolver::linearRows(const World& world) const {
@@ -689,7 +748,7 @@ double DirectSolver::extrapolation() {
   last_step_ = step;
   if (!after) last_rho_ = rho;
   extrapolated_ = false;
-  // moved_size_: the substep's motion before this step (newtonShift).
+  // moved_size_: the substep's motion before this step (newtonResidual).
   if (!extrapolates_ || !settled_ || !steady || !(rho > kAitkenLeast && rho < kAitkenMost) ||
       step > kAitkenTail * moved_size_)
     return 1.0;
@@ -737,12 +796,17 @@ bool DirectSolver::iterate(World& world, double h) {
   const bool plain = plain_solve_;
   plain_solve_ = false;
   if (plain && converged(tolerance)) return false;
-  newtonShift();
   // Met: every row, and Newton's residual to kNewtonRelative of what the
-  // solve moved the bodies this substep (to the tolerance, the hand's 4 g
-  // knuckles under their tendons took all 20 iterations at rest: with |K|
-  // 30 times their inertia the residual halves an iteration).
-  if (converged(tolerance) && shift_size_ <= std::max(tolerance, kNewtonRelative * moved_size_)) return false;
+  // solve moved the bodies this substep (to the tolerance, the hand's
+  // first phalanges, their K 14 times their inertia, took all 20
+  // iterations at rest: the residual halves an iteration). Where the
+  // residual's bound for any W~ meets it, W~ is not needed.
+  const bool rows_met = converged(tolerance);
+  const double residual_bound = newtonResidual(rows_met);
+  const double enough = std::max(tolerance, kNewtonRelative * moved_size_);
+  if (rows_met && residual_bound <= enough) return false;
+  newtonStep();
+  if (rows_met && shift_size_ <= enough) return false;
   plain_solve_ = first_solve_ && !stiffened_ && start_.empty() && linearRows(world);
   shiftValues();
   warmStartCaps();

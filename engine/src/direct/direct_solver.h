@@ -10,7 +10,7 @@
 // body), W each body's inverse mass and world inverse inertia, alpha~ =
 // compliance / h^2 (SCA 2020 eq. 4 for all rows at once), W with the
 // rows' geometric stiffness and C and dx with Newton's residual (the
-// motion the bodies made against the impulses they took: newtonShift), so
+// motion the bodies made against the impulses they took: newtonResidual), so
 // that the iterations converge to the implicit step. Gauss-Seidel
 // passes a correction one row further per sweep and stalls where light
 // bodies sit between heavy ones (a light wheel between a heavy load and its
@@ -99,7 +99,7 @@ class DirectSolver {
     // d2C / d(rotation)^2 (m): sum over the row's points on the body of
     // sym(g r^T) - (g . r) I, g the point's dC/dp and r its arm. A rotor
     // turns about its axle u alone, so its entries keep u . curvature . u =
-    // (u . g)(u . r) - g . r instead (axial), the only part newtonShift reads.
+    // (u . g)(u . r) - g . r instead (axial), the only part newtonStep reads.
     Mat3 curvature = Mat3::Zero();
     double axial = 0.0;
   };
@@ -327,14 +327,15 @@ class DirectSolver {
   std::vector<BodyFrame> frames_;
   std::vector<Vec3> dx_, dphi_;
   // Per body: what this solve moved it in the substep so far, and the
-  // motion dx0 = -W~ g of Newton's residual (newtonShift).
+  // motion dx0 = -W~ g of Newton's residual (newtonStep).
   std::vector<Vec3> moved_x_, moved_phi_, shift_x_, shift_phi_;
   std::vector<double> last_lambda_;  // per row: lambda as the last substep ended
   bool first_solve_ = false;          // this iteration is the substep's first
   std::vector<Mat3> stiffness_;  // per body: sum of lambda d2C/dtheta^2 this iteration
+  std::vector<Mat3> world_inertia_;  // per body but rotors: its world inertia this iteration (newtonResidual)
   std::vector<double> axial_stiffness_;  // per rotor: u . stiffness_ . u (Entry::axial)
-  double shift_size_ = 0.0;      // the largest |dx0|, |dphi0| (m, rad) of newtonShift
-  bool stiffened_ = false;       // newtonShift added |K| to some body's W
+  double shift_size_ = 0.0;      // the largest |dx0|, |dphi0| (m, rad) of newtonStep
+  bool stiffened_ = false;       // newtonStep added |K| to some body's W
   double last_step_ = 0.0;       // the last step's largest |dx|, |dphi| (m, rad), as solved; 0: none
   double last_rho_ = 0.0;        // the last measured ratio of a plain step's size to the one before; 0: none
   bool extrapolated_ = false;    // the last step was scaled (extrapolation())
@@ -342,13 +343,21 @@ class DirectSolver {
   bool plain_solve_ = false;     // the last iteration was the substep's first, solved with every plain W
   bool met_ = false;             // the last iteration left every row met (metAsSolved): the next one ends the substep
   bool damped_ = false;          // the last evaluation damped a row (evaluatePath): metAsSolved does not predict it
-  double moved_size_ = 0.0;      // the largest |moved_x_|, |moved_phi_| (m, rad) as newtonShift last found them
-  std::vector<char> reweigh_;    // per body: its W changed in newtonShift
-  /// Newton's residual g = M (x - x~) - J^T lambda and the rows' geometric
-  /// stiffness K (DESIGN "Newton's residual and geometric stiffness"): sets
-  /// each body's W~ = (M + |K|)^-1 in frames_ (reweigh_: where it changed)
-  /// and its motion dx0 = -W~ g.
-  void newtonShift();
+  double moved_size_ = 0.0;      // the largest |moved_x_|, |moved_phi_| (m, rad) as newtonResidual last found them
+  std::vector<char> reweigh_;    // per body: its W changed in newtonStep
+  /// Newton's residual g = M (x - x~) - J^T lambda per body (into
+  /// shift_x_, shift_phi_) and the rows' geometric stiffness K (DESIGN
+  /// "Newton's residual and geometric stiffness"); sets moved_size_.
+  /// Returns a bound on |dx0| = |W~ g| (m or rad) that holds for any W~ <=
+  /// W (infinite where g is not finite), where `bounded`, else infinity.
+  double newtonResidual(bool bounded);
+  /// Each body's W~ = (M + |K|)^-1 in frames_ (reweigh_: where it changed)
+  /// and its motion dx0 = -W~ g, in place of g; sets shift_size_.
+  void newtonStep();
+  /// The substep's first iteration, for body i (frame f) with the last
+  /// substep's K: W~ = (I + |K|)^-1 where an eigenvalue of K exceeds the
+  /// inertia along its eigenvector (those kept), else the plain W.
+  void warmStiffness(BodyFrame& f, const Mat3& K, std::size_t i);
   /// Whether every row's gradient stays as it is while the bodies move:
   /// spans linear in the solve's turns (linear_) and a rotor's hinge rows.
   bool linearRows(const World& world) const;

@@ -7,6 +7,14 @@
 namespace reeve {
 namespace {
 
+// q v q^-1, as Eigen's Quaternion * Vector3 takes it (the same bits),
+// inlined: GCC left Eigen's out of line here, a call a hinge and substep.
+[[gnu::always_inline]] inline Vec3 rotated(const Quat& q, const Vec3& v) {
+  Vec3 uv = q.vec().cross(v);
+  uv += uv;
+  return v + q.w() * uv + q.vec().cross(uv);
+}
+
 joint_rows::DriveKind kindOf(HingeDrive::Mode mode) {
   switch (mode) {
     case HingeDrive::Mode::Velocity: return joint_rows::DriveKind::Velocity;
@@ -155,7 +163,7 @@ double hingeAngleTotal(const HingeJoint& j, const Quat& q_a, const Quat& q_b) {
 }
 
 void trackHingeAngle(HingeJoint& j, const BodyState& a, const BodyState& b, double h) {
-  const double estimate = j.angle_total + h * (a.q * j.frame.axis_a).dot(a.omega - b.omega);
+  const double estimate = j.angle_total + h * rotated(a.q, j.frame.axis_a).dot(a.omega - b.omega);
   // An undamped rotor turned by exactly h omega about its axle: integrate()
   // turns it by h omega_0, the solve by what updateVelocities added to
   // omega_0. The poses would correct the estimate by rounding alone (2 ulp

@@ -860,7 +860,8 @@ void World::contactVelocityPass(const Island& island, double h, WorldEnergy& flo
 
 void World::addKinematicWork(const Island& island, double start_s, double h, bool start_pairing, WorldEnergy& flows) {
   for (const BodyId id : island.bodies) {
-    if (!start_pairing || !bodies_[id].kinematic) {
+    if (!bodies_[id].kinematic) continue;  // no work: kinematicWork's 0
+    if (!start_pairing) {
       flows.kinematic_work += kinematicWork(id, h);
       continue;
     }

@@ -43,6 +43,12 @@ double leastMomentBound(const Mat3& inertia) {
   return least;
 }
 
+// (I + V diag(k) V^T)^-1: the world inertia with |K|'s eigenvalues k added
+// along K's eigenvectors V (newtonStep, warmStiffness).
+Mat3 stiffenedInverse(const Mat3& inertia, const Mat3& V, const Vec3& k) {
+  return (inertia + V * k.asDiagonal() * V.transpose()).inverse();
+}
+
 // A body turned further than this (rad) within one solve takes XPBD's
 // steps (newtonStep).
 constexpr double kNewtonTurn = 0.2;
@@ -532,7 +538,7 @@ void DirectSolver::warmStiffness(BodyFrame& f, const Mat3& K, std::size_t i) {
   }
   if (k.isZero()) return;
   stiffened_ = true;
-  f.inv_inertia = (inertia + eig.eigenvectors() * k.asDiagonal() * eig.eigenvectors().transpose()).inverse();
+  f.inv_inertia = stiffenedInverse(inertia, eig.eigenvectors(), k);
   reweigh_[i] = 1;
 }
 
@@ -673,8 +679,7 @@ void DirectSolver::newtonStep() {
         } else {
           Eigen::SelfAdjointEigenSolver<Mat3> eig;
           eig.computeDirect(K);
-          const Vec3 k = eig.eigenvalues().cwiseAbs();
-          f.inv_inertia = (inertia + eig.eigenvectors() * k.asDiagonal() * eig.eigenvectors().transpose()).inverse();
+          f.inv_inertia = stiffenedInverse(inertia, eig.eigenvectors(), eig.eigenvalues().cwiseAbs());
         }
         reweigh_[i] = 1;
       }

@@ -349,7 +349,8 @@ class DirectSolver {
   /// shift_x_, shift_phi_) and the rows' geometric stiffness K (DESIGN
   /// "Newton's residual and geometric stiffness"); sets moved_size_.
   /// Returns a bound on |dx0| = |W~ g| (m or rad) that holds for any W~ <=
-  /// W (infinite where g is not finite), where `bounded`, else infinity.
+  /// W: 0 at the substep's first solve (g = 0), else where `bounded` the
+  /// bound (infinite where g is not finite), else infinity.
   double newtonResidual(bool bounded);
   /// Each body's W~ = (M + |K|)^-1 in frames_ (reweigh_: where it changed)
   /// and its motion dx0 = -W~ g, in place of g; sets shift_size_.

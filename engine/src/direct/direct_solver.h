@@ -142,6 +142,11 @@ class DirectSolver {
   /// Sets (or, `add`, adds to) the entry's curvature for a point at arm r
   /// whose dC/dp is g: its axial part on a rotor, else the whole.
   void curve(Entry& e, const Vec3& g, const Vec3& r, bool add) const;
+  /// curve() for a path's end point p: at a rolling end the circle's centre
+  /// turns with the body but its lever only off the axle (the solve turns
+  /// the lever back by its turn about the axle, solvePoint), so the lever's
+  /// curvature is taken off the axle, and a rotor keeps the centre's alone.
+  void curveEnd(Entry& e, const Vec3& g, const SolvePoint& p, bool add) const;
   /// Every free row meets its equation C + alpha~ lambda = 0 to within
   /// `tolerance` (m or rad), or is held at a bound it presses against.
   bool converged(double tolerance) const;

@@ -73,6 +73,19 @@ void DirectSolver::curve(Entry& e, const Vec3& g, const Vec3& r, bool add) const
   }
 }
 
+void DirectSolver::curveEnd(Entry& e, const Vec3& g, const SolvePoint& p, bool add) const {
+  if (p.axis.isZero()) return curve(e, g, p.arm, add);
+  // C as evaluated: the centre c = arm - lever moves with the body; the
+  // lever turns with it, then back about the axle a by the turn about a,
+  // so a turn theta moves it by (P theta) x lever, P = I - a a^T, and the
+  // pay-out is linear in theta. A rotor turns about a alone: no lever term.
+  const Vec3 centre = p.arm - p.lever;
+  if (frames_[e.body].inv_axial > 0.0) return curve(e, g, centre, add);
+  const Mat3 P = Mat3::Identity() - p.axis * p.axis.transpose();
+  const Mat3 k = curvatureAt(g, centre) + P * curvatureAt(g, p.lever) * P;
+  e.curvature = add ? Mat3(e.curvature + k) : k;
+}
+
 void DirectSolver::weigh(Entry& e) const {
   // W J: a rotor's angular part is u u^T / I_u (prepare()).
   const BodyFrame& f = frames_[e.body];
@@ -125,18 +138,18 @@ void DirectSolver::evaluateSpan(const World& world, int r, const PathPoint& p0, 
   if (s0 >= 0) {
     entries_[e].lin = -u;
     entries_[e].ang = m0;
-    curve(entries_[e], -u, a0, false);
+    curveEnd(entries_[e], -u, e0, false);
     ++e;
   }
   if (s1 >= 0) {
     if (s1 == s0) {  // both ends on one body
       entries_[e - 1].lin.setZero();
       entries_[e - 1].ang += m1;
-      curve(entries_[e - 1], u, a1, true);
+      curveEnd(entries_[e - 1], u, e1, true);
     } else {
       entries_[e].lin = u;
       entries_[e].ang = m1;
-      curve(entries_[e], u, a1, false);
+      curveEnd(entries_[e], u, e1, false);
     }
   }
   for (e = row.first_entry; e < row.first_entry + row.entry_count; ++e) weigh(entries_[e]);
@@ -292,7 +305,8 @@ void DirectSolver::evaluateRun(const World& world, int r, const PathPoint* point
       entries_[entry[i]].lin += grad;
       const bool end = i == 0 || i + 1 == count;  // a rolling end pays out per radian (SolvePoint::moment)
       entries_[entry[i]].ang += end ? ends[i == 0 ? 0 : 1].moment(grad) : Vec3(arm[i].cross(grad));
-      curve(entries_[entry[i]], grad, arm[i], true);
+      if (end) curveEnd(entries_[entry[i]], grad, ends[i == 0 ? 0 : 1], true);
+      else curve(entries_[entry[i]], grad, arm[i], true);
     }
     prev_u = u;
   }

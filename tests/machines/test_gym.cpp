@@ -272,16 +272,19 @@ TEST(Gym, AtOneSubstepAFrameEveryOneOf225LandingsStaysOnItsStop) {
   }
 }
 
-TEST(Gym, AtThePapersBudgetTheLatBarsPullMeetsTheStopInAboutTwoSolvesAFrame) {
+TEST(Gym, AtThePapersBudgetTheLatBarsPullMeetsTheStopInTwoSolvesAFrame) {
   // A rolling end pays out r per radian of its wheel's turn, linearly,
   // however far the span beyond it has turned: its length has no curvature
   // about the axle (DirectSolver::curveEnd). Taken as that of a point fixed
   // on the wheel at the substep's tangent point (-g . lever, not 0 once the
   // span turned off it), |K| added to the wheel's inertia shortened each
   // Newton step: the file's own demonstration (the lat bar pulled at the
-  // paper's 1 x 20, one substep a frame) took 3.0 solves a frame, and 2.04
-  // with the curvature the solve's length has. The first solve is a
-  // projection; the second meets the rows and the residual.
+  // paper's 1 x 20, one substep a frame) took 3.0 solves a frame. And as
+  // the bar lands on its stop under its capped drive, one span is left
+  // 2.8 mm long that no motion can take up in that substep: the solve then
+  // moved nothing, 20 times over (a stalled solve now ends the substep,
+  // DirectSolver::iterate). Each frame: a projection, then one solve that
+  // meets the rows and Newton's residual.
   Scene s = test::scene("gym");
   s.world->settings().substeps = 1;
   s.world->settings().iterations = 20;
@@ -295,7 +298,8 @@ TEST(Gym, AtThePapersBudgetTheLatBarsPullMeetsTheStopInAboutTwoSolvesAFrame) {
   }
   const double mean = static_cast<double>(solves) / frames;
   std::printf("[ measured ] 1 x 20, %d frames: %.3f solves a frame, at most %d\n", frames, mean, most);
-  EXPECT_LE(mean, 2.1);
+  EXPECT_LE(mean, 2.01);
+  EXPECT_LE(most, 3);
 }
 
 }  // namespace

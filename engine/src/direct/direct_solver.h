@@ -346,7 +346,7 @@ class DirectSolver {
   bool extrapolated_ = false;    // the last step was scaled (extrapolation())
   bool extrapolates_ = false;    // nothing but this solver moves the island's bodies between its iterations
   bool plain_solve_ = false;     // the last iteration was the substep's first, solved with every plain W
-  bool met_ = false;             // the last iteration left every row met (metAsSolved): the next one ends the substep
+  bool met_ = false;             // the last iteration left every row met (metAsSolved), or stalled: the next one ends the substep
   bool damped_ = false;          // the last evaluation damped a row (evaluatePath): metAsSolved does not predict it
   double moved_size_ = 0.0;      // the largest |moved_x_|, |moved_phi_| (m, rad) as newtonResidual last found them
   std::vector<char> reweigh_;    // per body: its W changed in newtonStep

@@ -161,7 +161,11 @@ StaticMachine atwoods(int count, int substeps, int threads) {
 // its own: those behind are stepped up to the one furthest on, so all end
 // at one time; stepped on with the flag lowered, every machine still
 // meets its closed form at the World's time (an island a substep behind
-// or ahead would be h a off).
+// or ahead would be h a off). The flag is raised from the progress the
+// step's own thread reports: on two threads, under load, the other
+// thread's islands may all have run to the frame's end by then (once in
+// 25 runs beside two busy cores), and the frame then ends there, every
+// island with it; the cut itself is asserted on one thread.
 TEST(WholeSteps, AnInterruptedStepEndsEveryIslandAtOneTime) {
   for (const int threads : {1, 2}) {
     SCOPED_TRACE(threads);
@@ -175,11 +179,14 @@ TEST(WholeSteps, AnInterruptedStepEndsEveryIslandAtOneTime) {
     const double dt = 1.0 / 60.0, h = dt / 40;
     world.step(dt);
     ASSERT_TRUE(world.runsWholeSteps());
-    EXPECT_TRUE(world.stepInterrupted());
     const double cut_at = world.time() / h;  // substeps run
     EXPECT_NEAR(cut_at, std::round(cut_at), 1e-9);
     EXPECT_GE(std::round(cut_at), 3.0);
-    EXPECT_LT(std::round(cut_at), 40.0);
+    EXPECT_LE(std::round(cut_at), 40.0);
+    if (threads == 1) {
+      EXPECT_TRUE(world.stepInterrupted());
+      EXPECT_LT(std::round(cut_at), 40.0);
+    }
     flag = 0;
     world.setSubstepProgress({});
     for (int f = 0; f < 30; ++f) world.step(dt);

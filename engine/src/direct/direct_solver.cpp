@@ -446,8 +446,8 @@ void DirectSolver::prepare(World& world, const Island& island, double h, bool ag
   // bodies too: the next iteration then does not start where the last
   // one's solve left them (met_).
   moves_alone_ = island.manifolds.empty() &&
-                  std::all_of(island.paths.begin(), island.paths.end(),
-                              [&](int i) { return world.path(i).weights.empty(); });
+                 std::all_of(island.paths.begin(), island.paths.end(),
+                             [&](int i) { return world.path(i).weights.empty(); });
   if (world.settings().projection == Projection::Start) {
     linearizeAtStart(world, h);
     // The rows take start_'s gradients: none is kept (keepsSpan).
@@ -743,7 +743,8 @@ double DirectSolver::extrapolation() {
   // is then the solve's and theirs together: servin.json's plate resting
   // on the ground, its cables and its static friction trading a slip 0.17
   // times the last one each iteration, took 6.7 solves a frame at 1 x 10
-  // without extrapolation there, 5.5 with it (rope_segments.json fewer too; no shipped scene more).
+  // without extrapolation there, 5.5 with it (rope_segments.json fewer
+  // too; no shipped scene more).
   if (first_solve_) {  // the projection: nothing to compare its step with
     last_step_ = 0.0;
     last_rho_ = 0.0;
@@ -881,8 +882,8 @@ bool DirectSolver::iterate(World& world, double h) {
   // cannot take up in that substep). Nothing else moves the bodies in
   // between, so every iteration left would evaluate and solve the same:
   // 18 of them at that frame of the paper's 1 x 20.
-  if (!rows_met && moves_alone_ && settled_ && tolerance > 0.0 && step2 <= kStalled * kStalled * tolerance * tolerance)
-    met_ = true;
+  const double stalled = kStalled * tolerance;
+  if (!rows_met && moves_alone_ && settled_ && tolerance > 0.0 && step2 <= stalled * stalled) met_ = true;
   return true;
 }
 

@@ -344,9 +344,9 @@ class DirectSolver {
   double last_step_ = 0.0;       // the last step's largest |dx|, |dphi| (m, rad), as solved; 0: none
   double last_rho_ = 0.0;        // the last measured ratio of a plain step's size to the one before; 0: none
   bool extrapolated_ = false;    // the last step was scaled (extrapolation())
-  bool moves_alone_ = false;    // nothing but this solver moves the island's bodies between its iterations
+  bool moves_alone_ = false;     // nothing but this solver moves the island's bodies between its iterations
   bool plain_solve_ = false;     // the last iteration was the substep's first, solved with every plain W
-  bool met_ = false;             // the last iteration left every row met (metAsSolved), or stalled: the next one ends the substep
+  bool met_ = false;             // the last solve met every row (metAsSolved) or stalled: the next one ends the substep
   bool damped_ = false;          // the last evaluation damped a row (evaluatePath): metAsSolved does not predict it
   double moved_size_ = 0.0;      // the largest |moved_x_|, |moved_phi_| (m, rad) as newtonResidual last found them
   std::vector<char> reweigh_;    // per body: its W changed in newtonStep

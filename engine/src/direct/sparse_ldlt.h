@@ -1,10 +1,15 @@
 // Sparse LDL^T factorization of a symmetric positive semi-definite matrix
-// whose pattern is fixed between factorizations (Davis, "Algorithm 849: a
-// concise sparse Cholesky factorization package", ACM TOMS 31(4), 2005:
-// elimination tree, up-looking numeric factorization). Private to
-// reeve_engine; the direct solver (direct_solver.h) factors its constraint
-// matrix with it once or twice per iteration, so nothing here allocates
-// after analyze().
+// whose pattern is fixed between factorizations: elimination tree, column
+// counts and a row-by-row numeric factorization as in Davis, "Algorithm
+// 849: a concise sparse Cholesky factorization package" (ACM TOMS 31(4),
+// 2005); where L is dense enough, left-looking by supernodes instead (Ng
+// and Peyton, "Block sparse Cholesky algorithms on advanced uniprocessor
+// computers", SIAM J. Sci. Comput. 14(5), 1993): consecutive columns of L
+// with one pattern below them are stored and updated as one dense block,
+// as CHOLMOD chooses between its simplicial and supernodal forms by the
+// work per entry of L. Private to reeve_engine; the
+// direct solver (direct_solver.h) factors its constraint matrix with it
+// once or twice per iteration, so nothing here allocates after analyze().
 #pragma once
 
 #include <utility>
@@ -14,14 +19,21 @@ namespace reeve {
 
 class SparseLdlt {
  public:
+  /// How factor() works: row by row, by supernodes, or whichever the
+  /// pattern's work per entry of L favours (analyze()).
+  enum class Layout { Automatic, Rows, Supernodes };
   /// Sets the pattern of an n x n symmetric matrix from its upper triangle:
   /// `entries` are (row, column) pairs with row <= column, in the order the
   /// rows and columns are eliminated (permute before calling); duplicates
   /// share a value. Every diagonal entry must be present. Returns, for each
-  /// pair, the index of its value in values().
-  std::vector<int> analyze(int n, const std::vector<std::pair<int, int>>& entries);
+  /// pair, the index of its value in values(). Either layout gives the
+  /// same factorization to rounding (tests/test_sparse_ldlt.cpp).
+  std::vector<int> analyze(int n, const std::vector<std::pair<int, int>>& entries,
+                           Layout layout = Layout::Automatic);
 
   int size() const { return n_; }
+  /// The layout analyze() chose: Rows or Supernodes.
+  Layout layout() const { return supernodal_ ? Layout::Supernodes : Layout::Rows; }
   /// The matrix's upper-triangle values, as laid out by analyze(); the
   /// caller fills them before factor().
   std::vector<double>& values() { return Ax_; }
@@ -57,13 +69,45 @@ class SparseLdlt {
   void solveTransposed(double* x) const;
 
  private:
+  int factorRows(double drop_tolerance, const std::vector<char>& keep, double keep_tolerance);
+  int factorSupernodes(double drop_tolerance, const std::vector<char>& keep, double keep_tolerance);
+  // Pivot k: its ratio to its size, kept (1 / d) or dropped (0).
+  bool judgePivot(int k, double d, double size, double tolerance);
+
   int n_ = 0;
-  std::vector<int> Ap_, Ai_, diagonal_;  // upper triangle, column by column
-  std::vector<double> Ax_;
-  std::vector<int> parent_, Lp_, Lnz_, Li_, flag_;  // L, column by column
-  std::vector<int> row_start_, row_column_, row_slot_;  // each row's pattern in L
-  std::vector<double> Lx_, inv_d_, y_, pivot_ratio_;
+  std::vector<int> diagonal_;
+  std::vector<double> Ax_, inv_d_, pivot_ratio_;
   std::vector<char> negative_;
+  // Where L's columns are mostly chained into supernodes (the hand's
+  // fingers), by supernodes; else (chains, stars) row by row.
+  bool supernodal_ = false;
+
+  // Row by row (Davis, ldl_numeric): A's upper triangle and L, column by
+  // column; each row of L's pattern in the order it is computed.
+  std::vector<int> Ap_, Ai_, Lp_, Li_;
+  std::vector<int> row_start_, row_column_, row_slot_;
+  std::vector<double> Lx_, y_;
+
+  // By supernodes. One supernode's update from a descendant: the
+  // descendant's rows [first, first + width) are columns of this
+  // supernode, and its rows from `first` on land at the local rows listed
+  // from rel_[rel].
+  struct Update {
+    int from, first, width, rel;
+  };
+  // Supernode s: columns [begin_[s], begin_[s + 1]); its rows (its columns,
+  // then the pattern below them, ascending) rows_[row_begin_[s] ...
+  // row_begin_[s + 1]); L stored from block_[s] in block_values_, column
+  // by column, each column as long as the row list (the entries above the
+  // diagonal unused).
+  std::vector<int> begin_, row_begin_, rows_, block_;
+  // Per supernode, from source_begin_: each entry of its block on and
+  // below the diagonal, column by column, as its index in Ax_ (-1: 0).
+  std::vector<int> source_begin_, source_;
+  std::vector<int> update_begin_;  // per supernode: its updates in updates_
+  std::vector<Update> updates_;
+  std::vector<int> rel_;
+  std::vector<double> block_values_, d_, size_, work_;
 };
 
 }  // namespace reeve

@@ -148,8 +148,8 @@ std::vector<int> SparseLdlt::analyze(int n, const std::vector<std::pair<int, int
       column_of[p] = k;
     }
   std::vector<int> local(n, -1);
-  source_.clear();
-  source_begin_.assign(supernodes + 1, 0);
+  scatter_.clear();
+  zeros_.clear();
   update_begin_.assign(supernodes + 1, 0);
   updates_.clear();
   rel_.clear();
@@ -160,15 +160,17 @@ std::vector<int> SparseLdlt::analyze(int n, const std::vector<std::pair<int, int
     // A(i, k), i <= k, is L's column i, row k; the block's other entries
     // on and below its diagonal start at 0.
     for (int j = first; j < begin_[s + 1]; ++j) {
-      const std::size_t column = source_.size();
-      source_.resize(column + ld - (j - first), -1);
+      const int column = block_[s] + (j - first) * ld;
+      std::vector<char> from_a(ld, 0);
       for (int q = by_row_begin[j]; q < by_row_begin[j + 1]; ++q) {
         const int p = by_row[q];
         assert(local[column_of[p]] >= j - first);
-        source_[column + local[column_of[p]] - (j - first)] = p;
+        scatter_.emplace_back(p, column + local[column_of[p]]);
+        from_a[local[column_of[p]]] = 1;
       }
+      for (int t = j - first; t < ld; ++t)
+        if (!from_a[t]) zeros_.push_back(column + t);
     }
-    source_begin_[s + 1] = static_cast<int>(source_.size());
     for (Update u : pending[s]) {
       const int from_rows = row_begin_[u.from], from_ld = row_begin_[u.from + 1] - from_rows;
       u.rel = static_cast<int>(rel_.size());
@@ -183,7 +185,6 @@ std::vector<int> SparseLdlt::analyze(int n, const std::vector<std::pair<int, int
     for (int t = 0; t < ld; ++t) local[rows_[row_begin_[s] + t]] = -1;
   }
   work_.assign(longest, 0.0);
-  d_.assign(n, 0.0);
   size_.assign(n, 0.0);
   return slots;
 }
@@ -228,18 +229,19 @@ int SparseLdlt::factorSupernodes(double drop_tolerance, const std::vector<char>&
   // Left-looking by supernodes: each supernode's block starts as A's
   // columns, takes every descendant's update L_D D_D L_D^T (summed over the
   // descendant's columns in work_, then added by local rows), and is
-  // factored as a dense block, column by column. A column's terms
-  // L_kj^2 d_j also sum, as magnitudes, into the size its pivot is judged
-  // against. A zero L_kj d_j (a row fixed or off: its values zero in A, or
-  // a dropped row: its column of L zero) adds nothing, and is skipped.
+  // factored as a dense block, column by column. The blocks hold L D (a
+  // column of L times its pivot: what the updates read, unscaled), and
+  // each use takes L_kj = (L D)_kj / d_j. A column's terms L_kj^2 d_j also
+  // sum, as magnitudes, into the size its pivot is judged against. A zero
+  // L_kj (a row fixed or off: its values zero in A; or a dropped row's,
+  // 1 / d_j taken as 0) adds nothing, and is skipped.
+  for (const int z : zeros_) block_values_[z] = 0.0;
+  for (const auto& [p, place] : scatter_) block_values_[place] = Ax_[p];
   int dropped = 0;
   const int supernodes = static_cast<int>(begin_.size()) - 1;
   for (int s = 0; s < supernodes; ++s) {
     const int first = begin_[s], width = begin_[s + 1] - first, ld = row_begin_[s + 1] - row_begin_[s];
     double* L = block_values_.data() + block_[s];
-    const int* source = source_.data() + source_begin_[s];
-    for (int c = 0; c < width; ++c)
-      for (int t = c; t < ld; ++t, ++source) L[c * ld + t] = *source >= 0 ? Ax_[*source] : 0.0;
     for (int c = 0; c < width; ++c) size_[first + c] = std::abs(L[c * ld + c]);
     for (int u = update_begin_[s]; u < update_begin_[s + 1]; ++u) {
       const Update& up = updates_[u];
@@ -247,13 +249,13 @@ int SparseLdlt::factorSupernodes(double drop_tolerance, const std::vector<char>&
       const int from_ld = row_begin_[up.from + 1] - row_begin_[up.from], m = from_ld - up.first;
       const double* from = block_values_.data() + block_[up.from] + up.first;
       const int* rel = rel_.data() + up.rel;
-      for (int j = 0; j < up.width; ++j) {  // column rel[j] of this block -= sum_c L(:, c) L_jc d_c
+      for (int j = 0; j < up.width; ++j) {  // column rel[j] of this block -= sum_c (L D)(:, c) L_jc
         double* target = L + rel[j] * ld;
         double* w = work_.data();
         bool any = false;
         for (int c = 0; c < from_width; ++c) {
           const double* column = from + c * from_ld;
-          const double f = column[j] * d_[from_first + c];
+          const double f = column[j] * inv_d_[from_first + c];
           if (f == 0.0) continue;
           size_[first + rel[j]] += std::abs(column[j] * f);
           if (from_width == 1) {
@@ -273,15 +275,13 @@ int SparseLdlt::factorSupernodes(double drop_tolerance, const std::vector<char>&
       double* column = L + c * ld;
       for (int before = 0; before < c; ++before) {
         const double* other = L + before * ld;
-        const double f = other[c] * d_[first + before];
+        const double f = other[c] * inv_d_[first + before];
         if (f == 0.0) continue;
         size_[first + c] += std::abs(other[c] * f);
         for (int t = c; t < ld; ++t) column[t] -= other[t] * f;
       }
       const int k = first + c;
-      d_[k] = column[c];
       if (!judgePivot(k, column[c], size_[k], !keep.empty() && keep[k] ? keep_tolerance : drop_tolerance)) ++dropped;
-      for (int t = c + 1; t < ld; ++t) column[t] *= inv_d_[k];  // a dropped row's column: 0
     }
   }
   return dropped;
@@ -296,7 +296,7 @@ void SparseLdlt::solve(double* x) const {
       const int* rows = rows_.data() + row_begin_[s];
       for (int c = 0; c < width; ++c) {
         const double* column = L + c * ld;
-        const double xc = x[first + c];
+        const double xc = x[first + c] * inv_d_[first + c];  // L(:, c) x_c = (L D)(:, c) x_c / d_c
         for (int t = c + 1; t < width; ++t) x[first + t] -= column[t] * xc;
         for (int t = width; t < ld; ++t) x[rows[t]] -= column[t] * xc;
       }
@@ -321,9 +321,9 @@ void SparseLdlt::solveTransposed(double* x) const {
     const int* rows = rows_.data() + row_begin_[s];
     for (int c = width - 1; c >= 0; --c) {
       const double* column = L + c * ld;
-      double xc = x[first + c];
-      for (int t = c + 1; t < ld; ++t) xc -= column[t] * x[rows[t]];
-      x[first + c] = xc;
+      double sum = 0.0;
+      for (int t = c + 1; t < ld; ++t) sum += column[t] * x[rows[t]];
+      x[first + c] -= sum * inv_d_[first + c];
     }
   }
 }

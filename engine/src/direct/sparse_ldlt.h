@@ -97,17 +97,18 @@ class SparseLdlt {
   };
   // Supernode s: columns [begin_[s], begin_[s + 1]); its rows (its columns,
   // then the pattern below them, ascending) rows_[row_begin_[s] ...
-  // row_begin_[s + 1]); L stored from block_[s] in block_values_, column
-  // by column, each column as long as the row list (the entries above the
-  // diagonal unused).
+  // row_begin_[s + 1]); L D (L's columns times their pivots) stored from
+  // block_[s] in block_values_, column by column, each column as long as
+  // the row list (the entries above the diagonal unused).
   std::vector<int> begin_, row_begin_, rows_, block_;
-  // Per supernode, from source_begin_: each entry of its block on and
-  // below the diagonal, column by column, as its index in Ax_ (-1: 0).
-  std::vector<int> source_begin_, source_;
+  // Where A's values go in the blocks (index in Ax_, in block_values_),
+  // and the blocks' other entries on and below their diagonals (0).
+  std::vector<std::pair<int, int>> scatter_;
+  std::vector<int> zeros_;
   std::vector<int> update_begin_;  // per supernode: its updates in updates_
   std::vector<Update> updates_;
   std::vector<int> rel_;
-  std::vector<double> block_values_, d_, size_, work_;
+  std::vector<double> block_values_, size_, work_;
 };
 
 }  // namespace reeve

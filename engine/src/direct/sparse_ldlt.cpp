@@ -93,10 +93,10 @@ std::vector<int> SparseLdlt::analyze(int n, const std::vector<std::pair<int, int
   // By supernodes where their dense kernels pay: where L's columns
   // take, on average, kSupernodalWork multiply-adds per entry of L or more
   // (a column of c entries below its pivot: c (c + 1) / 2). Measured on
-  // the shipped scenes' systems (instructions in factor() and solve(),
-  // by supernodes against row by row): the hand's fingers (7.9 and 7.5)
-  // -27 %, the crane (6.6) -10 %, the pulley (6.3) +13 %, the bow (4.9)
-  // +24 %, the gym (4.0) +18 %, rope_segments (2.6) +114 %.
+  // the shipped scenes' systems (instructions in factor() and the solves
+  // over a run, by supernodes against row by row): the hand's fingers
+  // (7.9 and 7.5) -36 %, the crane (6.6) -20 %, the pulley (6.3) +3 %, the
+  // bow (4.9) +12 %, the gym (4.0) +1 %, rope_segments (2.6) +61 %.
   double work = 0.0;
   for (int j = 0; j < n; ++j) work += count[j] * (count[j] + 1.0) / 2.0;
   supernodal_ = layout == Layout::Supernodes ||

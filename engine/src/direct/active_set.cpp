@@ -91,7 +91,9 @@ void DirectSolver::solveActiveSet(double tolerance) {
   std::fill(full_.begin(), full_.end(), 0.0);
   for (const Pair& p : pairs_) {
     const Entry &e1 = entries_[p.e1], &e2 = entries_[p.e2];
-    full_[p.slot] += e1.lin.dot(e2.wlin) + e1.ang.dot(e2.wang);
+    full_[p.slot] += (e1.lin.x() * e2.wlin.x() + e1.ang.x() * e2.wang.x()) +
+                     (e1.lin.y() * e2.wlin.y() + e1.ang.y() * e2.wang.y()) +
+                     (e1.lin.z() * e2.wlin.z() + e1.ang.z() * e2.wang.z());
   }
   assembleHubs();
   std::vector<double>& A = ldlt_.values();

@@ -189,7 +189,7 @@ std::vector<int> SparseLdlt::analyze(int n, const std::vector<std::pair<int, int
   return slots;
 }
 
-bool SparseLdlt::judgePivot(int k, double d, double size, double tolerance) {
+inline bool SparseLdlt::judgePivot(int k, double d, double size, double tolerance) {
   const double sign = !negative_.empty() && negative_[k] ? -1.0 : 1.0;
   pivot_ratio_[k] = size > 0.0 ? sign * d / size : 0.0;
   inv_d_[k] = sign * d > tolerance * size ? 1.0 / d : 0.0;

@@ -1,8 +1,17 @@
 #include "reeve/engine/correction.h"
 
 namespace reeve {
+namespace {
+
+// I^-1 v, or 0 for a body nothing moves (static or kinematic: its inverse
+// inertia is 0), without its two rotations: the ground under every
+// contact.
+Vec3 turnOf(const BodyState& body, const Vec3& v) { return body.moves() ? body.applyInvInertia(v) : Vec3::Zero(); }
+
+}  // namespace
 
 double generalizedInverseMass(const BodyState& body, const Vec3& r, const Vec3& n) {
+  if (!body.moves()) return body.inv_mass;
   const Vec3 rn = r.cross(n);
   return body.inv_mass + rn.dot(body.applyInvInertia(rn));
 }
@@ -17,7 +26,7 @@ double positionalDeltaLambda(const BodyState& a, const BodyState& b, const Vec3&
 
 void applyPositionalImpulse(BodyState& a, BodyState& b, const Vec3& r_a, const Vec3& r_b,
                             const Vec3& P) {
-  const Vec3 turn_b = b.applyInvInertia(r_b.cross(P)), turn_a = -a.applyInvInertia(r_a.cross(P));
+  const Vec3 turn_b = turnOf(b, r_b.cross(P)), turn_a = -turnOf(a, r_a.cross(P));
   if (b.takesImpulses()) {
     b.x += P * b.inv_mass;
     rotateBy(b.q, turn_b);
@@ -36,13 +45,13 @@ void applyPositionalImpulse(BodyState& a, BodyState& b, const Vec3& r_a, const V
 
 double angularDeltaLambda(const BodyState& a, const BodyState& b, const Vec3& n, double C,
                           double alpha_tilde, double lambda) {
-  const double w = n.dot(a.applyInvInertia(n)) + n.dot(b.applyInvInertia(n));
+  const double w = n.dot(turnOf(a, n)) + n.dot(turnOf(b, n));
   const double denom = w + alpha_tilde;
   return denom > 0.0 ? (-C - alpha_tilde * lambda) / denom : 0.0;
 }
 
 void applyAngularImpulse(BodyState& a, BodyState& b, const Vec3& P) {
-  const Vec3 turn_b = b.applyInvInertia(P), turn_a = -a.applyInvInertia(P);
+  const Vec3 turn_b = turnOf(b, P), turn_a = -turnOf(a, P);
   if (b.takesImpulses()) {
     rotateBy(b.q, turn_b);
     b.angular_impulse += P;

@@ -148,6 +148,7 @@ std::vector<int> SparseLdlt::analyze(int n, const std::vector<std::pair<int, int
       column_of[p] = k;
     }
   std::vector<int> local(n, -1);
+  std::vector<char> from_a(n, 0);  // per local row of a column: a value of A lands there
   scatter_.clear();
   zeros_.clear();
   update_begin_.assign(supernodes + 1, 0);
@@ -161,7 +162,7 @@ std::vector<int> SparseLdlt::analyze(int n, const std::vector<std::pair<int, int
     // on and below its diagonal start at 0.
     for (int j = first; j < begin_[s + 1]; ++j) {
       const int column = block_[s] + (j - first) * ld;
-      std::vector<char> from_a(ld, 0);
+      std::fill(from_a.begin(), from_a.begin() + ld, 0);
       for (int q = by_row_begin[j]; q < by_row_begin[j + 1]; ++q) {
         const int p = by_row[q];
         assert(local[column_of[p]] >= j - first);

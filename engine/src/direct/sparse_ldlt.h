@@ -7,9 +7,9 @@
 // computers", SIAM J. Sci. Comput. 14(5), 1993): consecutive columns of L
 // with one pattern below them are stored and updated as one dense block,
 // as CHOLMOD chooses between its simplicial and supernodal forms by the
-// work per entry of L. Private to reeve_engine; the
-// direct solver (direct_solver.h) factors its constraint matrix with it
-// once or twice per iteration, so nothing here allocates after analyze().
+// work per entry of L. Private to reeve_engine; the direct solver
+// (direct_solver.h) factors its constraint matrix with it once or twice
+// per iteration, so nothing here allocates after analyze().
 #pragma once
 
 #include <utility>

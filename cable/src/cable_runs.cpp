@@ -23,7 +23,7 @@ void setRunEnd(PathPoint& point, const Link& link, const Vec3& anchor) {
   point.local = anchor;
   if (link.rolls() && !link.slides() && link.section.kind == Section::Kind::Circle) {
     point.roll_axis = Vec3::UnitZ();
-    point.roll_centre = fromPlane(link, Vec2::Zero());
+    point.roll_centre = fromPlane(link, link.section.centre);
   } else {
     point.roll_axis.setZero();
     point.roll_centre.setZero();

@@ -49,7 +49,7 @@ std::optional<Wrap> wrapAt(const Link& link, const Shape& shape, const BodyState
                            const Vec3& q, bool swept, Section& slice, std::vector<Vec2>& points) {
   if (link.depth != Link::Depth::Slice) {
     if (!swept && !spanCutsSection(link.section, body, p, q, kSplitMargin)) return std::nullopt;
-    const double z = spanDepth(body, p, q);
+    const double z = spanDepth(body, link.section.centre, p, q);
     const double radius = link.section.perimeter() / (2.0 * std::numbers::pi);
     if (std::abs(z - link.plane_offset) <= radius) return Wrap{link.plane_offset, false};
     if (std::abs(z) > halfDepth(shape)) return std::nullopt;
@@ -59,7 +59,7 @@ std::optional<Wrap> wrapAt(const Link& link, const Shape& shape, const BodyState
   if (!swept && !spanCutsSection(Section{Section::Kind::Circle, outerRadius(shape), {}}, body, p, q, kSplitMargin))
     return std::nullopt;
   // In the plane to rounding (a planar machine's): its own section.
-  const double z = spanDepth(body, p, q);
+  const double z = spanDepth(body, Vec2::Zero(), p, q);  // the shape's own sections are centred
   if (std::abs(z - link.plane_offset) <= kSamePlane * outerRadius(shape)) {
     if (!swept && !spanCutsSection(link.section, body, p, q, kSplitMargin)) return std::nullopt;
     return Wrap{link.plane_offset, false};
@@ -306,8 +306,12 @@ void CableSystem::updateJoint(Cable& cable, int c, int j, double time_s) {
   const auto anchors =
       kept ? std::optional{std::pair{from_body.toLocal(fixed.a), to_body.toLocal(fixed.b)}}
            : spanAnchors(from, from_body, to, to_body, joint.local_b, to.rolls() ? turn_[to.body] : 0.0);
-  if (anchors && from.rolls() && to.rolls() && from.section.kind == Section::Kind::Circle &&
-      to.section.kind == Section::Kind::Circle && steady_[from.body] && steady_[to.body]) {
+  // Circles that stay in space: on a steady body, about its axle if it turns.
+  const auto stays = [&](const Link& link) {
+    return link.section.kind == Section::Kind::Circle && steady_[link.body] &&
+           (link.section.centre == Vec2::Zero() || !world_.body(link.body).moves());
+  };
+  if (anchors && from.rolls() && to.rolls() && stays(from) && stays(to)) {
     if (!kept) {  // found afresh; kept ones stay as they were in the world, not rounded through the poses
       fixed.a = from_body.toWorld(anchors->first);
       fixed.b = to_body.toWorld(anchors->second);
@@ -505,7 +509,7 @@ void CableSystem::splitAtCrossedLinks(Cable& cable, int c, double time_s) {
       const double before = mid.side;
       const BodyState& body = world_.body(mid.body);
       const Vec3 p = startPointOf(cable, j), q = endPointOf(cable, j);
-      const auto [side, along] = spanSide(body, p, q);
+      const auto [side, along] = spanSide(body, mid.section.centre, p, q);
       mid.side = side;
       // isnan first: an ordered comparison with NaN raises FE_INVALID.
       const bool swept = !std::isnan(before) && before * side < 0.0 && along > 0.0 && along < 1.0;

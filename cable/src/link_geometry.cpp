@@ -13,14 +13,17 @@ namespace reeve {
 namespace {
 
 // A link's cable plane in world: its normal (planeNormal) and its origin,
-// the body's centre moved along it by the link's plane offset.
+// the body's centre moved along it by the link's plane offset and, for a
+// circle, in it to the circle's centre.
 struct Plane {
   Vec3 normal, origin;
 };
 
 Plane planeOf(const BodyState& body, const Link& link) {
   const Vec3 n = planeNormal(body.q);
-  return {n, body.x + link.plane_offset * n};
+  const Vec2& c = link.section.centre;  // a polygon's is 0
+  const Vec3 origin = body.x + link.plane_offset * n;
+  return {n, c == Vec2::Zero() ? origin : Vec3(origin + body.q * Vec3(c.x(), c.y(), 0.0))};
 }
 
 bool coplanar(const Plane& a, const Plane& b) {
@@ -32,7 +35,7 @@ bool coplanar(const Plane& a, const Plane& b) {
 std::optional<std::pair<Vec3, Vec3>> coplanarCircles(const Link& from, const BodyState& fb, const Plane& from_plane,
                                                      const Link& to, const BodyState& tb, const Plane& to_plane) {
   const int flip = from_plane.normal.dot(to_plane.normal) < 0.0 ? -1 : 1;
-  const CableCircle a{Vec2::Zero(), from.section.radius, from.orientation};
+  const CableCircle a{from.section.centre, from.section.radius, from.orientation};
   const CableCircle b{toPlane(fb, to_plane.origin), to.section.radius, flip * to.orientation};
   const auto t = commonTangent(a, b);
   if (!t) return std::nullopt;
@@ -76,6 +79,7 @@ std::optional<std::pair<Vec3, Vec3>> coplanarSearch(const Link& from, const Body
   const int flip = from_plane.normal.dot(to_plane.normal) < 0.0 ? -1 : 1;
   const Vec2 c_to = toPlane(fb, to_plane.origin);
   Section carried = to.section;
+  carried.centre.setZero();  // a circle's is c_to
   if (carried.kind == Section::Kind::Polygon) {
     std::vector<Vec2> points;
     for (const Vec2& v : to.section.vertices) points.push_back(toPlane(fb, tb.toWorld(fromPlane(to, v))) - c_to);
@@ -130,7 +134,7 @@ std::optional<std::pair<Vec3, Vec3>> spanAnchors(const Link& from, const BodySta
 
 bool spanCutsSection(const Section& section, const BodyState& body, const Vec3& p, const Vec3& q,
                      double margin) {
-  const Vec2 a = toPlane(body, p), b = toPlane(body, q);
+  const Vec2 a = toPlane(body, p) - section.centre, b = toPlane(body, q) - section.centre;  // a polygon's is 0
   const Vec2 d = b - a;
   if (section.kind == Section::Kind::Circle) {
     const double len2 = d.squaredNorm();
@@ -157,17 +161,17 @@ bool spanCutsSection(const Section& section, const BodyState& body, const Vec3& 
   return true;
 }
 
-std::pair<double, double> spanSide(const BodyState& body, const Vec3& p, const Vec3& q) {
-  const Vec2 a = toPlane(body, p), d = toPlane(body, q) - a;
+std::pair<double, double> spanSide(const BodyState& body, const Vec2& centre, const Vec3& p, const Vec3& q) {
+  const Vec2 from = toPlane(body, p), d = toPlane(body, q) - from, a = from - centre;
   const double len2 = d.squaredNorm();
   if (!(len2 > 0.0)) return {0.0, 0.0};
   return {(a.y() * d.x() - a.x() * d.y()) / std::sqrt(len2), -a.dot(d) / len2};
 }
 
-double spanDepth(const BodyState& body, const Vec3& p, const Vec3& q) {
+double spanDepth(const BodyState& body, const Vec2& centre, const Vec3& p, const Vec3& q) {
   const Vec3 a = body.toLocal(p), d = body.toLocal(q) - a;
   const double len2 = d.head<2>().squaredNorm();
-  const double t = len2 > 0.0 ? std::clamp(-a.head<2>().dot(d.head<2>()) / len2, 0.0, 1.0) : 0.0;
+  const double t = len2 > 0.0 ? std::clamp((centre - a.head<2>()).dot(d.head<2>()) / len2, 0.0, 1.0) : 0.0;
   return a.z() + t * d.z();
 }
 

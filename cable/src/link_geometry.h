@@ -38,19 +38,20 @@ std::optional<std::pair<Vec3, Vec3>> spanAnchors(const Link& from, const BodySta
                                                  const Link& to, const BodyState& to_body,
                                                  const Vec3& warm_to, double warm_turn = 0.0);
 
-/// Where the straight span from world point `p` to `q` passes the link's
-/// section centre, seen in the link's plane: {signed distance of the
-/// centre from the span's line (m, + where the centre lies to the right
-/// of p -> q), parameter in [0, 1] of the span's point nearest it
-/// (unclamped)}.
-std::pair<double, double> spanSide(const BodyState& body, const Vec3& p, const Vec3& q);
+/// Where the straight span from world point `p` to `q` passes a section's
+/// `centre` (m, body-local x, y: Section::centre), seen in the link's
+/// plane: {signed distance of the centre from the span's line (m, + where
+/// the centre lies to the right of p -> q), parameter in [0, 1] of the
+/// span's point nearest it (unclamped)}.
+std::pair<double, double> spanSide(const BodyState& body, const Vec2& centre, const Vec3& p, const Vec3& q);
 
 /// Body-local z (m) of the straight span from world point `p` to `q` at
-/// its point nearest the body's origin seen in the local xy plane (clamped
-/// to the span): where along the body's axis it passes a link's section.
-/// The split tests see the span projected into the cable plane (sec. 3.4);
-/// this says how far out of the plane it really is.
-double spanDepth(const BodyState& body, const Vec3& p, const Vec3& q);
+/// its point nearest `centre` (m, body-local x, y) seen in the local xy
+/// plane (clamped to the span): where along the body's axis it passes a
+/// link's section about that centre. The split tests see the span
+/// projected into the cable plane (sec. 3.4); this says how far out of the
+/// plane it really is.
+double spanDepth(const BodyState& body, const Vec2& centre, const Vec3& p, const Vec3& q);
 
 /// How far (m) `shape` reaches either side of its local plane z = 0: a
 /// box's half extent in z, a cylinder's half length, a sphere's radius, a

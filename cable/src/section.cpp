@@ -26,11 +26,13 @@ double wrapPositive(double length, double period) {
 
 }  // namespace
 
-Section Section::circle(double radius) {
+Section Section::circle(double radius, const Vec2& centre) {
   if (!(radius > 0.0 && std::isfinite(radius)))
     throw std::invalid_argument("circle section: radius must be > 0 and finite");
+  if (!centre.allFinite()) throw std::invalid_argument("circle section: the centre is not finite");
   Section s;
   s.radius = radius;
+  s.centre = centre;
   return s;
 }
 
@@ -68,6 +70,7 @@ bool Section::setPolygon(std::vector<Vec2>& points) {
   hull.resize(k - 1);  // the last point repeats the first
   kind = Kind::Polygon;
   radius = 0.0;
+  centre.setZero();
   return hull.size() >= 3;
 }
 
@@ -86,8 +89,10 @@ double Section::perimeter() const {
 }
 
 double boundaryPosition(const Section& section, const Vec2& p) {
-  if (section.kind == Section::Kind::Circle)
-    return wrapPositive(section.radius * std::atan2(p.y(), p.x()), section.perimeter());
+  if (section.kind == Section::Kind::Circle) {
+    const Vec2 r = p - section.centre;
+    return wrapPositive(section.radius * std::atan2(r.y(), r.x()), section.perimeter());
+  }
   // Nearest point edge by edge; `along` is the position of edge i's start.
   const std::vector<Vec2>& v = section.vertices;
   double along = 0.0, best = 0.0, best_d2 = std::numeric_limits<double>::infinity();
@@ -109,7 +114,7 @@ Vec2 boundaryPoint(const Section& section, double position) {
   position = wrapPositive(position, section.perimeter());
   if (section.kind == Section::Kind::Circle) {
     const double angle = position / section.radius;
-    return section.radius * Vec2(std::cos(angle), std::sin(angle));
+    return section.centre + section.radius * Vec2(std::cos(angle), std::sin(angle));
   }
   const std::vector<Vec2>& v = section.vertices;
   for (std::size_t i = 0; i < v.size(); ++i) {
@@ -126,9 +131,9 @@ double sectionSurfaceDistance(const Section& section, const Vec2& old_point, con
   const double perimeter = section.perimeter();
   // Counter-clockwise length from new to old, up to whole perimeters: the
   // one nearest what the turn predicts.
+  const Vec2 from = new_point - section.centre, to = old_point - section.centre;  // a polygon's centre is 0
   const double ccw = section.kind == Section::Kind::Circle  // one angle: new to old
-                         ? section.radius * atan2Small(new_point.x() * old_point.y() - new_point.y() * old_point.x(),
-                                                       new_point.dot(old_point))
+                         ? section.radius * atan2Small(from.x() * to.y() - from.y() * to.x(), from.dot(to))
                          : boundaryPosition(section, old_point) - boundaryPosition(section, new_point);
   double predicted = section.radius * turn_rad;
   if (section.kind == Section::Kind::Polygon) {
@@ -155,10 +160,11 @@ std::vector<Vec2> sectionArcPoints(const Section& section, const Vec2& arrival,
   if (section.kind == Section::Kind::Circle) {
     const double angle = arc / section.radius;
     const int steps = std::max(1, static_cast<int>(std::ceil(angle / max_step_rad)));
-    const double start = std::atan2(arrival.y(), arrival.x());
+    const Vec2 r = arrival - section.centre;
+    const double start = std::atan2(r.y(), r.x());
     for (int k = 1; k < steps; ++k) {
       const double a = start + orientation * angle * k / steps;
-      points.push_back(section.radius * Vec2(std::cos(a), std::sin(a)));
+      points.push_back(section.centre + section.radius * Vec2(std::cos(a), std::sin(a)));
     }
   } else {
     // Vertices strictly between the ends, ordered by the length travelled.

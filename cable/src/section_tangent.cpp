@@ -37,14 +37,14 @@ Vec2 extremeVertex(const std::vector<Vec2>& v, const Vec2& p, int side) {
 
 // The point of `section` farthest along `dir` (section coordinates).
 Vec2 support(const Section& section, const Vec2& dir) {
-  if (section.kind == Section::Kind::Circle) return section.radius * dir.normalized();
+  if (section.kind == Section::Kind::Circle) return section.centre + section.radius * dir.normalized();
   return *std::max_element(section.vertices.begin(), section.vertices.end(),
                            [&](const Vec2& a, const Vec2& b) { return a.dot(dir) < b.dot(dir); });
 }
 
 // Largest distance (m) of the section's boundary from its origin.
 double extent(const Section& section) {
-  if (section.kind == Section::Kind::Circle) return section.radius;
+  if (section.kind == Section::Kind::Circle) return section.centre.norm() + section.radius;
   double r = 0.0;
   for (const Vec2& v : section.vertices) r = std::max(r, v.norm());
   return r;
@@ -84,8 +84,8 @@ std::optional<TangentPoints> outerTangentByVertices(const Section& from, const V
 std::optional<Vec2> tangentFromPoint(const Section& section, const Vec2& p, int orientation,
                                      bool leaving) {
   if (section.kind == Section::Kind::Circle) {
-    if (!(p.norm() > section.radius)) return std::nullopt;  // also keeps commonTangent off |d| = 0
-    const CableCircle circle{Vec2::Zero(), section.radius, orientation};
+    if (!((p - section.centre).norm() > section.radius)) return std::nullopt;  // keeps commonTangent off |d| = 0
+    const CableCircle circle{section.centre, section.radius, orientation};
     const CableCircle point{p, 0.0, 1};
     const auto t = leaving ? commonTangent(circle, point) : commonTangent(point, circle);
     if (!t) return std::nullopt;
@@ -103,8 +103,9 @@ std::optional<TangentPoints> sectionTangent(const Section& from, const Vec2& c_f
                                             int* rounds) {
   if (rounds) *rounds = 0;
   if (from.kind == Section::Kind::Circle && to.kind == Section::Kind::Circle) {
-    if (c_from == c_to) return std::nullopt;  // commonTangent divides by |d|
-    return commonTangent({c_from, from.radius, o_from}, {c_to, to.radius, o_to});
+    const Vec2 a = c_from + from.centre, b = c_to + to.centre;
+    if (a == b) return std::nullopt;  // commonTangent divides by |d|
+    return commonTangent({a, from.radius, o_from}, {b, to.radius, o_to});
   }
   // Fig. 6, from the point of `from` farthest from `to` along the line of
   // centres. Each step needs its point outside the other section, which
@@ -112,7 +113,8 @@ std::optional<TangentPoints> sectionTangent(const Section& from, const Vec2& c_f
   // sequence, so it settles when that point stays and cycles when it
   // returns to an earlier one (overlapping sections).
   const double tolerance = 1e-13 * std::max(extent(from), extent(to));
-  const Vec2 away = c_from == c_to ? Vec2::UnitX() : Vec2(c_from - c_to);
+  const Vec2 centres = c_from + from.centre - c_to - to.centre;  // a polygon's centre is 0
+  const Vec2 away = centres == Vec2::Zero() ? Vec2::UnitX() : centres;
   std::array<Vec2, kMaxRounds> visited;
   Vec2 a = c_from + support(from, away);
   for (int round = 1; round <= kMaxRounds; ++round) {

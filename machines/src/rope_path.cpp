@@ -43,7 +43,8 @@ std::vector<RopePathPoint> ropeCentreline(const CableSystem& cables, int c, doub
         const Vec3 local(arc[i].x(), arc[i].y(), from.plane_offset);
         RopePathPoint pt;
         pt.p = body.toWorld(local);
-        const Vec3 radial(arc[i].x(), arc[i].y(), 0.0);
+        const Vec2 out_of = arc[i] - from.section.centre;  // a polygon's is 0
+        const Vec3 radial(out_of.x(), out_of.y(), 0.0);
         pt.outward = body.q * radial.normalized();
         out.push_back(pt);
       }

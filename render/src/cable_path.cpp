@@ -65,11 +65,11 @@ std::vector<Vec2> coilPoints(const Section& s, const Vec2& start, int sense, dou
   const auto offset = [&](double turned) { return pitch * turned / kTwoPi; };
   std::vector<Vec2> points{start};
   if (s.kind == Section::Kind::Circle) {
-    const double start_angle = angleOf(start);
+    const double start_angle = angleOf(start - s.centre);
     const int steps = std::max(1, static_cast<int>(std::ceil(total / max_step_rad)));
     for (int i = 1; i <= steps; ++i) {
       const double turned = total * i / steps;
-      points.push_back((s.radius + offset(turned)) * direction(start_angle + sense * turned));
+      points.push_back(s.centre + (s.radius + offset(turned)) * direction(start_angle + sense * turned));
     }
     return points;
   }
@@ -124,7 +124,7 @@ std::vector<Vec3> wrapPath(const Link& link, const BodyState& body, const Vec3& 
   std::vector<Vec2> points = sectionArcPoints(s, a, d, link.orientation, max_step_rad);
   if (extra_turns > 0) {
     // A whole turn from d back to d, through the boundary point farthest round.
-    Vec2 far = -s.radius * d.normalized();
+    Vec2 far = s.centre - s.radius * (d - s.centre).normalized();
     if (s.kind == Section::Kind::Polygon)
       far = *std::max_element(s.vertices.begin(), s.vertices.end(),
                               [&](const Vec2& p, const Vec2& q) {
@@ -236,7 +236,7 @@ std::vector<Vec3> sectionOutline(const Link& link, const BodyState& body, double
   if (s.kind == Section::Kind::Circle) {
     const int steps = std::max(3, static_cast<int>(std::ceil(kTwoPi / max_step_rad)));
     for (int i = 0; i <= steps; ++i)
-      outline.push_back(toWorld(link, body, s.radius * direction(kTwoPi * (i % steps) / steps)));
+      outline.push_back(toWorld(link, body, s.centre + s.radius * direction(kTwoPi * (i % steps) / steps)));
   } else {
     for (const Vec2& p : s.vertices) outline.push_back(toWorld(link, body, p));
     outline.push_back(outline.front());
@@ -253,10 +253,10 @@ bool sectionMatchesShape(const Link& link, const Shape& shape) {
   };
   switch (shape.type) {
     case Shape::Type::Cylinder:
-      return s.kind == Section::Kind::Circle && near(s.radius, shape.radius) &&
+      return s.kind == Section::Kind::Circle && s.centre.isZero() && near(s.radius, shape.radius) &&
              z <= shape.half_length * (1.0 + 1e-9);
     case Shape::Type::Sphere:
-      return s.kind == Section::Kind::Circle && z < shape.radius &&
+      return s.kind == Section::Kind::Circle && s.centre.isZero() && z < shape.radius &&
              near(s.radius, std::sqrt(shape.radius * shape.radius - z * z));
     case Shape::Type::Box: {
       const double hx = shape.half_extents.x(), hy = shape.half_extents.y();

@@ -146,9 +146,7 @@ void drawSectionOutlines(const ShapeMeshes& meshes, const CableSystem& cables, d
         continue;
       const bool seen = std::any_of(drawn.begin(), drawn.end(), [&](const auto& d) {
         return d.first == link.body && d.second->plane_offset == link.plane_offset &&
-               d.second->section.kind == link.section.kind &&
-               d.second->section.radius == link.section.radius &&
-               d.second->section.vertices == link.section.vertices;
+               d.second->section == link.section;
       });
       if (seen) continue;
       drawn.emplace_back(link.body, &link);

@@ -10,13 +10,19 @@
 namespace reeve::scene_detail {
 namespace {
 
-// The "section" object of a rolling or hybrid link at `path`: {radius_m} or
-// {polygon_m} (schema-checked), the polygon's convex hull taken.
+// The "section" object of a rolling or hybrid link at `path`: {radius_m,
+// centre_m} or {polygon_m} (schema-checked), the polygon's convex hull
+// taken.
 Section sectionOf(const nlohmann::json& section, const std::string& path,
                   const std::string& source) {
   if (const auto radius = section.find("radius_m"); radius != section.end()) {
+    Vec2 centre = Vec2::Zero();
+    if (const auto c = section.find("centre_m"); c != section.end()) {
+      centre = Vec2(c->at(0).get<double>(), c->at(1).get<double>());
+      if (!centre.allFinite()) throw SceneError(source, path + "/centre_m", "a finite [x, y]", literal(*c));
+    }
     try {
-      return Section::circle(radius->get<double>());
+      return Section::circle(radius->get<double>(), centre);
     } catch (const std::invalid_argument&) {
       throw SceneError(source, path + "/radius_m", "a finite radius > 0", literal(*radius));
     }
@@ -60,13 +66,8 @@ LinkDef linkOf(const nlohmann::json& link, const std::string& path, const BodyNa
     def.stored = stored->get<double>();
   if (const auto section = link.find("section"); section != link.end()) {
     def.section = sectionOf(*section, path + "/section", source);
-    if (def.section.kind == Section::Kind::Polygon)
-      for (Vec2& p : def.section.vertices) p -= origin.head<2>();
-    else if (origin.head<2>() != Vec2::Zero())
-      throw SceneError(source, path + "/section",
-                       "a polygon section (a circle is centred on the body's origin, and this "
-                       "hull's centre of mass is off the z axis of its vertices)",
-                       literal(*section));
+    for (Vec2& p : def.section.vertices) p -= origin.head<2>();
+    if (def.section.kind == Section::Kind::Circle) def.section.centre -= origin.head<2>();
   }
   def.plane_offset = link.value("plane_offset_m", 0.0) - origin.z();
   def.active = link.value("active", true);

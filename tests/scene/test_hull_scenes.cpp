@@ -1,7 +1,7 @@
 // Hull shapes in scene files: body-local coordinates are those of the
-// vertices (the body's origin moves to the centre of mass), degenerate
-// hulls and off-centre circle sections are errors, and scenes/hulls.json
-// behaves as its description claims.
+// vertices (the body's origin moves to the centre of mass), circle sections
+// are placed in that frame, degenerate hulls are errors, and
+// scenes/hulls.json behaves as its description claims.
 #include <cmath>
 #include <numbers>
 
@@ -75,12 +75,22 @@ TEST(HullScenes, DegenerateHullsAreErrors) {
   EXPECT_EQ(few->jsonPath(), "/bodies/0/shape/vertices_m");
 }
 
-TEST(HullScenes, CircleSectionOffTheCentreOfMassIsAnError) {
-  // A circle section is centred on the body's origin, which for this hull
-  // is not the origin of its vertices: the file cannot mean that.
-  expectError(with(kPrism, R"("plane_offset_m": 0.25})",
-                   R"("plane_offset_m": 0.25, "section": {"radius_m": 0.2}})"),
-              "/cables/0/links/1/section", "a polygon section", "0.2");
+TEST(HullScenes, ACircleSectionIsPlacedInTheVerticesFrame) {
+  // Its centre_m, like every body-local input, is in the vertices' frame:
+  // omitted, the circle lies about their origin, (-0.4, -0.3) from the
+  // centre of mass; at [0.4, 0.3] it lies about the centre of mass.
+  const auto centre = [](const std::string& section) {
+    const Scene s = parseScene(with(kPrism, R"("plane_offset_m": 0.25})", R"("plane_offset_m": 0.25, "section": )" +
+                                                                              section + "}"),
+                               "prism.json");
+    const Section& given = s.cables->cables().at(0).links[1].section;
+    EXPECT_EQ(given.kind, Section::Kind::Circle);
+    EXPECT_EQ(given.radius, 0.2);
+    return given.centre;
+  };
+  EXPECT_TRUE(centre(R"({"radius_m": 0.2})").isApprox(Vec2(-0.4, -0.3), 1e-12));
+  EXPECT_LT(centre(R"({"radius_m": 0.2, "centre_m": [0.4, 0.3]})").norm(), 1e-12);
+  EXPECT_TRUE(centre(R"({"radius_m": 0.2, "centre_m": [1.4, 0.3]})").isApprox(Vec2(1.0, 0.0), 1e-12));
 }
 
 TEST(HullScenes, HullsSceneBehavesAsDescribed) {

@@ -242,6 +242,21 @@ TEST(SchemaErrors, PolygonPointOfThreeNumbers) {
       "/cables/0/links/1/section/polygon_m/2", "an array of 2 numbers", "an array of 3 items");
 }
 
+TEST(SchemaErrors, CircleCentreOfThreeNumbers) {
+  expectError(baseWith(R"("orientation": "cw"})",
+                       R"("orientation": "cw", "section": {"radius_m": 0.2, "centre_m": [0, 0.1, 0]}})"),
+              "/cables/0/links/1/section/centre_m", "an array of 2 numbers", "an array of 3 items");
+}
+
+TEST(SchemaErrors, APolygonHasNoCentre) {
+  // Its vertices are where it is.
+  expectError(baseWith(R"("orientation": "cw"})",
+                       R"("orientation": "cw",
+                           "section": {"polygon_m": [[0, 0], [1, 0], [0, 1]], "centre_m": [1, 0]}})"),
+              "/cables/0/links/1/section/centre_m", "no property \"centre_m\" (allowed: polygon_m)",
+              "\"centre_m\"");
+}
+
 TEST(SchemaErrors, PlaneOffsetMustBeANumber) {
   expectError(baseWith(R"("orientation": "cw"})",
                        R"("orientation": "cw", "plane_offset_m": "0.1"})"),

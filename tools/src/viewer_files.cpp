@@ -95,8 +95,7 @@ nlohmann::json sceneHead(const Scene& scene) {
         continue;
       const bool seen = std::any_of(outlined.begin(), outlined.end(), [&](const auto& o) {
         return o.first == link.body && o.second->plane_offset == link.plane_offset &&
-               o.second->section.kind == link.section.kind && o.second->section.radius == link.section.radius &&
-               o.second->section.vertices == link.section.vertices;
+               o.second->section == link.section;
       });
       if (seen) continue;
       outlined.emplace_back(link.body, &link);

@@ -1,5 +1,5 @@
 // Cross-sections a cable wraps: a circle or a convex polygon in the 2D
-// coordinates of a body's cable plane, centred on the body origin. Tangents
+// coordinates of a body's cable plane (body-local x, y). Tangents
 // from a point and between two sections (paper sec. 3.1, 3.2 with Fig. 5-6,
 // 3.4), distances along the boundary (Alg. 1 surfaceDist, Alg. 2 stored
 // cable).
@@ -13,7 +13,7 @@
 namespace reeve {
 
 /// The cross-section of a body in its cable plane (paper sec. 3.2, 3.4):
-/// a circle of `radius` (m) centred on the origin, or a convex polygon with
+/// a circle of `radius` (m) about `centre`, or a convex polygon with
 /// `vertices` (m, counter-clockwise, at least 3, strictly convex: no
 /// duplicate or collinear vertices). Build it with circle() or polygon(),
 /// which enforce those invariants; every function below assumes them.
@@ -22,10 +22,14 @@ struct Section {
   Kind kind = Kind::Circle;
   double radius = 0.0;         ///< m, Circle only
   std::vector<Vec2> vertices;  ///< m, Polygon only: convex, counter-clockwise
+  /// m, Circle only: where it lies in the plane (a pulley's axle off its
+  /// body's centre of mass, a knuckle at a phalanx's end). A polygon's
+  /// vertices carry their own place.
+  Vec2 centre = Vec2::Zero();
 
-  /// A circle of `radius` (m) about the origin. Throws std::invalid_argument
-  /// unless radius > 0 and finite.
-  static Section circle(double radius);
+  /// A circle of `radius` (m) about `centre` (m). Throws
+  /// std::invalid_argument unless radius > 0 and both are finite.
+  static Section circle(double radius, const Vec2& centre = Vec2::Zero());
   /// The convex hull of any set of `points` (m), by Andrew's monotone chain:
   /// counter-clockwise from the lowest-x (then lowest-y) point, duplicate and
   /// collinear points dropped (paper sec. 3.4: "compute the convex hull of
@@ -40,6 +44,9 @@ struct Section {
 
   /// Boundary length (m): 2 pi r, or the sum of the edge lengths.
   double perimeter() const;
+
+  /// The same section: kind, radius, vertices and centre equal.
+  bool operator==(const Section&) const = default;
 };
 
 /// Section of a box with half extents `hx`, `hy` (m, > 0) in its local
@@ -82,7 +89,7 @@ std::optional<TangentPoints> sectionTangent(const Section& from, const Vec2& c_f
 
 /// Position (m, in [0, perimeter)) along the boundary of the boundary point
 /// nearest to `p`, measured counter-clockwise from vertex 0 (polygon) or
-/// from the +x axis (circle).
+/// from the +x axis through its centre (circle).
 double boundaryPosition(const Section& section, const Vec2& p);
 
 /// The boundary point (m, section coordinates) at `position` (m) measured

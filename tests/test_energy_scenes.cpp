@@ -62,7 +62,7 @@ const std::set<std::string>& knownCreating() {
       // or 100 x 32).
       "springs gauss-seidel 1x1", "springs gauss-seidel 1x10", "springs gauss-seidel 10x2",
       "springs gauss-seidel 32x32",
-      // Gauss-Seidel unconverged on light wheels and knuckles (README:
+      // Gauss-Seidel unconverged on light wheels and phalanges (README:
       // its limits; issue 29).
       "gym gauss-seidel 1x10", "gym gauss-seidel 10x2", "hand gauss-seidel 1x1", "hand gauss-seidel 1x10",
       "hand gauss-seidel 10x2", "hilbert2 gauss-seidel 10x2", "pulley gauss-seidel 1x1",

@@ -58,9 +58,10 @@ def test_hand_copies_end_on_the_same_bits_whatever_the_threads(scenes, threads):
     assert np.array_equal(batch.positions_m[n - 1], alone.bodies.positions_m)
     assert np.array_equal(batch.angular_velocities_rad_per_s[n - 1], alone.bodies.angular_velocities_rad_per_s)
     assert np.array_equal(batch.hinge_angles_rad[n - 1], alone.hinges.angles_rad)
-    # More pull curls the index finger's first joint further (to its 1.3 rad limit).
+    # More pull curls the index finger's first joint further (to its 1.3 rad
+    # limit, where the copies held there differ by rounding).
     mcp = [k for k, (body, _) in enumerate(alone.hinges.bodies) if body == "index_1"][0]
-    assert np.all(np.diff(batch.hinge_angles_rad[:, mcp]) >= 0.0)
+    assert np.all(np.diff(batch.hinge_angles_rad[:, mcp]) >= -1e-12)
     assert batch.hinge_angles_rad[0, mcp] < batch.hinge_angles_rad[n - 1, mcp]
 
 

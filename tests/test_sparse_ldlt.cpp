@@ -286,8 +286,8 @@ TEST(SparseLdlt, BothLayoutsDropTheSameRowsAndSolveAlike) {
 
 // Left to choose, a chain factors row by row (each column of L one entry:
 // no block to gain) and a dense system, the rows of a finger that all share
-// its bodies, by supernodes (one block of 24 columns: 8.3 multiply-adds
-// per entry of L; DESIGN, "Supernodes for the hand").
+// its bodies, by supernodes (one block of 24 columns; DESIGN, "Supernodes
+// for the hand").
 TEST(SparseLdlt, ChoosesSupernodesForADenseSystemAndRowsForAChain) {
   std::mt19937 rng(7);
   const int n = 24;

@@ -7,7 +7,7 @@
 namespace reeve {
 namespace {
 
-constexpr double kSupernodalWork = 6.5;
+constexpr double kSupernodalWidth = 6.0;  // columns a supernode, on average (analyze())
 
 }  // namespace
 
@@ -90,17 +90,21 @@ std::vector<int> SparseLdlt::analyze(int n, const std::vector<std::pair<int, int
     if (!(parent[j] == j + 1 && count[j] == count[j + 1] + 1)) begin_.push_back(j + 1);
   if (n > 0) begin_.push_back(n);
   const int supernodes = static_cast<int>(begin_.size()) - 1;
-  // By supernodes where their dense kernels pay: where L's columns
-  // take, on average, kSupernodalWork multiply-adds per entry of L or more
-  // (a column of c entries below its pivot: c (c + 1) / 2). Measured on
-  // the shipped scenes' systems (instructions in factor() and the solves
-  // over a run, by supernodes against row by row): the hand's fingers
-  // (7.9 and 7.5) -36 %, the crane (6.6) -20 %, the pulley (6.3) +3 %, the
-  // bow (4.9) +12 %, the gym (4.0) +1 %, rope_segments (2.6) +61 %.
-  double work = 0.0;
-  for (int j = 0; j < n; ++j) work += count[j] * (count[j] + 1.0) / 2.0;
+  // By supernodes where their dense kernels pay: where the supernodes are
+  // on average kSupernodalWidth columns wide or more, so that a block's
+  // multiply-adds run down whole columns rather than over scattered
+  // entries. Measured on the shipped scenes' systems (instructions in
+  // factor() and the solves over a run, by supernodes against row by row;
+  // mean width, then multiply-adds per entry of L): the hand's fingers and
+  // thumb (10 and 11; 6.2 and 5.6) -37 %, as they were with welded knuckle
+  // wheels (6.9; 7.9) -36 %, the crane (6.75; 6.6) -20 %, the bow (5.8;
+  // 4.9) +12 %, the gym (3.7; 4.0) +1 %, the pulley (3.6; 6.3) +3 %,
+  // rope_segments (3.0; 2.6) +61 %, chains (1; 1) +182 %; and, taken to
+  // supernodes by this rule, joints.json's and springs.json's small dense
+  // systems (8 to 10, 7.2 wide; 3.0 to 4.8) -6 and -14 %. The work per
+  // entry (CHOLMOD's switch) put the pulley above the hand.
   supernodal_ = layout == Layout::Supernodes ||
-                (layout == Layout::Automatic && Lp_[n] > 0 && work >= kSupernodalWork * Lp_[n]);
+                (layout == Layout::Automatic && Lp_[n] > 0 && n >= kSupernodalWidth * supernodes);
   if (!supernodal_) {
     Lx_.assign(Lp_[n], 0.0);
     y_.assign(n, 0.0);

@@ -6,8 +6,9 @@
 // and Peyton, "Block sparse Cholesky algorithms on advanced uniprocessor
 // computers", SIAM J. Sci. Comput. 14(5), 1993): consecutive columns of L
 // with one pattern below them are stored and updated as one dense block,
-// as CHOLMOD chooses between its simplicial and supernodal forms by the
-// work per entry of L. Private to reeve_engine; the direct solver
+// where those blocks are wide (as CHOLMOD chooses between its simplicial
+// and supernodal forms, there by the work per entry of L). Private to
+// reeve_engine; the direct solver
 // (direct_solver.h) factors its constraint matrix with it once or twice
 // per iteration, so nothing here allocates after analyze().
 #pragma once
@@ -20,7 +21,7 @@ namespace reeve {
 class SparseLdlt {
  public:
   /// How factor() works: row by row, by supernodes, or whichever the
-  /// pattern's work per entry of L favours (analyze()).
+  /// pattern's mean supernode width favours (analyze()).
   enum class Layout { Automatic, Rows, Supernodes };
   /// Sets the pattern of an n x n symmetric matrix from its upper triangle:
   /// `entries` are (row, column) pairs with row <= column, in the order the

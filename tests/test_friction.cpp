@@ -12,53 +12,19 @@
 #include <vector>
 
 #include "reeve/cable/cable.h"
+#include "cable_machine.h"
 #include "solver_budgets.h"
 
 namespace reeve::test_friction {
 namespace {
 
-constexpr double kG = 9.81, kPi = std::numbers::pi;
+constexpr double kG = test::kCableMachineG, kPi = std::numbers::pi;
 
 using test::Budget;
 using test::kBudgets;
 using test::kFourBudgets;
 
-struct Machine {
-  World world;
-  CableSystem cables{world};
-  int cable = 0;
-  double total = 0.0;
-  explicit Machine(const Budget& b) {
-    world.settings().gravity = Vec3(0.0, -kG, 0.0);
-    world.settings().solver = b.solver;
-    world.settings().substeps = b.substeps;
-    world.settings().iterations = b.iterations;
-    world.settings().projection = b.projection;
-  }
-  BodyId box(double mass, const Vec3& at) {
-    BodyDef def;
-    def.shape = Shape::box(Vec3::Constant(0.05));
-    def.mass = mass;
-    def.position = at;
-    return world.addBody(def);
-  }
-  BodyId drum(double r, const Vec3& at) {
-    BodyDef def;
-    def.shape = Shape::cylinder(r, 0.05);
-    def.is_static = true;
-    def.position = at;
-    return world.addBody(def);
-  }
-  void run(double seconds) {
-    const int frames = static_cast<int>(std::lround(seconds * 60.0));
-    for (int f = 0; f < frames; ++f) world.step(1.0 / 60.0);
-  }
-  // The bookkeeping held after every substep and the length is what it was.
-  void expectLengthKept() const {
-    EXPECT_FALSE(cables.firstBreach().has_value()) << cables.firstBreach()->what;
-    EXPECT_NEAR(cables.totalLength(cable), total, 1e-9 * total);
-  }
-};
+using Machine = test::CableMachine;
 
 LinkDef wrap(BodyId body, int orientation, double mu) {
   LinkDef d = LinkDef::rolling(body, orientation);

@@ -12,27 +12,13 @@
 #include "reeve/cable/cable.h"
 #include "reeve/scene/energy.h"
 #include "scene_fixture.h"
+#include "pendulum_period.h"
 #include "solver_budgets.h"
 
 namespace reeve::test_merge_split {
 namespace {
 
-// Complete elliptic integral of the first kind, K(k) = pi / (2 AGM(1, k')).
-double ellipticK(double k) {
-  double a = 1.0, b = std::sqrt(1.0 - k * k);
-  for (int i = 0; i < 30; ++i) {
-    const double m = 0.5 * (a + b);
-    b = std::sqrt(a * b);
-    a = m;
-  }
-  return std::numbers::pi / (2.0 * a);
-}
-
-// Time for a pendulum of length L released at amplitude theta to reach
-// the bottom: a quarter period, sqrt(L / g) K(sin(theta / 2)).
-double quarterPeriod(double L, double theta, double g) {
-  return std::sqrt(L / g) * ellipticK(std::sin(0.5 * theta));
-}
+using test::quarterPeriod;
 
 struct PendulumRun {
   std::vector<CableEvent> events;

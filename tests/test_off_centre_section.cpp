@@ -15,12 +15,14 @@
 
 #include "reeve/cable/cable.h"
 #include "reeve/cable/section.h"
+#include "cable_machine.h"
+#include "pendulum_period.h"
 #include "solver_budgets.h"
 
 namespace reeve::test_off_centre_section {
 namespace {
 
-constexpr double kG = 9.81, kPi = std::numbers::pi;
+constexpr double kG = test::kCableMachineG, kPi = std::numbers::pi;
 
 using test::Budget;
 using test::kBudgets;
@@ -64,27 +66,7 @@ TEST(OffCentreSection, IsTheCentredCircleMoved) {
   EXPECT_FALSE(moved == centred);
 }
 
-struct Machine {
-  World world;
-  CableSystem cables{world};
-  int cable = 0;
-  double total = 0.0;
-  explicit Machine(const Budget& b) : world(test::settings(b)) { world.settings().gravity = Vec3(0.0, -kG, 0.0); }
-  BodyId box(double mass, const Vec3& at) {
-    BodyDef def;
-    def.shape = Shape::box(Vec3::Constant(0.05));
-    def.mass = mass;
-    def.position = at;
-    return world.addBody(def);
-  }
-  void run(int frames) {
-    for (int f = 0; f < frames; ++f) world.step(1.0 / 60.0);
-  }
-  void expectLengthKept() const {
-    EXPECT_FALSE(cables.firstBreach().has_value()) << cables.firstBreach()->what;
-    EXPECT_NEAR(cables.totalLength(cable), total, 1e-9 * total);
-  }
-};
+using Machine = test::CableMachine;
 
 LinkDef groove(BodyId body, int orientation, const Vec2& centre, double radius, std::optional<double> mu) {
   LinkDef d = LinkDef::rolling(body, orientation);
@@ -122,7 +104,7 @@ TEST(OffCentreSection, AnAtwoodMachineOverTwoGroovesOfOneStaticBarMeetsTheMassle
       // The span between the grooves: their common outer tangent.
       const double between = (right_c - left_c).norm();
       EXPECT_NEAR(m.cables.length(m.cable, 1), between, 1e-12);
-      m.run(30);
+      m.run(0.5);
       const double a = kG * (c.m2 - c.m1) / (c.m1 + c.m2), T = 2.0 * c.m1 * c.m2 * kG / (c.m1 + c.m2);
       const double t = m.world.time();
       EXPECT_NEAR(m.world.body(right).v.y(), -a * t, 1e-3 * a * t);
@@ -214,7 +196,7 @@ TEST(OffCentreSection, AnEccentricDrumWindsAndUnwindsItsCableWithTheLengthKept) 
       double angle = x.angleOnDrum(t0), moved = 0.0, worst = 0.0;
       const double y0 = x.m.world.body(x.load).x.y();
       for (int f = 0; f < 90; ++f) {  // 1.5 s: 3 rad, past the eccentric's half turn
-        x.m.run(1);
+        x.m.run(1.0 / 60.0);
         const Vec3 t = x.tangentPoint();
         const double now = x.angleOnDrum(t);
         moved += wrapAngle(now - angle);
@@ -237,17 +219,6 @@ TEST(OffCentreSection, AnEccentricDrumWindsAndUnwindsItsCableWithTheLengthKept) 
       EXPECT_GT(rise * omega.value_or(-1.0), 0.0);
       x.m.expectLengthKept();
     }
-}
-
-// K(k), the complete elliptic integral of the first kind: pi / (2 AGM(1, k')).
-double ellipticK(double k) {
-  double a = 1.0, b = std::sqrt(1.0 - k * k);
-  for (int i = 0; i < 30; ++i) {
-    const double m = 0.5 * (a + b);
-    b = std::sqrt(a * b);
-    a = m;
-  }
-  return kPi / (2.0 * a);
 }
 
 TEST(OffCentreSection, APendulumMeetsAPegThatIsASectionOfABarWhereThePegIs) {
@@ -282,15 +253,15 @@ TEST(OffCentreSection, APendulumMeetsAPegThatIsASectionOfABarWhereThePegIs) {
     std::vector<CableEvent> events;
     double lowest_wrapped = 0.0;
     for (int f = 0; f < 360; ++f) {
-      m.run(1);
+      m.run(1.0 / 60.0);
       for (const CableEvent& e : m.cables.takeEvents()) events.push_back(e);
       if (events.size() % 2 == 1) lowest_wrapped = std::min(lowest_wrapped, m.world.body(bob).x.y());
       EXPECT_NEAR(m.cables.totalLength(m.cable), m.total, 1e-9 * m.total);
     }
     ASSERT_GE(events.size(), 4u);
-    const double t_long = std::sqrt(2.0 / kG) * ellipticK(std::sin(kPi / 8));
+    const double t_long = test::quarterPeriod(2.0, kPi / 4, kG);
     const double short_amplitude = std::acos(1.0 - 2.0 * (1.0 - std::cos(kPi / 4)));
-    const double t_short = 2.0 * std::sqrt(1.0 / kG) * ellipticK(std::sin(0.5 * short_amplitude));
+    const double t_short = 2.0 * test::quarterPeriod(1.0, short_amplitude, kG);
     const double expected[] = {t_long, t_long + t_short, 3 * t_long + t_short, 3 * t_long + 2 * t_short};
     for (int i = 0; i < 4; ++i) {
       EXPECT_EQ(events[i].kind, i % 2 == 0 ? CableEvent::Kind::Split : CableEvent::Kind::Merge) << i;
@@ -379,8 +350,8 @@ TEST(OffCentreSection, AJibWithItsSheaveAsASectionMovesAsTheJibWithTheSheaveWeld
       Jib welded(b, true, mu), one(b, false, mu);
       const Vec3 start = one.m.world.body(one.load).x;
       for (int f = 0; f < 30; ++f) {
-        welded.m.run(1);
-        one.m.run(1);
+        welded.m.run(1.0 / 60.0);
+        one.m.run(1.0 / 60.0);
         apart[n] = std::max(apart[n], (welded.m.world.body(welded.load).x - one.m.world.body(one.load).x).norm());
         swing = std::max(swing, (one.m.world.body(one.load).x - start).norm());
         turned = std::max(turned, 2.0 * std::abs(std::asin(one.m.world.body(one.jib).q.z())));

@@ -2,15 +2,14 @@
 // whose pattern is fixed between factorizations: elimination tree, column
 // counts and a row-by-row numeric factorization as in Davis, "Algorithm
 // 849: a concise sparse Cholesky factorization package" (ACM TOMS 31(4),
-// 2005); where L is dense enough, left-looking by supernodes instead (Ng
-// and Peyton, "Block sparse Cholesky algorithms on advanced uniprocessor
-// computers", SIAM J. Sci. Comput. 14(5), 1993): consecutive columns of L
-// with one pattern below them are stored and updated as one dense block,
-// where those blocks are wide (as CHOLMOD chooses between its simplicial
-// and supernodal forms, there by the work per entry of L). Private to
-// reeve_engine; the direct solver
-// (direct_solver.h) factors its constraint matrix with it once or twice
-// per iteration, so nothing here allocates after analyze().
+// 2005); where those blocks are wide, left-looking by supernodes instead
+// (Ng and Peyton, "Block sparse Cholesky algorithms on advanced
+// uniprocessor computers", SIAM J. Sci. Comput. 14(5), 1993): consecutive
+// columns of L with one pattern below them are stored and updated as one
+// dense block (CHOLMOD chooses between its simplicial and supernodal forms
+// likewise, by the work per entry of L). Private to reeve_engine; the
+// direct solver (direct_solver.h) factors its constraint matrix with it
+// once or twice per iteration, so nothing here allocates after analyze().
 #pragma once
 
 #include <utility>
@@ -79,8 +78,8 @@ class SparseLdlt {
   std::vector<int> diagonal_;
   std::vector<double> Ax_, inv_d_, pivot_ratio_;
   std::vector<char> negative_;
-  // Where L's columns are mostly chained into supernodes (the hand's
-  // fingers), by supernodes; else (chains, stars) row by row.
+  // Where L's supernodes are wide (the hand's fingers), by supernodes;
+  // else (chains, stars) row by row.
   bool supernodal_ = false;
 
   // Row by row (Davis, ldl_numeric): A's upper triangle and L, column by

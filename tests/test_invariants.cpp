@@ -82,6 +82,13 @@ TEST(Invariants, ANegativeRestLengthOrStoredCableIsReported) {
   def.links = {LinkDef::attachment(a, Vec3::Zero()), LinkDef::rolling(wheel, -1), LinkDef::attachment(b, Vec3::Zero())};
   cables.addCable(def);
   EXPECT_FALSE(cables.invariantViolation());
+  // Lengths to 10 digits: std::to_string's 6 decimals showed -1e-8 m as
+  // -0.000000 m, and a cable's total length changed by 1e-7 m as the
+  // same number twice.
+  cables.setRestLength(0, 1, -1e-8);
+  const auto tiny = cables.invariantViolation();
+  ASSERT_TRUE(tiny);
+  EXPECT_NE(tiny->find("joint 1 has a negative rest length (-1e-08 m)"), std::string::npos) << *tiny;
   cables.setRestLength(0, 1, -0.25);
   const auto rest = cables.invariantViolation();
   ASSERT_TRUE(rest);

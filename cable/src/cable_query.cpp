@@ -1,6 +1,7 @@
 // Views of cables: tensions, lengths, tangent points, totals; rest lengths set by hand.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <string>
 #include <utility>
@@ -156,6 +157,19 @@ std::optional<CableBreach> CableSystem::findBreach() const {
   return std::nullopt;
 }
 
+namespace {
+
+// A length in a breach's message: to 10 significant digits, where
+// std::to_string's 6 decimals showed a change of 1e-7 m as none and a
+// rest length of -1e-8 m as -0.000000.
+std::string metres(double m) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.10g m", m);
+  return text;
+}
+
+}  // namespace
+
 std::optional<CableBreach> CableSystem::cableBreach(int c) const {
   const Cable& cable = cables_[c];
   const double slack = 1e-9 * cable.total_length;
@@ -170,25 +184,25 @@ std::optional<CableBreach> CableSystem::cableBreach(int c) const {
   for (int j = 0; j < static_cast<int>(cable.joints.size()); ++j)
     if (cable.links[j].active && !cable.joints[j].parted && cable.joints[j].rest_length < -slack)
       return broken("joint " + std::to_string(j) + " has a negative rest length (" +
-                    std::to_string(cable.joints[j].rest_length) + " m)");
+                    metres(cable.joints[j].rest_length) + ")");
   for (int k = 0; k < static_cast<int>(cable.links.size()); ++k) {
     const Link& link = cable.links[k];
     if (link.active && link.rolls() && link.stored < -slack)
-      return broken("link " + std::to_string(k) + " stores a negative length of cable (" +
-                        std::to_string(link.stored) + " m)",
+      return broken("link " + std::to_string(k) + " stores a negative length of cable (" + metres(link.stored) + ")",
                     link.type == LinkType::Rolling && isEnd(cable, k));
   }
   const double total = totalLength(c);
   if (std::abs(total - cable.total_length) > slack)
-    return broken("the total length changed from " + std::to_string(cable.total_length) + " m to " +
-                  std::to_string(total) + " m");
+    return broken("the total length changed from " + metres(cable.total_length) + " to " + metres(total) + " (by " +
+                  metres(total - cable.total_length) + ")");
   if (cable.junction < 0) return std::nullopt;
   const Junction& junction = junctions_[cable.junction];
   double joined = 0.0;  // its branches trade cable: the junction keeps the sum
   for (std::size_t b = 0; b < junction.cables.size(); ++b) joined += junction.scales[b] * totalLength(junction.cables[b]);
   if (std::abs(joined - junction.total_length) > 1e-9 * junction.total_length)
     return broken("its junction '" + junction.name + "': the total length changed from " +
-                  std::to_string(junction.total_length) + " m to " + std::to_string(joined) + " m");
+                  metres(junction.total_length) + " to " + metres(joined) + " (by " +
+                  metres(joined - junction.total_length) + ")");
   return std::nullopt;
 }
 

@@ -583,7 +583,7 @@ double DirectSolver::newtonResidual(bool bounded) {
       shift_x_[e.body] -= l * e.lin;
       shift_phi_[e.body] -= l * e.ang;
     }
-    if (stiff[e.row] == 0.0) continue;
+    if (stiff[e.row] == 0.0 || e.flat) continue;
     if (frames_[e.body].inv_axial > 0.0) axial_stiffness_[e.body] += stiff[e.row] * e.axial;
     else stiffness_[e.body] += stiff[e.row] * e.curvature;
   }

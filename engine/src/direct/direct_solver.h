@@ -102,6 +102,7 @@ class DirectSolver {
     // (u . g)(u . r) - g . r instead (axial), the only part newtonStep reads.
     Mat3 curvature = Mat3::Zero();
     double axial = 0.0;
+    bool flat = false;  // curvature and axial are 0 (flatten): no stiffness to add
   };
   struct Row {
     Source source;
@@ -147,6 +148,14 @@ class DirectSolver {
   /// the lever back by its turn about the axle, solvePoint), so the lever's
   /// curvature is taken off the axle, and a rotor keeps the centre's alone.
   void curveEnd(Entry& e, const Vec3& g, const SolvePoint& p, bool add) const;
+  /// Sets the entry's curvature to 0 (a row whose gradient does not turn
+  /// with the body: an angular joint row), once.
+  static void flatten(Entry& e) {
+    if (e.flat) return;
+    e.curvature.setZero();
+    e.axial = 0.0;
+    e.flat = true;
+  }
   /// Every free row meets its equation C + alpha~ lambda = 0 to within
   /// `tolerance` (m or rad), or is held at a bound it presses against.
   bool converged(double tolerance) const;

@@ -63,6 +63,7 @@ const Mat3& DirectSolver::rotation(int slot) {
 
 void DirectSolver::curve(Entry& e, const Vec3& g, const Vec3& r, bool add) const {
   const BodyFrame& f = frames_[e.body];
+  e.flat = false;
   if (f.inv_axial > 0.0) {
     const double k = f.axle.dot(g) * f.axle.dot(r) - g.dot(r);
     e.axial = add ? e.axial + k : k;
@@ -84,6 +85,7 @@ void DirectSolver::curveEnd(Entry& e, const Vec3& g, const SolvePoint& p, bool a
   const Mat3 P = Mat3::Identity() - p.axis * p.axis.transpose();
   const Mat3 k = curvatureAt(g, centre) + P * curvatureAt(g, p.lever) * P;
   e.curvature = add ? Mat3(e.curvature + k) : k;
+  e.flat = false;
 }
 
 void DirectSolver::weigh(Entry& e) const {
@@ -289,6 +291,7 @@ void DirectSolver::evaluateRun(const World& world, int r, const PathPoint* point
     entries_[e].ang.setZero();
     entries_[e].curvature.setZero();
     entries_[e].axial = 0.0;
+    entries_[e].flat = false;
   }
   double length = 0.0;
   Vec3 prev_u = Vec3::Zero();
@@ -363,17 +366,22 @@ int DirectSolver::evaluateJoint(World& world, int r, double h) {
     // relative to b about s_w (joint_rows.h), so
     //   J_a = [-s_p; -(r_a x s_p) + s_w],  J_b = [s_p; r_b x s_p - s_w].
     const Vec3 sp = s.head<3>(), sw = s.tail<3>();
+    // An angular row (s_p = 0: the axis rows, limits and drives on an
+    // angle) has no curvature: its gradient does not turn with the arm.
+    const bool angular = sp.isZero();
     int e = rows_[r].first_entry;
     if (a_moves) {
       entries_[e].lin = -sp;
       entries_[e].ang = sw - set.r_a.cross(sp);
-      curve(entries_[e], -sp, set.r_a, false);
+      if (angular) flatten(entries_[e]);
+      else curve(entries_[e], -sp, set.r_a, false);
       ++e;
     }
     if (b_moves) {
       entries_[e].lin = sp;
       entries_[e].ang = set.r_b.cross(sp) - sw;
-      curve(entries_[e], sp, set.r_b, false);
+      if (angular) flatten(entries_[e]);
+      else curve(entries_[e], sp, set.r_b, false);
     }
     for (e = rows_[r].first_entry; e < rows_[r].first_entry + rows_[r].entry_count; ++e) weigh(entries_[e]);
     dir_[r] = s;

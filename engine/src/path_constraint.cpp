@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <tuple>
 #include <vector>
 
 #include "reeve/engine/correction.h"
@@ -16,10 +17,15 @@ namespace {
 // visit once warm.
 struct Scratch {
   std::vector<Vec3> arm, grad, force, pos, torque, turn;
+  // A rolling end's tangent slide (tangentSlide) at the run's ends and their
+  // neighbours: dC/dp and dC/d(rotation), and their weighted forces.
+  std::vector<Vec3> slide_grad, slide_moment, slide_force, slide_torque;
   std::vector<size_t> by_body;
   void fit(size_t n) {
     if (arm.size() < n)
-      for (std::vector<Vec3>* v : {&arm, &grad, &force, &pos, &torque, &turn}) v->resize(n);
+      for (std::vector<Vec3>* v : {&arm, &grad, &force, &pos, &torque, &turn, &slide_grad, &slide_moment, &slide_force,
+                                   &slide_torque})
+        v->resize(n);
     by_body.resize(n);
   }
 };
@@ -81,6 +87,28 @@ SolvePoint solvePoint(const BodyState& body, const PathPoint& point, bool in_sol
   return solvePointRotated(body, body.q.toRotationMatrix(), point);
 }
 
+TangentSlide tangentSlide(const SolvePoint& near, const SolvePoint& far, const Vec3& w) {
+  TangentSlide slide;
+  const Vec3& a = near.axis;
+  const double along = a.dot(w), span = w.norm();
+  const double in_plane = (w - along * a).norm();
+  if (!(in_plane > 0.0)) return slide;  // straight along the axle: no tangent point
+  // 1 / |w_in| - 1 / |w| without the cancellation: |w| - |w_in| = (w . a)^2 / (|w| + |w_in|).
+  const double k = along * along / ((span + in_plane) * in_plane * span);
+  const Vec3& lever = near.lever;
+  slide.length = -k * lever.dot(w);
+  // d(-k lever . w) = k lever . dT - k lever . dP - k w . dlever: T moves with
+  // the body but turns back about the axle (lever . (dphi x lever) = 0), the
+  // lever turns with the body's turn off the axle.
+  const Vec3 twist = lever.cross(w);
+  slide.near_lin = k * lever;
+  slide.near_ang = k * near.arm.cross(lever) - k * (twist - a * a.dot(twist));
+  slide.far_lin = -k * lever;
+  slide.far_ang = far.arm.cross(slide.far_lin);
+  if (!far.axis.isZero()) slide.far_ang -= far.axis * far.axis.dot(far.lever.cross(slide.far_lin));
+  return slide;
+}
+
 namespace {
 
 // A path the span kernel below solves.
@@ -128,7 +156,19 @@ void solveSpan(PathConstraint& path, BodyState& b0, BodyState& b1, double alpha_
   // A rolling end's moment about its axle is the cable it pays out per
   // radian (SolvePoint::spanMoment); a fixed point's, arm x g.
   double length = l;
-  const Vec3 t0 = first.spanMoment(-u, length), t1 = last.spanMoment(u, length);
+  Vec3 t0 = first.spanMoment(-u, length), t1 = last.spanMoment(u, length);
+  Vec3 g0 = -u, g1 = u;  // dC/dp at each end
+  // Out of a rolling end's plane, its tangent point's slide (tangentSlide).
+  const bool slid0 = leavesPlane(first, d), slid1 = leavesPlane(last, d);
+  for (int k = 0; k < 2; ++k) {
+    if (!(k == 0 ? slid0 : slid1)) continue;
+    const TangentSlide slide = k == 0 ? tangentSlide(first, last, d) : tangentSlide(last, first, -d);
+    length += slide.length;
+    (k == 0 ? g0 : g1) += slide.near_lin;
+    (k == 0 ? t0 : t1) += slide.near_ang;
+    (k == 0 ? g1 : g0) += slide.far_lin;
+    (k == 0 ? t1 : t0) += slide.far_ang;
+  }
   const double C = length - path.rest_length;
   if (C <= 0.0 && path.lambda == 0.0) return;  // slack and never pulled
   const double weight = path.weights.empty() ? 1.0 : path.weights[0];
@@ -146,7 +186,10 @@ void solveSpan(PathConstraint& path, BodyState& b0, BodyState& b1, double alpha_
   };
   const Vec3 turn0 = invInertia(b0, R0, p0, first, steady0, weight * t0),
              turn1 = invInertia(b1, R1, p1, last, steady1, weight * t1);
-  const double w = weight * u.squaredNorm() * (b0.inv_mass + b1.inv_mass) + t0.dot(turn0) + t1.dot(turn1);
+  const double linear = slid0 || slid1
+                            ? b0.inv_mass * g0.squaredNorm() + b1.inv_mass * g1.squaredNorm()
+                            : u.squaredNorm() * (b0.inv_mass + b1.inv_mass);
+  const double w = weight * linear + t0.dot(turn0) + t1.dot(turn1);
   const DampedRow row = dampedRow(C, alpha_tilde, alpha_tilde * h * path.damping, length - path.start_length);
   if (!(w + row.alpha_tilde > 0.0)) return;
   double dl = (-row.C - row.alpha_tilde * path.lambda) / (w + row.alpha_tilde);
@@ -161,8 +204,8 @@ void solveSpan(PathConstraint& path, BodyState& b0, BodyState& b1, double alpha_
     b.angular_impulse += dl * weight * t;
     b.solve_turn += dphi;
   };
-  move(b0, -u, t0, turn0);
-  move(b1, u, t1, turn1);
+  move(b0, g0, t0, turn0);
+  move(b1, g1, t1, turn1);
 }
 
 }  // namespace
@@ -206,6 +249,31 @@ void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double a
   // Rolling ends are a run's ends (its interior points are pinholes and
   // sliding wraps, on which the cable slides: fixed points).
   length += first.payOut(grad[0]) + last.payOut(grad[n - 1]);
+  // Out of a rolling end's plane, its tangent point's slide with its
+  // neighbour (tangentSlide), the segment's scale and weight times.
+  bool slid = false;
+  for (int k = 0; k < 2; ++k) {
+    const size_t i = k == 0 ? 0 : n - 1, j = k == 0 ? 1 : n - 2;
+    if (!leavesPlane(k == 0 ? first : last, pos[j] - pos[i])) continue;
+    SolvePoint far = j == 0 ? first : j + 1 == n ? last : SolvePoint{};
+    if (j != 0 && j + 1 != n) far.arm = arm[j];
+    const TangentSlide slide = tangentSlide(k == 0 ? first : last, far, pos[j] - pos[i]);
+    if (!slid)
+      for (size_t p = 0; p < n; ++p)
+        scratch.slide_grad[p] = scratch.slide_moment[p] = scratch.slide_force[p] = scratch.slide_torque[p] =
+            Vec3::Zero();
+    slid = true;
+    const size_t segment = k == 0 ? 0 : n - 2;
+    const double scale = segmentScale(path, segment), weight = path.weights.empty() ? 1.0 : path.weights[segment];
+    length += scale * slide.length;
+    for (const auto& [p, lin, ang] :
+         {std::tuple{i, slide.near_lin, slide.near_ang}, std::tuple{j, slide.far_lin, slide.far_ang}}) {
+      scratch.slide_grad[p] += scale * lin;
+      scratch.slide_moment[p] += scale * ang;
+      scratch.slide_force[p] += scale * weight * lin;
+      scratch.slide_torque[p] += scale * weight * ang;
+    }
+  }
   const double C = length - path.rest_length;
   if (C <= 0.0 && path.lambda == 0.0) return;  // slack and never pulled
   // The angular gradient of vector v at point i (SolvePoint::moment: a
@@ -224,6 +292,11 @@ void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double a
     torque[i] = moment(i, force[i]);
     by_body[i] = i;
   }
+  if (slid)
+    for (size_t i = 0; i < n; ++i) {
+      torque[i] += scratch.slide_torque[i];
+      force[i] += scratch.slide_force[i];
+    }
   // By body, then by index: stable, without stable_sort's buffer (a heap
   // allocation per call).
   if (n > 2)  // a span's two points are on two bodies, or one: in order already
@@ -240,6 +313,7 @@ void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double a
       const size_t i = by_body[end];
       g += grad[i];
       t += moment(i, grad[i]);
+      if (slid) g += scratch.slide_grad[i], t += scratch.slide_moment[i];
       f += force[i];
     }
     const BodyState& b = bodies(id);

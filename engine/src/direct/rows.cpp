@@ -135,21 +135,34 @@ void DirectSolver::evaluateSpan(const World& world, int r, const PathPoint& p0, 
   const double l = d.norm();
   const Vec3 u = l >= 1e-12 ? Vec3(d / l) : Vec3::Zero();
   double length = l;  // and the ends' pay-outs
-  const Vec3 m0 = e0.spanMoment(-u, length), m1 = e1.spanMoment(u, length);
+  Vec3 m0 = e0.spanMoment(-u, length), m1 = e1.spanMoment(u, length);
+  Vec3 g0 = -u, g1 = u;
+  // Out of a rolling end's plane, its tangent point's slide (tangentSlide).
+  const bool slid0 = leavesPlane(e0, d), slid1 = leavesPlane(e1, d);
+  for (int k = 0; k < 2; ++k) {
+    if (!(k == 0 ? slid0 : slid1)) continue;
+    const TangentSlide slide = k == 0 ? tangentSlide(e0, e1, d) : tangentSlide(e1, e0, -d);
+    length += slide.length;
+    (k == 0 ? g0 : g1) += slide.near_lin;
+    (k == 0 ? m0 : m1) += slide.near_ang;
+    (k == 0 ? g1 : g0) += slide.far_lin;
+    (k == 0 ? m1 : m0) += slide.far_ang;
+  }
   int e = row.first_entry;
   if (s0 >= 0) {
-    entries_[e].lin = -u;
+    entries_[e].lin = g0;
     entries_[e].ang = m0;
     curveEnd(entries_[e], -u, e0, false);
     ++e;
   }
   if (s1 >= 0) {
     if (s1 == s0) {  // both ends on one body
-      entries_[e - 1].lin.setZero();
+      if (slid0 || slid1) entries_[e - 1].lin += g1;
+      else entries_[e - 1].lin.setZero();
       entries_[e - 1].ang += m1;
       curveEnd(entries_[e - 1], u, e1, true);
     } else {
-      entries_[e].lin = u;
+      entries_[e].lin = g1;
       entries_[e].ang = m1;
       curveEnd(entries_[e], u, e1, false);
     }
@@ -313,9 +326,28 @@ void DirectSolver::evaluateRun(const World& world, int r, const PathPoint* point
     }
     prev_u = u;
   }
+  // Out of a rolling end's plane, its tangent point's slide (tangentSlide)
+  // with its neighbour, the segment's scale times.
+  const double s_first = scales ? scales[0] : 1.0, s_last = scales ? scales[count - 2] : 1.0;
+  for (int k = 0; k < 2; ++k) {
+    const std::size_t i = k == 0 ? 0 : count - 1, j = k == 0 ? 1 : count - 2;
+    if (!leavesPlane(ends[k], pos[j] - pos[i])) continue;
+    SolvePoint far = j == 0 || j + 1 == count ? ends[j == 0 ? 0 : 1] : SolvePoint{};
+    if (j != 0 && j + 1 != count) far.arm = arm[j];
+    const TangentSlide slide = tangentSlide(ends[k], far, pos[j] - pos[i]);
+    const double scale = k == 0 ? s_first : s_last;
+    length += scale * slide.length;
+    if (entry[i] >= 0) {
+      entries_[entry[i]].lin += scale * slide.near_lin;
+      entries_[entry[i]].ang += scale * slide.near_ang;
+    }
+    if (entry[j] >= 0) {
+      entries_[entry[j]].lin += scale * slide.far_lin;
+      entries_[entry[j]].ang += scale * slide.far_ang;
+    }
+  }
   for (int e = row.first_entry; e < row.first_entry + row.entry_count; ++e) weigh(entries_[e]);
   C_[r] = length;  // minus the rest length, by the caller
-  const double s_first = scales ? scales[0] : 1.0, s_last = scales ? scales[count - 2] : 1.0;
   if (ends[0].turn != 0.0) C_[r] += s_first * ends[0].payOut(-(pos[1] - pos[0]).normalized());
   if (ends[1].turn != 0.0) C_[r] += s_last * ends[1].payOut((pos[count - 1] - pos[count - 2]).normalized());
 }

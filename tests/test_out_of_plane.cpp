@@ -132,6 +132,7 @@ TEST(OutOfPlane, UnderGaussSeidelTheHoistGivesBackNoMoreThanItLost) {
       }
   }
 }
+
 // A free drum (a 20 kg disc hinged about z at its centre of mass) stores
 // 10 m of cable on a groove of r = 0.1 m about (`centre_x`, 0) in its
 // plane; the cable runs to a 0.5 kg box on a frictionless vertical rail at
@@ -172,9 +173,11 @@ TEST(OutOfPlane, ATangentPointSlidingRoundItsGrooveOutOfPlaneMakesNoEnergy) {
   // (tangentSlide). Before, nothing did: the falling box gained 1.4 mJ at
   // 0.3 m out of the plane and 6.0 mJ at 0.6 m (400 x 4, both solvers;
   // 4.2 mJ at 10 x 2), under the energy watch's tolerance of 1e-3 of its
-  // scale but made from nothing, and the eccentric groove's 1.5 mJ lost
-  // where in the plane it lost 0.07 mJ. The ledger's balance (no drive,
-  // no friction: the machine's energy) may only fall.
+  // scale but made from nothing; the eccentric groove lost 1.5 mJ, and 15
+  // mJ through a ring, where in the plane it lost 0.07 mJ. With the
+  // groove's centre taken at the body's origin (PathPoint::roll_centre 0)
+  // the eccentric made 3.2 mJ. The ledger's balance (no drive, no
+  // friction: the machine's energy) may only fall.
   struct Case {
     double rail_x, z, centre_x;
     bool ring;
@@ -186,7 +189,8 @@ TEST(OutOfPlane, ATangentPointSlidingRoundItsGrooveOutOfPlaneMakesNoEnergy) {
                                 test::kFourBudgets[4], test::kFourBudgets[5], test::kFourBudgets[6], fine})
     for (const Case& c : cases) {
       SCOPED_TRACE(test::name(b) + ", rail at x " + std::to_string(c.rail_x) + ", " + std::to_string(c.z) +
-                   " m out of the plane, groove centre " + std::to_string(c.centre_x) + (c.ring ? ", through a ring" : ""));
+                   " m out of the plane, groove centre " + std::to_string(c.centre_x) +
+                   (c.ring ? ", through a ring" : ""));
       Scene s = slidingTangent(b, c.rail_x, c.z, c.centre_x, c.ring);
       const BodyId box = test::body(s, "box");
       const double total = s.cables->totalLength(0), y0 = s.world->body(box).x.y();

@@ -137,8 +137,13 @@ void DirectSolver::evaluateSpan(const World& world, int r, const PathPoint& p0, 
   double length = l;  // and the ends' pay-outs
   Vec3 m0 = e0.spanMoment(-u, length), m1 = e1.spanMoment(u, length);
   Vec3 g0 = -u, g1 = u;
-  // Out of a rolling end's plane, its tangent point's slide (tangentSlide).
-  const bool slid0 = leavesPlane(e0, d), slid1 = leavesPlane(e1, d);
+  // Out of a rolling end's plane, its tangent point's slide (tangentSlide),
+  // but between ends that hold still (linearEnd: a rotor's centred circle,
+  // whose tangent point stays in space and which takes only the moment
+  // about its axle, zero there; a body the solve does not move): the
+  // level-3 Hilbert machine's spans, all out of their wheels' planes.
+  bool slid0 = leavesPlane(e0, d), slid1 = leavesPlane(e1, d);
+  if ((slid0 || slid1) && linearEnd(p0) && linearEnd(p1)) slid0 = slid1 = false;
   for (int k = 0; k < 2; ++k) {
     if (!(k == 0 ? slid0 : slid1)) continue;
     const TangentSlide slide = k == 0 ? tangentSlide(e0, e1, d) : tangentSlide(e1, e0, -d);

@@ -79,7 +79,8 @@ struct SolvePoint {
   }
 };
 /// What a rolling end's tangent point sliding round its circle adds to a
-/// span out of the cable plane, to first order (both solvers' span rows).
+/// span out of the cable plane, to first order (both solvers' span rows,
+/// and a run's end segments).
 /// The cable update puts the tangent point where the span from the far
 /// point P touches the circle, (P - c) . n = r in the plane (n the unit
 /// lever), and winds r of cable per radian it moves round the circle. The

@@ -109,6 +109,19 @@ TangentSlide tangentSlide(const SolvePoint& near, const SolvePoint& far, const V
   return slide;
 }
 
+void addSpanSlides(const SolvePoint& first, const SolvePoint& last, const Vec3& d, bool slid0, bool slid1,
+                   double& length, Vec3& g0, Vec3& t0, Vec3& g1, Vec3& t1) {
+  for (int k = 0; k < 2; ++k) {
+    if (!(k == 0 ? slid0 : slid1)) continue;
+    const TangentSlide slide = k == 0 ? tangentSlide(first, last, d) : tangentSlide(last, first, -d);
+    length += slide.length;
+    (k == 0 ? g0 : g1) += slide.near_lin;
+    (k == 0 ? t0 : t1) += slide.near_ang;
+    (k == 0 ? g1 : g0) += slide.far_lin;
+    (k == 0 ? t1 : t0) += slide.far_ang;
+  }
+}
+
 namespace {
 
 // A path the span kernel below solves.
@@ -166,15 +179,7 @@ void solveSpan(PathConstraint& path, BodyState& b0, BodyState& b1, double alpha_
   const auto still = [](bool steady, const BodyState& b) { return steady || !b.takesImpulses(); };
   const bool moving = !still(steady0, b0) || !still(steady1, b1);
   const bool slid0 = moving && leavesPlane(first, d), slid1 = moving && leavesPlane(last, d);
-  for (int k = 0; k < 2; ++k) {
-    if (!(k == 0 ? slid0 : slid1)) continue;
-    const TangentSlide slide = k == 0 ? tangentSlide(first, last, d) : tangentSlide(last, first, -d);
-    length += slide.length;
-    (k == 0 ? g0 : g1) += slide.near_lin;
-    (k == 0 ? t0 : t1) += slide.near_ang;
-    (k == 0 ? g1 : g0) += slide.far_lin;
-    (k == 0 ? t1 : t0) += slide.far_ang;
-  }
+  addSpanSlides(first, last, d, slid0, slid1, length, g0, t0, g1, t1);
   const double C = length - path.rest_length;
   if (C <= 0.0 && path.lambda == 0.0) return;  // slack and never pulled
   const double weight = path.weights.empty() ? 1.0 : path.weights[0];

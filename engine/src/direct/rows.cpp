@@ -144,15 +144,7 @@ void DirectSolver::evaluateSpan(const World& world, int r, const PathPoint& p0, 
   // level-3 Hilbert machine's spans, all out of their wheels' planes.
   bool slid0 = leavesPlane(e0, d), slid1 = leavesPlane(e1, d);
   if ((slid0 || slid1) && linearEnd(p0) && linearEnd(p1)) slid0 = slid1 = false;
-  for (int k = 0; k < 2; ++k) {
-    if (!(k == 0 ? slid0 : slid1)) continue;
-    const TangentSlide slide = k == 0 ? tangentSlide(e0, e1, d) : tangentSlide(e1, e0, -d);
-    length += slide.length;
-    (k == 0 ? g0 : g1) += slide.near_lin;
-    (k == 0 ? m0 : m1) += slide.near_ang;
-    (k == 0 ? g1 : g0) += slide.far_lin;
-    (k == 0 ? m1 : m0) += slide.far_ang;
-  }
+  addSpanSlides(e0, e1, d, slid0, slid1, length, g0, m0, g1, m1);
   int e = row.first_entry;
   if (s0 >= 0) {
     entries_[e].lin = g0;

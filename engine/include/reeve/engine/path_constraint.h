@@ -111,6 +111,11 @@ inline bool leavesPlane(const SolvePoint& near, const Vec3& w) {
 }
 /// The slide of `near`'s tangent point for the span w (leavesPlane).
 TangentSlide tangentSlide(const SolvePoint& near, const SolvePoint& far, const Vec3& w);
+/// A span's two ends' slides (`slid0`, `slid1`: which to take), d = p1 - p0
+/// (m), added to its length (m) and to each end's dC/dp (g) and
+/// dC/d(rotation) (t): both solvers' span rows.
+void addSpanSlides(const SolvePoint& first, const SolvePoint& last, const Vec3& d, bool slid0, bool slid1,
+                   double& length, Vec3& g0, Vec3& t0, Vec3& g1, Vec3& t1);
 
 /// `point` on `body`. `in_solve`: the body's solve_turn is this solve's
 /// (from the start of a position solve until the next substep's

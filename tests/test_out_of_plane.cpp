@@ -242,7 +242,7 @@ TEST(OutOfPlane, ATangentPointSlidingRoundItsGrooveOutOfPlaneMakesNoEnergy) {
 TEST(OutOfPlane, ASlidingTangentPointMakesNoEnergyAtEveryLoadDrivingOrDriven) {
   // The span 0.6 m out of its drum's plane (a centred groove) and an
   // eccentric one 0.3 m out: the box 1e-6, 10 and 1e6 times the 20 kg
-  // drum's mass (2e-5 kg to 2e7 kg, 196 kN), driving the free drum down,
+  // drum's mass (2e-5 kg to 2e7 kg, 196 MN), driving the free drum down,
   // and a motor hoisting and lowering it at 2 rad/s. The ledger's balance
   // (the motor's work counted) may only fall: direct, by rounding's 1e-9
   // of its scale at most; Gauss-Seidel by its watch's tolerance, since its

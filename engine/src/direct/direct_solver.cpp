@@ -68,6 +68,15 @@ constexpr double kAitkenMost = 0.8;
 // moved the bodies in the substep (a wrong extrapolation then costs little).
 constexpr double kAitkenSteady = 0.25;
 constexpr double kAitkenTail = 0.05;
+// startPoint lifts an island only where gravity's fall in a substep, g h^2,
+// is at least this fraction of its shortest span. The first solve from x~
+// is linearized to about (g h^2) / span of its motion: the hand at 10 x 2
+// (2.7e-5 m over 3 cm spans) needed a second solve for Newton's residual
+// (kNewtonRelative), and the lift takes it away; far below, the lift
+// changes no solve count, only the rounding of x~ + lift - lift (5e-8 of
+// an Atwood machine's tension at 24,000 substeps a second, against 1e-8
+// from x~).
+constexpr double kStartSag = 1e-4;
 // A solve whose largest step (m, rad) is below this fraction of the
 // tolerance moved nothing a row can tell (iterate()).
 constexpr double kStalled = 1e-3;
@@ -388,7 +397,8 @@ void DirectSolver::build(World& world) {
 
 void DirectSolver::prepare(World& world, const Island& island, double h, bool again) {
   describe(world, island, scratch_);
-  if (scratch_ != signature_) {
+  const bool rebuilt = scratch_ != signature_;
+  if (rebuilt) {
     signature_ = scratch_;  // a copy: scratch_ keeps its capacity for the next substeps
     build(world);
   }
@@ -434,20 +444,19 @@ void DirectSolver::prepare(World& world, const Island& island, double h, bool ag
   else at_cap_start_ = at_cap_;
   if (!again) last_lambda_ = lambda_;
   std::fill(lambda_.begin(), lambda_.end(), 0.0);
-  std::fill(moved_x_.begin(), moved_x_.end(), Vec3::Zero());
-  std::fill(moved_phi_.begin(), moved_phi_.end(), Vec3::Zero());
-  first_iteration_ = true;
-  plain_solve_ = false;
-  met_ = false;
-  last_step_ = 0.0;
-  last_rho_ = 0.0;
-  extrapolated_ = false;
   // A contact or weighted path swept between the iterations moves the
   // bodies too: the next iteration then does not start where the last
   // one's solve left them (met_).
   moves_alone_ = island.manifolds.empty() &&
                  std::all_of(island.paths.begin(), island.paths.end(),
                              [&](int i) { return world.path(i).weights.empty(); });
+  startPoint(world, h, again, rebuilt);
+  first_iteration_ = true;
+  plain_solve_ = false;
+  met_ = false;
+  last_step_ = 0.0;
+  last_rho_ = 0.0;
+  extrapolated_ = false;
   if (world.settings().projection == Projection::Start) {
     linearizeAtStart(world, h);
     // The rows take start_'s gradients: none is kept (keepsSpan).
@@ -455,6 +464,79 @@ void DirectSolver::prepare(World& world, const Island& island, double h, bool ag
   } else {
     start_.clear();
   }
+}
+
+void DirectSolver::startPoint(const World& world, double h, bool again, bool rebuilt) {
+  // Newton's iterations may start anywhere; XPBD starts them at the
+  // prediction x~, where gravity has moved each body g h^2 from where the
+  // rows held it. A machine at rest then starts every substep displaced
+  // from its answer, its short spans to static bodies turned by that
+  // displacement (the hand's wrist pinholes: 2.7 mm across 1 to 2 cm at 1
+  // x 20), and Newton's steps are spent coming back (DESIGN.md,
+  // "Twenty-ninth session: where Newton starts"). Here each body the rows
+  // held up against gravity in the last substep starts this one held up
+  // as much, at most by its weight:
+  //   x = x~ + h^2 a_up u,   u = -g / |g|,
+  //   a_up = clamp(moved_x . u / h_last^2, 0, |g|),
+  // moved_x the last substep's solve's motion of the body (the bounded
+  // "adaptive initialization" of Chen et al., "Vertex Block Descent",
+  // SIGGRAPH 2024). The start is no force: it is Newton's residual M (x -
+  // x~), which the first solve takes back wherever the rows no longer
+  // hold the body up (a load let go falls freely from that substep on).
+  // The start stays x~ where it would decide more than where the
+  // iterations begin:
+  // - one iteration a substep: no Newton step follows, and the projection
+  //   from x~ along its own gradients is the answer (exact for one
+  //   distance row; from the lifted start the Galileo bob dips 1.05 mm
+  //   below its circle at 1 x 1);
+  // - an island a contact or weighted path sweeps between the iterations
+  //   (their motion is not in moved_x), and a rotor (no gravity on it);
+  // - an island whose limits pushed in the last substep: a body resting
+  //   on its stop starts exactly at it, where the limit's activity is
+  //   rounding's to decide, and at 4 x 2 the gym's redundant stops (the
+  //   stack's and a handle's, one cable between them) then cycled, the
+  //   handle leaving its stop by multiples of g h^2;
+  // - an island whose spans are long against g h^2 (kStartSag), or that
+  //   has none (joints alone): its first solve from x~ is linearized well
+  //   enough, and the lift would change only rounding; and one whose rows
+  //   all stay linear as the bodies move (linearRows: exact from x~);
+  // - a new layout, a solve done again (it starts where the first did),
+  //   the start projection (its gradients are the substep's start's).
+  if (!again) {
+    const Vec3 g = world.settings().gravity;
+    const double g_size = g.norm();
+    bool lift = !rebuilt && last_h_ > 0.0 && moves_alone_ && g_size > 0.0 && world.settings().iterations > 1 &&
+                world.settings().projection == Projection::End && !linearRows(world);
+    double shortest = kInf;  // m, of the island's spans (length_: as the last substep evaluated them)
+    for (std::size_t r = 0; r < rows_.size() && lift; ++r) {
+      const bool joint = rows_[r].source != Source::Path && rows_[r].source != Source::Distance;
+      const bool one_sided = (lo_[r] == 0.0 && hi_[r] == kInf) || (hi_[r] == 0.0 && lo_[r] == -kInf);
+      if (joint && one_sided && last_lambda_[r] != 0.0) lift = false;
+      if (!joint) shortest = std::min(shortest, length_[r]);
+    }
+    lift = lift && g_size * h * h >= kStartSag * shortest;
+    if (lifted_ || start_x_.size() != frames_.size()) start_x_.assign(frames_.size(), Vec3::Zero());
+    lifted_ = false;
+    const Vec3 up = lift ? Vec3(-g / g_size) : Vec3::Zero();
+    for (std::size_t i = 0; i < frames_.size() && lift; ++i) {
+      const BodyFrame& f = frames_[i];
+      if (f.inv_axial > 0.0 || f.inv_mass == 0.0 || hub_of_[i] >= 0 || f.state->kinematic) continue;
+      const double a_up = std::clamp(moved_x_[i].dot(up) / (last_h_ * last_h_), 0.0, g_size);  // m/s^2
+      start_x_[i] = (h * h * a_up) * up;
+      lifted_ = lifted_ || a_up > 0.0;
+    }
+    last_h_ = h;
+  } else if (start_x_.size() != frames_.size()) {  // a layout built again
+    start_x_.assign(frames_.size(), Vec3::Zero());
+    lifted_ = false;
+  }
+  std::fill(moved_phi_.begin(), moved_phi_.end(), Vec3::Zero());
+  if (!lifted_) {
+    std::fill(moved_x_.begin(), moved_x_.end(), Vec3::Zero());
+    return;
+  }
+  std::copy(start_x_.begin(), start_x_.end(), moved_x_.begin());
+  for (std::size_t i = 0; i < frames_.size(); ++i) frames_[i].state->x += start_x_[i];
 }
 
 void DirectSolver::linearizeAtStart(World& world, double h) {
@@ -593,7 +675,7 @@ double DirectSolver::newtonResidual(bool bounded) {
   // The sizes' squares, and one square root at the end: the same bits, as
   // the root is monotonic and correctly rounded.
   moved_size_ = 0.0;
-  if (first_solve_) return 0.0;  // no lambda and no motion yet: g = 0
+  if (first_solve_ && !lifted_) return 0.0;  // no lambda and no motion yet: g = 0
   double moved2 = 0.0, bound2 = 0.0;
   for (std::size_t i = 0; i < m; ++i) {
     const BodyFrame& f = frames_[i];
@@ -641,6 +723,7 @@ void DirectSolver::newtonStep() {
       if (hub_of_[i] < 0 && f.inv_mass > 0.0 && !stiffness_[i].isZero()) warmStiffness(f, stiffness_[i], i);
       shift_x_[i] = -f.inv_mass * shift_x_[i];
       shift_phi_[i] = -(f.inv_inertia * shift_phi_[i]);
+      shift2 = std::max({shift2, shift_x_[i].squaredNorm(), shift_phi_[i].squaredNorm()});
       continue;
     }
     if (moved_phi_[i].norm() > kNewtonTurn) {  // XPBD's steps, W and no residual
@@ -713,7 +796,10 @@ bool DirectSolver::linearRows(const World& world) const {
 void DirectSolver::shiftValues() {
   for (Entry& e : entries_) {
     if (reweigh_[e.body]) weigh(e);
-    if (!shift_x_[e.body].isZero() || !shift_phi_[e.body].isZero())  // none at the first iteration
+    // None at the first iteration but from a lifted start (startPoint).
+    // Exact zeros: a shift below Eigen's isZero() precision (1e-12) is
+    // still a motion the bodies make (dx_ includes it), so C must see it.
+    if (shift_x_[e.body] != Vec3::Zero() || shift_phi_[e.body] != Vec3::Zero())
       C_[e.row] += e.lin.dot(shift_x_[e.body]) + e.ang.dot(shift_phi_[e.body]);
   }
 }
@@ -823,7 +909,7 @@ bool DirectSolver::iterate(World& world, double h) {
   if (rows_met && residual_bound <= enough) return false;
   newtonStep();
   if (rows_met && shift_size_ <= enough) return false;
-  plain_solve_ = first_solve_ && !stiffened_ && start_.empty() && linearRows(world);
+  plain_solve_ = first_solve_ && !lifted_ && !stiffened_ && start_.empty() && linearRows(world);
   shiftValues();
   warmStartCaps();
   solveActiveSet(tolerance > 0.0 ? tolerance : 1e-10 * scale);

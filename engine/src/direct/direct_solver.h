@@ -134,6 +134,11 @@ class DirectSolver {
   ///   (G_n W G_n^T + alpha~) dlambda = -C(x) - alpha~ lambda,  dx = W G_n^T dlambda
   /// converges to x = x~ + W G_n^T lambda with C(x) + alpha~ lambda = 0.
   void linearizeAtStart(World& world, double h);
+  /// Where the substep's iterations start: each body at the prediction x~
+  /// (integrate()), lifted by what held it up against gravity in the last
+  /// substep (start_x_, at most g h^2), into moved_x_ and its pose.
+  /// `rebuilt`: the layout is new this substep.
+  void startPoint(const World& world, double h, bool again, bool rebuilt);
   /// Which rows take their start gradient (use_start_), at the first
   /// iteration of a substep.
   void chooseStartRows();
@@ -345,6 +350,9 @@ class DirectSolver {
   std::vector<Vec3> moved_x_, moved_phi_, shift_x_, shift_phi_;
   std::vector<double> last_lambda_;  // per row: lambda as the last substep ended
   bool first_solve_ = false;          // this iteration is the substep's first
+  bool lifted_ = false;               // startPoint moved a body: Newton's residual is not 0 at the first solve
+  double last_h_ = 0.0;               // the last substep's h (s); 0: none yet
+  std::vector<Vec3> start_x_;         // per body: where startPoint put it from x~ this substep (m)
   std::vector<Mat3> stiffness_;  // per body: sum of lambda d2C/dtheta^2 this iteration
   std::vector<Mat3> world_inertia_;  // per body but rotors: its world inertia this iteration (newtonResidual)
   std::vector<double> axial_stiffness_;  // per rotor: u . stiffness_ . u (Entry::axial)

@@ -91,9 +91,11 @@ TEST(SolverPrice, TwoCoupledHingeLimitsHoldWithTheDirectSolverAtOneSweep) {
     const double overshoot = limitOvershoot(b.solver, b.substeps, b.iterations);
     std::printf("[ measured ] two coupled hinge limits, %s: overshoot %.4f rad\n", test::name(b).c_str(), overshoot);
     // Direct: exact from two iterations; one iteration linearizes the arms'
-    // turn once (3.4 mrad at 1 x 1).
+    // turn once: 3.4 or 12 mrad at 1 x 1, as rounding decides which limit
+    // row the one solve takes where both are hit (g = -9.81 gives 3.4, g =
+    // -9.8100000001 gives 12.0: DESIGN.md, "Twenty-ninth session").
     if (b.solver == SolverKind::Direct) {
-      EXPECT_LT(overshoot, b.iterations == 1 ? 5e-3 : 1e-6) << test::name(b);
+      EXPECT_LT(overshoot, b.iterations == 1 ? 1.5e-2 : 1e-6) << test::name(b);
     } else {
       // Gauss-Seidel: each limit row undoes the other's correction through
       // the shared arm; a sweep a substep overshoots by tenths of a radian.

@@ -92,7 +92,8 @@ class AtwoodCase : public ClosedFormCase {
 // Falling by y moves 2 y lambda of chain to the heavy side, and the chain
 // rides the wheel at r + rho, so M_eff y'' = (m2 - m1) g + 2 lambda g y with
 // M_eff = m1 + m2 + m_r + M r^2 / (2 (r + rho)^2): y(T) = (m2 - m1) / (2 lambda)
-// (cosh(w T) - 1), w^2 = 2 lambda g / M_eff.
+// (cosh(w T) - 1), w^2 = 2 lambda g / M_eff. L is the chain's own: lifted
+// clear of the wheel, it is longer than the cable.
 class RopeAtwoodCase : public ClosedFormCase {
  public:
   RopeAtwoodCase(const AtwoodCase& cable, int segments) : name_(cable.name()), cable_(cable) {
@@ -101,7 +102,14 @@ class RopeAtwoodCase : public ClosedFormCase {
     options.cable = "rope";
     options.segments = segments;
     text_ = segmentScene(cable.json(), s, options).dump();
-    length_ = s.cables->totalLength(0);
+    // The chain's joints are its vertices in order (the Atwood scene has
+    // no other ball joints).
+    const Scene chain = parseScene(text_, name_);
+    const World& w = *chain.world;
+    for (std::size_t i = 1; i < w.sphericals().size(); ++i) {
+      const SphericalJoint &before = w.sphericals()[i - 1], &at = w.sphericals()[i];
+      length_ += (w.body(at.a).toWorld(at.frame.anchor_a) - w.body(before.a).toWorld(before.frame.anchor_a)).norm();
+    }
     radius_ = options.radius_m;
     rope_kg_ = options.rope_mass_kg.value_or(0.01 * cable.m1());
   }

@@ -1,50 +1,30 @@
 #include "reeve/machines/rope_chain.h"
 
 #include <algorithm>
-#include <cmath>
 #include <stdexcept>
 
 namespace reeve {
 
 namespace {
 
-struct Sample {
-  Vec3 p;
-  Vec3 outward;
-};
-
-// Points of the polyline at arc lengths i L / N, with interpolated outward
-// directions (zero where either neighbour lies on a straight span).
-std::vector<Sample> resample(const std::vector<RopePathPoint>& path, int segments) {
-  const double total = polylineLength(path);
-  std::vector<Sample> out;
-  out.push_back({path.front().p, Vec3::Zero()});
+// Points of the polyline at arc lengths i L / N (L its length).
+std::vector<Vec3> resample(const std::vector<Vec3>& line, int segments) {
+  const double total = chainLength(line);
+  std::vector<Vec3> out{line.front()};
   std::size_t k = 1;
-  double s_before = 0.0;  // arc length at path[k - 1]
+  double s_before = 0.0;  // arc length at line[k - 1]
   for (int i = 1; i < segments; ++i) {
     const double s = total * i / segments;
-    while (k + 1 < path.size() && s_before + (path[k].p - path[k - 1].p).norm() < s) {
-      s_before += (path[k].p - path[k - 1].p).norm();
+    while (k + 1 < line.size() && s_before + (line[k] - line[k - 1]).norm() < s) {
+      s_before += (line[k] - line[k - 1]).norm();
       ++k;
     }
-    const double len = (path[k].p - path[k - 1].p).norm();
+    const double len = (line[k] - line[k - 1]).norm();
     const double t = len > 0.0 ? std::clamp((s - s_before) / len, 0.0, 1.0) : 0.0;
-    Sample smp;
-    smp.p = path[k - 1].p + t * (path[k].p - path[k - 1].p);
-    const Vec3& n0 = path[k - 1].outward;
-    const Vec3& n1 = path[k].outward;
-    smp.outward = (n0.isZero() || n1.isZero()) ? Vec3::Zero() : ((1 - t) * n0 + t * n1).normalized();
-    out.push_back(smp);
+    out.push_back(line[k - 1] + t * (line[k] - line[k - 1]));
   }
-  out.push_back({path.back().p, Vec3::Zero()});
+  out.push_back(line.back());
   return out;
-}
-
-std::vector<Vec3> lifted(const std::vector<Sample>& samples, double lift) {
-  std::vector<Vec3> v;
-  v.reserve(samples.size());
-  for (const Sample& s : samples) v.push_back(s.p + lift * s.outward);
-  return v;
 }
 
 }  // namespace
@@ -55,22 +35,34 @@ double chainLength(const std::vector<Vec3>& vertices) {
   return len;
 }
 
-std::vector<Vec3> chainVertices(const std::vector<RopePathPoint>& path, int segments,
-                                double target_length) {
+std::vector<Vec3> chainVertices(const std::vector<RopePathPoint>& path, int segments, double lift) {
   if (segments < 1) throw std::invalid_argument("need at least one segment");
   if (path.size() < 2) throw std::invalid_argument("the cable path has fewer than two points");
-  const std::vector<Sample> samples = resample(path, segments);
-  double lo = 0.0, hi = polylineLength(path);
-  const double tol = 1e-13 * target_length;
-  if (chainLength(lifted(samples, lo)) > target_length + tol)
-    throw std::invalid_argument("the chain's chords are already longer than the cable");
-  if (chainLength(lifted(samples, hi)) < target_length)
-    throw std::invalid_argument("the chain cannot be lengthened to the cable's length");
-  for (int it = 0; it < 200 && hi - lo > 1e-15; ++it) {
-    const double mid = 0.5 * (lo + hi);
-    (chainLength(lifted(samples, mid)) < target_length ? lo : hi) = mid;
+  std::vector<Vec3> line;
+  line.reserve(path.size());
+  for (const RopePathPoint& point : path) line.push_back(point.p + lift * point.outward);
+  return resample(line, segments);
+}
+
+std::vector<Vec3> clearChainVertices(const std::vector<RopePathPoint>& path, int segments,
+                                     const std::function<bool(const std::vector<Vec3>&)>& clear) {
+  std::vector<Vec3> chain = chainVertices(path, segments, 0.0);
+  if (clear(chain)) return chain;
+  // Bracket the least clearing lift by doubling, then halve the bracket.
+  const double longest = polylineLength(path);
+  double lo = 0.0, hi = 1e-6 * longest;
+  while (!clear(chainVertices(path, segments, hi))) {
+    lo = hi;
+    hi *= 2.0;
+    if (hi > longest)
+      throw std::invalid_argument("no lift up to the cable's length clears the sections it wraps by the rods' "
+                                  "radius (an end within that of one?)");
   }
-  return lifted(samples, 0.5 * (lo + hi));
+  while (hi - lo > 1e-12 * longest) {
+    const double mid = 0.5 * (lo + hi);
+    (clear(chainVertices(path, segments, mid)) ? hi : lo) = mid;
+  }
+  return chainVertices(path, segments, hi);
 }
 
 }  // namespace reeve

@@ -36,6 +36,41 @@ std::optional<nlohmann::ordered_json> zOnto(const Vec3& dir) {
   return nlohmann::ordered_json{{"axis", vec(axis)}, {"angle_rad", angle}};
 }
 
+// Distance (m) from point p to the segment [a, b].
+double pointSegmentDistance(const Vec2& p, const Vec2& a, const Vec2& b) {
+  const Vec2 ab = b - a;
+  const double len2 = ab.squaredNorm();
+  const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+  return (p - (a + t * ab)).norm();
+}
+
+// Whether the segments [a, b] and [c, d] cross or touch.
+bool segmentsMeet(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
+  const auto cross = [](const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); };
+  const double d1 = cross(b - a, c - a), d2 = cross(b - a, d - a);
+  const double d3 = cross(d - c, a - c), d4 = cross(d - c, b - c);
+  return ((d1 <= 0.0 && d2 >= 0.0) || (d1 >= 0.0 && d2 <= 0.0)) &&
+         ((d3 <= 0.0 && d4 >= 0.0) || (d3 >= 0.0 && d4 <= 0.0));
+}
+
+// Distance (m) from the segment [a, b] of a section's plane to the section
+// (a circle, or a convex polygon counter-clockwise); -1 where they meet.
+double sectionClearance(const Section& section, const Vec2& a, const Vec2& b) {
+  if (section.kind == Section::Kind::Circle) return pointSegmentDistance(section.centre, a, b) - section.radius;
+  const std::vector<Vec2>& v = section.vertices;
+  const auto cross = [](const Vec2& u, const Vec2& w) { return u.x() * w.y() - u.y() * w.x(); };
+  bool inside = true;  // a inside every edge
+  double least = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const Vec2 &p = v[i], &q = v[(i + 1) % v.size()];
+    if (segmentsMeet(a, b, p, q)) return -1.0;
+    inside = inside && cross(q - p, a - p) > 0.0;
+    least = std::min({least, pointSegmentDistance(p, a, b), pointSegmentDistance(a, p, q),
+                      pointSegmentDistance(b, p, q)});
+  }
+  return inside ? -1.0 : least;
+}
+
 }  // namespace
 
 nlohmann::ordered_json segmentScene(const nlohmann::ordered_json& input, const Scene& scene,
@@ -53,9 +88,28 @@ nlohmann::ordered_json segmentScene(const nlohmann::ordered_json& input, const S
   } catch (const std::invalid_argument& e) {
     throw SegmentError(e.what());
   }
+  // The rods start clear of every section the cable wraps (by their
+  // radius): laid on the cable's centre line, their chords cut into the
+  // wheel and the first contacts threw the chain off it (DESIGN, "The
+  // segmented rope baseline").
+  std::vector<const Link*> wraps;
+  for (std::size_t k = 1; k + 1 < cable.links.size(); ++k)
+    if (cable.links[k].rolls() && cable.links[k].active) wraps.push_back(&cable.links[k]);
+  const auto clear = [&](const std::vector<Vec3>& chain) {
+    for (const Link* link : wraps) {
+      const BodyState& body = world.body(link->body);
+      const auto plane = [&](const Vec3& p) {
+        const Vec3 l = body.toLocal(p);
+        return Vec2(l.x(), l.y());
+      };
+      for (std::size_t i = 0; i + 1 < chain.size(); ++i)
+        if (!(sectionClearance(link->section, plane(chain[i]), plane(chain[i + 1])) >= options.radius_m)) return false;
+    }
+    return true;
+  };
   std::vector<Vec3> vertices;
   try {
-    vertices = chainVertices(path, options.segments, scene.cables->totalLength(c));
+    vertices = clearChainVertices(path, options.segments, clear);
   } catch (const std::invalid_argument& e) {
     throw SegmentError(std::string("cable '") + options.cable + "': " + e.what());
   }
@@ -90,8 +144,7 @@ nlohmann::ordered_json segmentScene(const nlohmann::ordered_json& input, const S
 
   // The wrapped bodies collide, so the chain rests on them.
   std::set<std::string> wrapped;
-  for (std::size_t k = 1; k + 1 < cable.links.size(); ++k)
-    if (cable.links[k].rolls() && cable.links[k].active) wrapped.insert(world.bodyDef(cable.links[k].body).name);
+  for (const Link* link : wraps) wrapped.insert(world.bodyDef(link->body).name);
   for (auto& b : out["bodies"])
     if (wrapped.count(b["name"].get<std::string>())) b["collides"] = true;
 

@@ -29,14 +29,17 @@ class SegmentError : public std::runtime_error {
 /// The scene `input` (its JSON document) with cable `options.cable`
 /// replaced: N cylinders "<cable>_seg_000", ... (local z along the
 /// segment, "collides": true, rope mass split evenly) whose axes join the
-/// vertices of chainVertices() along the cable's current path in `scene`
-/// (the same document loaded), so that the chain is as long as the cable
-/// (CableSystem::totalLength); each cylinder is shorter than its segment by
-/// 2 x radius (capped at half of it) so that neighbours do not touch at
-/// the joints. Spherical joints join neighbours at their shared vertex and
-/// the ends to the end links' bodies at the attachment points. Bodies the
-/// cable wrapped get "collides": true. Everything else is copied.
-/// Throws SegmentError.
+/// vertices of clearChainVertices() along the cable's current path in
+/// `scene` (the same document loaded), lifted off the sections it wraps
+/// until every chord is at least the cylinders' radius from each: the
+/// rope's centre line rides a wheel of radius r at r + radius, as a real
+/// rope's does, so the chain is longer than the cable by about radius x
+/// the angle wrapped, and starts touching its wheels, not cut into them.
+/// Each cylinder is shorter than its segment by 2 x radius (capped at half
+/// of it) so that neighbours do not touch at the joints. Spherical joints
+/// join neighbours at their shared vertex and the ends to the end links'
+/// bodies at the attachment points. Bodies the cable wrapped get
+/// "collides": true. Everything else is copied. Throws SegmentError.
 nlohmann::ordered_json segmentScene(const nlohmann::ordered_json& input, const Scene& scene,
                             const SegmentOptions& options);
 

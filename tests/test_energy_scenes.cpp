@@ -84,9 +84,9 @@ const std::set<std::string>& knownCreating() {
       // sweeps leave the tie point's turn unsolved; the direct solve
       // converges there). The spool at 1 x 1 came off then.
       "hybrid direct 1x1", "hybrid gauss-seidel 1x1", "hybrid gauss-seidel 1x10", "spool direct 1x1",
-      // The segment rope's chain of contacts, 0.1 to 0.3 % of its scale in
-      // a frame from 0.07 s on: the contacts' velocity pass credits as a
-      // loss what the next solve gives back, frame for frame (DESIGN). (Its
+      // The segment rope's chain of contacts, 0.1 to 2 % of its scale in a
+      // frame from 0.05 s on: the contacts' velocity pass credits as a loss
+      // what the next solve gives back, frame for frame (DESIGN). (Its
       // rods cut into the wheel until `reeve segment` lifted them clear:
       // 1.8 and 2.5 % in the first frame at 10 x 2 and 32 x 32.)
       "rope_segments direct 10x2", "rope_segments direct 32x32", "rope_segments gauss-seidel 10x2",
@@ -104,10 +104,10 @@ const std::set<std::string>& knownCreating() {
       // yo-yo turns round and -0.16 J the next (a one-frame blip of the
       // pairing: that catch keeps its energy under start, where the end
       // loses 10.2 J of 38.6 in it). The
-      // segment rope at 10 x 2 makes 0.15 % a frame from 0.07 s on, as under
-      // the end; at 32 x 32 99 % in its first frame (its 100 joints
-      // projected along their start gradients, its contacts at the end: the
-      // chord iteration does not converge on the chain resting on its wheel).
+      // segment rope makes what it makes under the end (an island with
+      // contacts projects every row at the end: its joints along their start
+      // gradients fought its contacts, 99 % of its scale in its first frame
+      // at 32 x 32).
       "bow start 1x1", "bow start 1x10", "bow start 10x2", "hybrid start 1x1", "hybrid start 1x10",
       "spool start 1x1", "spool start 32x32", "rope_segments start 10x2", "rope_segments start 32x32",
   };

@@ -125,6 +125,12 @@ release_only=(
   # The pattern also takes the same comparison under Gauss-Seidel (0.6 s in
   # Release), which the release phase runs.
   'WholeSteps\.EveryShippedScene'
+  # Issue 30's thirtieth session: the segmented rope under the start
+  # projection at 32 substeps of 2, 8 and 32 iterations, and under the end
+  # for comparison (1.5 s in Release; rope_segments.json's whole run takes
+  # its contacts and joints through here, and the swing tests the start
+  # projection's rows).
+  'RopeSegments\.UnderTheStartProjection'
 )
 long="^($(IFS='|'; echo "${release_only[*]}"))"
 all=$(ctest --test-dir build-sanitize -N | grep -o 'Total Tests: [0-9]*')

@@ -361,6 +361,7 @@ class DirectSolver {
   double last_step_ = 0.0;       // the last step's largest |dx|, |dphi| (m, rad), as solved; 0: none
   double last_rho_ = 0.0;        // the last measured ratio of a plain step's size to the one before; 0: none
   bool extrapolated_ = false;    // the last step was scaled (extrapolation())
+  bool touching_ = false;        // the island has contacts (swept between its iterations)
   bool moves_alone_ = false;     // nothing but this solver moves the island's bodies between its iterations
   bool plain_solve_ = false;     // the last iteration was the substep's first, solved with every plain W
   bool met_ = false;             // the last solve met every row (metAsSolved) or stalled: the next one ends the substep

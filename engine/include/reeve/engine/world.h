@@ -52,7 +52,10 @@ enum class SolverKind { GaussSeidel, Direct };
 ///   with C still at the poses solved: symplectic, the same pendulum keeps
 ///   its swing energy to 1e-6. A row whose gradient turned by more than
 ///   0.2 (relative, in the W norm) over the substep keeps the End one: a
-///   spool spinning a radian a substep, a snap. The energy ledger then
+///   spool spinning a radian a substep, a snap; so does every row of an
+///   island with contacts, which are swept between the iterations along
+///   their normals at the poses solved (rows along start gradients fought
+///   them, worse with more iterations). The energy ledger then
 ///   reads gravity half a substep back (energy.h). Not yet the default:
 ///   the ledger's closed-form tests, events and the stiff machines' few
 ///   iterations were built on the end (DESIGN.md).

@@ -10,13 +10,15 @@
 
 namespace reeve {
 
-/// N + 1 vertices (m, world) of `segments` (>= 1) straight segments of one
-/// length along the centre line `path` lifted by `lift` (m): each point
-/// moved by lift x RopePathPoint::outward, so a wrap on a circle of radius
-/// r becomes its arc at r + lift and a span runs straight between its
-/// lifted ends. Vertex i sits at arc length i L / N of that polyline (L its
-/// length); the first and last are the path's ends. Throws
-/// std::invalid_argument for fewer than one segment or two points.
+/// N + 1 vertices (m, world) of `segments` (>= 1) straight segments along
+/// the centre line `path` lifted by `lift` (m): each point moved by lift x
+/// RopePathPoint::outward, so a wrap on a circle of radius r becomes its
+/// arc at r + lift and a span runs straight between its lifted ends.
+/// Vertex i sits at arc length i L / N of that polyline (L its length), so
+/// the segments are of one length but on a wrap, where a chord of angle a
+/// is shorter than its arc by about a^2 / 24 of it; the first and last
+/// vertices are the path's ends. Throws std::invalid_argument for fewer
+/// than one segment or two points.
 std::vector<Vec3> chainVertices(const std::vector<RopePathPoint>& path, int segments, double lift);
 
 /// The vertices of chainVertices() at the least lift (m, >= 0, to 1e-12 of

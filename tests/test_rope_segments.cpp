@@ -157,6 +157,44 @@ TEST(RopeSegments, UnderTheStartProjectionMoreIterationsDoNotThrowTheChain) {
   }
 }
 
+nlohmann::ordered_json sceneJson(const std::string& file) {
+  std::ifstream in(std::string(REEVE_SCENES_DIR) + "/" + file);
+  std::stringstream text;
+  text << in.rdbuf();
+  return nlohmann::ordered_json::parse(text.str());
+}
+
+TEST(RopeSegments, ACableOverWheelsInThreePlanesIsLaidClearOfEach) {
+  // wheels_3d.json's cable runs over wheels whose planes differ: a chord
+  // of one wheel's span, seen in another wheel's plane, may cross its
+  // circle far from it in 3D. Only the part of a chord within a rod's
+  // radius of a wheel's plane is held clear of it; the chain starts at
+  // rest on its wheels (the energy watch sees nothing in the first frame).
+  const nlohmann::ordered_json input = sceneJson("wheels_3d.json");
+  const Scene original = parseScene(input.dump(), "wheels_3d");
+  SegmentOptions options;
+  options.cable = "cable";
+  options.segments = 40;
+  Scene s = parseScene(segmentScene(input, original, options).dump(), "wheels_3d_segments");
+  EnergyWatch watch(s);
+  s.world->step(1.0 / s.frame_rate_hz);
+  const auto created = watch.check(s);
+  EXPECT_FALSE(created) << energyCreatedMessage(*created);
+}
+
+TEST(RopeSegments, AJunctionsBranchIsRefusedByName) {
+  const nlohmann::ordered_json input = sceneJson("junction.json");
+  const Scene original = parseScene(input.dump(), "junction");
+  SegmentOptions options;
+  options.cable = "hoist_left";
+  try {
+    segmentScene(input, original, options);
+    FAIL() << "no error";
+  } catch (const SegmentError& e) {
+    EXPECT_NE(std::string(e.what()).find("branch of junction 'block'"), std::string::npos) << e.what();
+  }
+}
+
 TEST(RopeSegments, OnAHeavyWheelTheRopeSlidesAsACapstan) {
   // The 1:100 Atwood machine over a 100 kg wheel: gripping, the rope would
   // pull 337 N against 16 N to spin the wheel up, 21 times, where its rods'

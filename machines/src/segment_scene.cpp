@@ -71,6 +71,26 @@ double sectionClearance(const Section& section, const Vec2& a, const Vec2& b) {
   return inside ? -1.0 : least;
 }
 
+// Whether the chord [a, b] (world) keeps `gap` (m) from the section that
+// `link` wraps on `body`. Only the chord's part within `gap` of the cable
+// plane is held to it: a chord elsewhere in 3D (another wheel's span,
+// seen in this wheel's plane) passes the section by.
+bool chordClears(const Link& link, const BodyState& body, const Vec3& a_world, const Vec3& b_world, double gap) {
+  const Vec3 a = body.toLocal(a_world), b = body.toLocal(b_world);
+  const double za = a.z() - link.plane_offset, dz = b.z() - a.z();
+  double t0 = 0.0, t1 = 1.0;  // the chord's part in the slab |z - plane_offset| <= gap
+  if (dz != 0.0) {
+    const double u = (-gap - za) / dz, v = (gap - za) / dz;
+    t0 = std::max(t0, std::min(u, v));
+    t1 = std::min(t1, std::max(u, v));
+  } else if (std::abs(za) > gap) {
+    return true;
+  }
+  if (t0 > t1) return true;
+  const Vec3 p = a + t0 * (b - a), q = a + t1 * (b - a);
+  return sectionClearance(link.section, p.head<2>(), q.head<2>()) >= gap;
+}
+
 }  // namespace
 
 nlohmann::ordered_json segmentScene(const nlohmann::ordered_json& input, const Scene& scene,
@@ -81,6 +101,9 @@ nlohmann::ordered_json segmentScene(const nlohmann::ordered_json& input, const S
   const int c = findCable(scene, options.cable);
   const Cable& cable = scene.cables->cables()[c];
   const World& world = *scene.world;
+  if (cable.junction >= 0)
+    throw SegmentError("cable '" + options.cable + "' is a branch of junction '" +
+                       scene.cables->junctions()[cable.junction].name + "' (not supported)");
 
   std::vector<RopePathPoint> path;
   try {
@@ -96,15 +119,9 @@ nlohmann::ordered_json segmentScene(const nlohmann::ordered_json& input, const S
   for (std::size_t k = 1; k + 1 < cable.links.size(); ++k)
     if (cable.links[k].rolls() && cable.links[k].active) wraps.push_back(&cable.links[k]);
   const auto clear = [&](const std::vector<Vec3>& chain) {
-    for (const Link* link : wraps) {
-      const BodyState& body = world.body(link->body);
-      const auto plane = [&](const Vec3& p) {
-        const Vec3 l = body.toLocal(p);
-        return Vec2(l.x(), l.y());
-      };
+    for (const Link* link : wraps)
       for (std::size_t i = 0; i + 1 < chain.size(); ++i)
-        if (!(sectionClearance(link->section, plane(chain[i]), plane(chain[i + 1])) >= options.radius_m)) return false;
-    }
+        if (!chordClears(*link, world.body(link->body), chain[i], chain[i + 1], options.radius_m)) return false;
     return true;
   };
   std::vector<Vec3> vertices;

@@ -31,7 +31,8 @@ class SegmentError : public std::runtime_error {
 /// segment, "collides": true, rope mass split evenly) whose axes join the
 /// vertices of clearChainVertices() along the cable's current path in
 /// `scene` (the same document loaded), lifted off the sections it wraps
-/// until every chord is at least the cylinders' radius from each: the
+/// until every chord is at least the cylinders' radius from each (the
+/// chord's part within that radius of the section's plane): the
 /// rope's centre line rides a wheel of radius r at r + radius, as a real
 /// rope's does, so the chain is longer than the cable by about radius x
 /// the angle wrapped, and starts touching its wheels, not cut into them.
@@ -39,7 +40,8 @@ class SegmentError : public std::runtime_error {
 /// of it) so that neighbours do not touch at the joints. Spherical joints
 /// join neighbours at their shared vertex and the ends to the end links'
 /// bodies at the attachment points. Bodies the cable wrapped get
-/// "collides": true. Everything else is copied. Throws SegmentError.
+/// "collides": true. Everything else is copied. Throws SegmentError (also
+/// for a junction's branch).
 nlohmann::ordered_json segmentScene(const nlohmann::ordered_json& input, const Scene& scene,
                             const SegmentOptions& options);
 

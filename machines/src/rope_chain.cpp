@@ -56,7 +56,7 @@ std::vector<Vec3> clearChainVertices(const std::vector<RopePathPoint>& path, int
     hi *= 2.0;
     if (hi > longest)
       throw std::invalid_argument("no lift up to the cable's length clears the sections it wraps by the rods' "
-                                  "radius (an end within that of one?)");
+                                  "radius (too few segments to wrap them, or an end that close to one)");
   }
   while (hi - lo > 1e-12 * longest) {
     const double mid = 0.5 * (lo + hi);

@@ -44,9 +44,10 @@ double pointSegmentDistance(const Vec2& p, const Vec2& a, const Vec2& b) {
   return (p - (a + t * ab)).norm();
 }
 
+double cross(const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); }
+
 // Whether the segments [a, b] and [c, d] cross or touch.
 bool segmentsMeet(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
-  const auto cross = [](const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); };
   const double d1 = cross(b - a, c - a), d2 = cross(b - a, d - a);
   const double d3 = cross(d - c, a - c), d4 = cross(d - c, b - c);
   return ((d1 <= 0.0 && d2 >= 0.0) || (d1 >= 0.0 && d2 <= 0.0)) &&
@@ -58,7 +59,6 @@ bool segmentsMeet(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
 double sectionClearance(const Section& section, const Vec2& a, const Vec2& b) {
   if (section.kind == Section::Kind::Circle) return pointSegmentDistance(section.centre, a, b) - section.radius;
   const std::vector<Vec2>& v = section.vertices;
-  const auto cross = [](const Vec2& u, const Vec2& w) { return u.x() * w.y() - u.y() * w.x(); };
   bool inside = true;  // a inside every edge
   double least = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < v.size(); ++i) {

@@ -512,36 +512,59 @@ double fastest(const World& w) {
   return v;
 }
 
-TEST(Hand, EverySubstepOfAMovingHandSolvesAgainForNewtonsResidual) {
+TEST(Hand, AMovingHandEndsASubstepOnlyWhereNewtonsResidualIsMet) {
   // A tendon's spans turn with the knuckles it crosses: their gradients J
   // change as one solve moves the fingers, so Newton's residual
-  // M dx - J(x)^T lambda is not met by the first solve, and every substep
-  // of the moving hand (10 x 2) takes its second iteration. Only rows
-  // whose J stays put as the bodies move (spans between rotors, a rotor's
-  // hinge rows) may end a substep after one solve with their residual
-  // taken as 0 (DirectSolver::linearRows). At rest each substep starts
-  // where the last one held the bodies up (DirectSolver::startPoint): one
-  // solve meets the rows and the residual, and never none (a substep
-  // ended on its start alone would report no tension).
-  Scene s = test::scene("hand");
+  // M dx - J(x)^T lambda is met after one solve only where the substep
+  // started close to its answer: at rest, from where the last substep
+  // held the bodies up, and in a steady motion, from where the rows'
+  // acceleration of the last substep takes them (DirectSolver::startPoint);
+  // elsewhere the second iteration solves again. Whatever a substep ends
+  // on, the hand at its own 10 x 2 stays where a run of 20 iterations that
+  // never stops early (tolerance 0) puts it: 1e-6 m and 3e-5 rad while it
+  // moves, 2e-8 m at rest (from x~ and gravity's lift alone, 2.3e-6 m and
+  // 5.9e-8 m). And never none: a substep ended on its start alone would
+  // report no tension.
+  Scene s = test::scene("hand"), converged = test::scene("hand");
   ASSERT_EQ(s.world->settings().substeps, 10);
   ASSERT_EQ(s.world->settings().iterations, 2);
-  int moving = 0, resting = 0;
+  converged.world->settings().iterations = 20;
+  converged.world->settings().tolerance = 0.0;
+  int moving = 0, resting = 0, one_solve = 0;
+  double gap_moving = 0.0, turn_moving = 0.0, gap_resting = 0.0;
   for (int f = 0; f < 300; ++f) {
     const double before = fastest(*s.world);
     test::frame(s);
+    test::frame(converged);
     const double v = std::max(before, fastest(*s.world));  // the start at rest is loaded
+    double gap = 0.0, turn = 0.0;
+    for (BodyId b = 0; b < s.world->bodyCount(); ++b) {
+      gap = std::max(gap, (s.world->body(b).x - converged.world->body(b).x).norm());
+      turn = std::max(turn, s.world->body(b).q.angularDistance(converged.world->body(b).q));
+    }
+    const int solves = s.world->lastStepIterations();
+    EXPECT_GE(solves, 10) << "frame " << f;
+    EXPECT_LE(solves, 20) << "frame " << f;
     if (v > 1e-3) {
       ++moving;
-      EXPECT_EQ(s.world->lastStepIterations(), 2 * 10) << "frame " << f << ", fastest body at " << v << " m/s";
+      one_solve += solves < 20;
+      gap_moving = std::max(gap_moving, gap);
+      turn_moving = std::max(turn_moving, turn);
     } else if (v < 1e-4) {
       ++resting;
-      EXPECT_EQ(s.world->lastStepIterations(), 10) << "frame " << f << ", fastest body at " << v << " m/s";
+      EXPECT_EQ(solves, 10) << "frame " << f << ", fastest body at " << v << " m/s";
+      gap_resting = std::max(gap_resting, gap);
     }
   }
-  std::printf("[ measured ] 10 x 2: %d frames moving faster than 1 mm/s, %d resting under 0.1 mm/s\n", moving, resting);
+  std::printf("[ measured ] 10 x 2: %d frames moving faster than 1 mm/s (%d of them with substeps of one solve), "
+              "%d resting under 0.1 mm/s; from 20 iterations run whole: %.2e m and %.2e rad moving, %.2e m "
+              "resting\n",
+              moving, one_solve, resting, gap_moving, turn_moving, gap_resting);
   EXPECT_GT(moving, 30);
   EXPECT_GT(resting, 100);
+  EXPECT_LT(gap_moving, 1e-6);
+  EXPECT_LT(turn_moving, 3e-5);
+  EXPECT_LT(gap_resting, 2e-8);
 }
 
 TEST(Hand, MoreIterationsBringTheRestingHandNearerItsConvergedPose) {

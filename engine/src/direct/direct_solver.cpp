@@ -77,6 +77,10 @@ constexpr double kAitkenTail = 0.05;
 // an Atwood machine's tension at 24,000 substeps a second, against 1e-8
 // from x~).
 constexpr double kStartSag = 1e-4;
+// startPoint starts a body from the whole of the last substep's solve,
+// turn included, where that solve's acceleration repeated the one before
+// to this fraction of its size (a steady motion, not an event).
+constexpr double kStartSteady = 0.5;
 // A solve whose largest step (m, rad) is below this fraction of the
 // tolerance moved nothing a row can tell (iterate()).
 constexpr double kStalled = 1e-3;
@@ -473,16 +477,24 @@ void DirectSolver::startPoint(const World& world, double h, bool again, bool reb
   // from its answer, its short spans to static bodies turned by that
   // displacement (the hand's wrist pinholes: 2.7 mm across 1 to 2 cm at 1
   // x 20), and Newton's steps are spent coming back (DESIGN.md,
-  // "Twenty-ninth session: where Newton starts"). Here each body the rows
-  // held up against gravity in the last substep starts this one held up
+  // "Twenty-ninth session: where Newton starts"). Here each body starts
+  // where the rows' acceleration of the last substep would put it, a =
+  // moved_x / h_last^2 and alpha = moved_phi / h_last^2 (moved_x, moved_phi:
+  // the last substep's solve's motion and turn of the body), wherever it
+  // repeated the substep's before to kStartSteady of its size:
+  //   x = x~ + h^2 a,   q = q~ turned by h^2 alpha
+  // (the rows' impulse reused, as Box2D and Jolt warm-start theirs; in a
+  // steady motion a changes by O(h) a substep, and the start is O(h^3)
+  // from the answer instead of gravity's g h^2). Elsewhere (an impact, a
+  // jam, a release: a stale acceleration there flung a slider hauled into
+  // its pulley) each body the rows held up against gravity starts held up
   // as much, at most by its weight:
-  //   x = x~ + h^2 a_up u,   u = -g / |g|,
-  //   a_up = clamp(moved_x . u / h_last^2, 0, |g|),
-  // moved_x the last substep's solve's motion of the body (the bounded
-  // "adaptive initialization" of Chen et al., "Vertex Block Descent",
-  // SIGGRAPH 2024). The start is no force: it is Newton's residual M (x -
-  // x~), which the first solve takes back wherever the rows no longer
-  // hold the body up (a load let go falls freely from that substep on).
+  //   x = x~ + h^2 a_up u,   u = -g / |g|,   a_up = clamp(a . u, 0, |g|)
+  // (the bounded "adaptive initialization" of Chen et al., "Vertex Block
+  // Descent", SIGGRAPH 2024). The start is no force: it is Newton's
+  // residual M (x - x~), which the solve takes back wherever the rows no
+  // longer hold the body so (a load let go falls freely from that substep
+  // on).
   // The start stays x~ where it would decide more than where the
   // iterations begin:
   // - one iteration a substep: no Newton step follows, and the projection
@@ -517,17 +529,35 @@ void DirectSolver::startPoint(const World& world, double h, bool again, bool reb
     lift = lift && g_size * h * h >= kStartSag * shortest;
     if (lifted_ || start_x_.size() != frames_.size()) start_x_.assign(frames_.size(), Vec3::Zero());
     lifted_ = false;
+    start_phi_.assign(frames_.size(), Vec3::Zero());
     const Vec3 up = lift ? Vec3(-g / g_size) : Vec3::Zero();
-    for (std::size_t i = 0; i < frames_.size() && lift; ++i) {
+    // The rows' acceleration of each body in the last substep, and whether
+    // it repeated the one before (a new layout knows none before).
+    if (rebuilt || last_a_.size() != frames_.size()) {
+      last_a_.assign(frames_.size(), Vec3::Zero());
+      last_alpha_.assign(frames_.size(), Vec3::Zero());
+    }
+    const double per_h2 = last_h_ > 0.0 ? 1.0 / (last_h_ * last_h_) : 0.0;
+    for (std::size_t i = 0; i < frames_.size(); ++i) {
+      const Vec3 a = per_h2 * moved_x_[i], alpha = per_h2 * moved_phi_[i];  // m/s^2, rad/s^2
+      const bool steady = (a - last_a_[i]).norm() <= kStartSteady * a.norm() &&
+                          (alpha - last_alpha_[i]).norm() <= kStartSteady * alpha.norm();
+      last_a_[i] = a;
+      last_alpha_[i] = alpha;
       const BodyFrame& f = frames_[i];
-      if (f.inv_axial > 0.0 || f.inv_mass == 0.0 || hub_of_[i] >= 0 || f.state->kinematic) continue;
-      const double a_up = std::clamp(moved_x_[i].dot(up) / (last_h_ * last_h_), 0.0, g_size);  // m/s^2
-      start_x_[i] = (h * h * a_up) * up;
-      lifted_ = lifted_ || a_up > 0.0;
+      if (!lift || f.inv_axial > 0.0 || f.inv_mass == 0.0 || hub_of_[i] >= 0 || f.state->kinematic) continue;
+      if (steady) {
+        start_x_[i] = h * h * a;
+        start_phi_[i] = h * h * alpha;
+      } else {
+        start_x_[i] = (h * h * std::clamp(a.dot(up), 0.0, g_size)) * up;
+      }
+      lifted_ = lifted_ || !start_x_[i].isZero(0.0) || !start_phi_[i].isZero(0.0);
     }
     last_h_ = h;
   } else if (start_x_.size() != frames_.size()) {  // a layout built again
     start_x_.assign(frames_.size(), Vec3::Zero());
+    start_phi_.assign(frames_.size(), Vec3::Zero());
     lifted_ = false;
   }
   std::fill(moved_phi_.begin(), moved_phi_.end(), Vec3::Zero());
@@ -536,7 +566,14 @@ void DirectSolver::startPoint(const World& world, double h, bool again, bool reb
     return;
   }
   std::copy(start_x_.begin(), start_x_.end(), moved_x_.begin());
-  for (std::size_t i = 0; i < frames_.size(); ++i) frames_[i].state->x += start_x_[i];
+  std::copy(start_phi_.begin(), start_phi_.end(), moved_phi_.begin());
+  for (std::size_t i = 0; i < frames_.size(); ++i) {
+    BodyState& b = *frames_[i].state;
+    b.x += start_x_[i];
+    if (start_phi_[i].isZero(0.0)) continue;
+    rotateExactly(b.q, start_phi_[i]);
+    b.solve_turn += start_phi_[i];  // a turn the cables pay out for, as the solve's
+  }
 }
 
 void DirectSolver::linearizeAtStart(World& world, double h) {

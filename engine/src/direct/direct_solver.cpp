@@ -527,25 +527,32 @@ void DirectSolver::startPoint(const World& world, double h, bool again, bool reb
       if (!joint) shortest = std::min(shortest, length_[r]);
     }
     lift = lift && g_size * h * h >= kStartSag * shortest;
-    if (lifted_ || start_x_.size() != frames_.size()) start_x_.assign(frames_.size(), Vec3::Zero());
+    if (lifted_ || start_x_.size() != frames_.size()) {
+      start_x_.assign(frames_.size(), Vec3::Zero());
+      start_phi_.assign(frames_.size(), Vec3::Zero());
+    }
     lifted_ = false;
-    start_phi_.assign(frames_.size(), Vec3::Zero());
     const Vec3 up = lift ? Vec3(-g / g_size) : Vec3::Zero();
     // The rows' acceleration of each body in the last substep, and whether
-    // it repeated the one before (a new layout knows none before).
-    if (rebuilt || last_a_.size() != frames_.size()) {
+    // it repeated the one before. Kept only while the island is lifted: a
+    // new layout, or a substep it was not lifted in, knows none before (and
+    // an island that never is, a chain of rotors, pays nothing for it).
+    if (last_a_.size() != frames_.size()) {
       last_a_.assign(frames_.size(), Vec3::Zero());
       last_alpha_.assign(frames_.size(), Vec3::Zero());
     }
+    const bool known = lift && !rebuilt && last_lifted_;
+    last_lifted_ = lift;
     const double per_h2 = last_h_ > 0.0 ? 1.0 / (last_h_ * last_h_) : 0.0;
-    for (std::size_t i = 0; i < frames_.size(); ++i) {
+    const double steady2 = kStartSteady * kStartSteady;
+    for (std::size_t i = 0; i < frames_.size() && lift; ++i) {
       const Vec3 a = per_h2 * moved_x_[i], alpha = per_h2 * moved_phi_[i];  // m/s^2, rad/s^2
-      const bool steady = (a - last_a_[i]).norm() <= kStartSteady * a.norm() &&
-                          (alpha - last_alpha_[i]).norm() <= kStartSteady * alpha.norm();
+      const bool steady = known && (a - last_a_[i]).squaredNorm() <= steady2 * a.squaredNorm() &&
+                          (alpha - last_alpha_[i]).squaredNorm() <= steady2 * alpha.squaredNorm();
       last_a_[i] = a;
       last_alpha_[i] = alpha;
       const BodyFrame& f = frames_[i];
-      if (!lift || f.inv_axial > 0.0 || f.inv_mass == 0.0 || hub_of_[i] >= 0 || f.state->kinematic) continue;
+      if (f.inv_axial > 0.0 || f.inv_mass == 0.0 || hub_of_[i] >= 0 || f.state->kinematic) continue;
       if (steady) {
         start_x_[i] = h * h * a;
         start_phi_[i] = h * h * alpha;

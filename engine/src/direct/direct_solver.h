@@ -355,6 +355,7 @@ class DirectSolver {
   std::vector<Vec3> start_x_;         // per body: where startPoint put it from x~ this substep (m)
   std::vector<Vec3> start_phi_;       // ... and turned it from q~ (rad)
   std::vector<Vec3> last_a_, last_alpha_;  // per body: the rows' acceleration in the substep before (m/s^2, rad/s^2)
+  bool last_lifted_ = false;               // ... which startPoint lifted (else last_a_ says nothing)
   std::vector<Mat3> stiffness_;  // per body: sum of lambda d2C/dtheta^2 this iteration
   std::vector<Mat3> world_inertia_;  // per body but rotors: its world inertia this iteration (newtonResidual)
   std::vector<double> axial_stiffness_;  // per rotor: u . stiffness_ . u (Entry::axial)

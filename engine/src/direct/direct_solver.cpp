@@ -595,6 +595,7 @@ void DirectSolver::linearizeAtStart(World& world, double h) {
   at_start_ = true;
   evaluate(world, h);
   at_start_ = false;
+  for (Entry& e : entries_) weigh(e);  // by W at the start poses (evaluateBodies)
   for (const BodyId id : bodies_) {
     BodyState& b = world.body(id);
     std::swap(b.x, b.x_prev);
@@ -621,7 +622,8 @@ void DirectSolver::chooseStartRows() {
     const Row& row = rows_[r];
     double norm = 0.0, change = 0.0;
     for (int e = row.first_entry; e < row.first_entry + row.entry_count; ++e) {
-      const Entry& now = entries_[e];
+      Entry now = entries_[e];
+      weigh(now);  // by W at the poses solved (evaluate() left the entries unweighed)
       Entry d = now;
       d.lin = start_[e].lin - now.lin;
       d.ang = start_[e].ang - now.ang;
@@ -846,7 +848,7 @@ bool DirectSolver::linearRows(const World& world) const {
 
 void DirectSolver::shiftValues() {
   for (Entry& e : entries_) {
-    if (reweigh_[e.body]) weigh(e);
+    if (reweigh_[e.body] || !e.weighed) weigh(e);
     // None at the first iteration but from a lifted start (startPoint).
     // Exact zeros: a shift below Eigen's isZero() precision (1e-12) is
     // still a motion the bodies make (dx_ includes it), so C must see it.

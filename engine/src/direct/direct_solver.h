@@ -103,6 +103,10 @@ class DirectSolver {
     Mat3 curvature = Mat3::Zero();
     double axial = 0.0;
     bool flat = false;  // curvature and axial are 0 (flatten): no stiffness to add
+    // wlin and wang are W J for this gradient. evaluate() leaves them for
+    // shiftValues(), and only an iteration that solves weighs (W~ is known
+    // there): one that stops on its residual weighs nothing.
+    bool weighed = false;
   };
   struct Row {
     Source source;
@@ -143,7 +147,7 @@ class DirectSolver {
   /// iteration of a substep.
   void chooseStartRows();
   void evaluateBodies();
-  /// The entry's W J from its gradient.
+  /// The entry's W J from its gradient (and weighed set).
   void weigh(Entry& e) const;
   /// Sets (or, `add`, adds to) the entry's curvature for a point at arm r
   /// whose dC/dp is g: its axial part on a rotor, else the whole.

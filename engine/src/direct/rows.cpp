@@ -93,6 +93,7 @@ void DirectSolver::weigh(Entry& e) const {
   const BodyFrame& f = frames_[e.body];
   e.wlin = f.inv_mass * e.lin;
   e.wang = f.inv_axial > 0.0 ? Vec3(f.axle * (f.inv_axial * f.axle.dot(e.ang))) : Vec3(f.inv_inertia * e.ang);
+  e.weighed = true;
 }
 
 SolvePoint DirectSolver::endPoint(const World& world, const PathPoint& point, int slot) {
@@ -164,7 +165,7 @@ void DirectSolver::evaluateSpan(const World& world, int r, const PathPoint& p0, 
       curveEnd(entries_[e], u, e1, false);
     }
   }
-  for (e = row.first_entry; e < row.first_entry + row.entry_count; ++e) weigh(entries_[e]);
+  for (e = row.first_entry; e < row.first_entry + row.entry_count; ++e) entries_[e].weighed = false;
   C_[r] = length;  // minus the rest length, by the caller
 }
 
@@ -223,7 +224,7 @@ void DirectSolver::evaluatePath(const World& world, int r, double h) {
       predictSpan(r);
     } else if (span && end_projection && keepsSpan(p, r)) {
       C_[r] = placed_length_[r];
-      for (int e = row.first_entry; e < row.first_entry + row.entry_count; ++e) weigh(entries_[e]);
+      for (int e = row.first_entry; e < row.first_entry + row.entry_count; ++e) entries_[e].weighed = false;
     } else if (span) {
       evaluateSpan(world, r, p.points[0], p.points[1]);
       if (end_projection && !evaluated_) {
@@ -343,7 +344,7 @@ void DirectSolver::evaluateRun(const World& world, int r, const PathPoint* point
       entries_[entry[j]].ang += scale * slide.far_ang;
     }
   }
-  for (int e = row.first_entry; e < row.first_entry + row.entry_count; ++e) weigh(entries_[e]);
+  for (int e = row.first_entry; e < row.first_entry + row.entry_count; ++e) entries_[e].weighed = false;
   C_[r] = length;  // minus the rest length, by the caller
   if (ends[0].turn != 0.0) C_[r] += s_first * ends[0].payOut(-(pos[1] - pos[0]).normalized());
   if (ends[1].turn != 0.0) C_[r] += s_last * ends[1].payOut((pos[count - 1] - pos[count - 2]).normalized());
@@ -412,7 +413,7 @@ int DirectSolver::evaluateJoint(World& world, int r, double h) {
       if (angular) flatten(entries_[e]);
       else curve(entries_[e], sp, set.r_b, false);
     }
-    for (e = rows_[r].first_entry; e < rows_[r].first_entry + rows_[r].entry_count; ++e) weigh(entries_[e]);
+    for (e = rows_[r].first_entry; e < rows_[r].first_entry + rows_[r].entry_count; ++e) entries_[e].weighed = false;
     dir_[r] = s;
     linear_a_[r] = linear_a;
     angular_a_[r] = angular_a;

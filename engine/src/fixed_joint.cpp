@@ -5,14 +5,12 @@
 namespace reeve {
 namespace {
 
-// The six rows (solveFixedJoint) at arms r_a, r_b.
-joint_rows::BilateralRows bilateralRows(const FixedJoint& j, const BodyState& a, const BodyState& b,
-                                        const Vec3& r_a, const Vec3& r_b) {
+// Adds the six rows (solveFixedJoint) at arms r_a, r_b to `rows`.
+void addBilateralRows(const FixedJoint& j, const BodyState& a, const BodyState& b, const Vec3& r_a, const Vec3& r_b,
+                      joint_rows::BilateralRows& rows) {
   const Vec3 phi = rotationVector(a.q * (b.q * j.rel).conjugate());
-  joint_rows::BilateralRows rows;
   rows.addPoint((b.x + r_b) - (a.x + r_a));
   for (int i = 0; i < 3; ++i) rows.addAngular(Vec3::Unit(i), phi[i]);
-  return rows;
 }
 
 }  // namespace
@@ -39,13 +37,15 @@ void solveFixedJoint(FixedJoint& j, BodyState& a, BodyState& b, double h) {
   //   orientation (3): C = phi, the rotation vector of the error rotation
   //     q_a (q_b rel)^-1 (rotating a about +phi grows it, b shrinks it).
   const Vec3 r_a = a.q * j.anchor_a, r_b = b.q * j.anchor_b;
-  joint_rows::solveRows(a, b, r_a, r_b, bilateralRows(j, a, b, r_a, r_b), j.compliance / (h * h), nullptr,
-                        j.impulse_linear, j.impulse_angular);
+  joint_rows::BilateralRows rows;
+  addBilateralRows(j, a, b, r_a, r_b, rows);
+  joint_rows::solveRows(a, b, r_a, r_b, rows, j.compliance / (h * h), nullptr, j.impulse_linear, j.impulse_angular);
 }
 
 void joint_rows::fixedRowSet(FixedJoint& j, const BodyState& a, const BodyState& b, JointRowSet& out) {
   const Vec3 r_a = a.q * j.anchor_a, r_b = b.q * j.anchor_b;
-  out.start(r_a, r_b, bilateralRows(j, a, b, r_a, r_b));
+  out.start(r_a, r_b);
+  addBilateralRows(j, a, b, r_a, r_b, out.bilateral);
 }
 
 JointWrench fixedWrench(const FixedJoint& j, double h) {

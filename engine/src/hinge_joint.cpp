@@ -24,17 +24,16 @@ joint_rows::DriveKind kindOf(HingeDrive::Mode mode) {
   return joint_rows::DriveKind::None;
 }
 
-// The point and axis rows (solveHingeJoint) at arms r_a, r_b.
-joint_rows::BilateralRows bilateralRows(const HingeJoint& j, const BodyState& a, const BodyState& b,
-                                        const Vec3& r_a, const Vec3& r_b) {
+// Adds the point and axis rows (solveHingeJoint) at arms r_a, r_b to
+// `rows`.
+void addBilateralRows(const HingeJoint& j, const BodyState& a, const BodyState& b, const Vec3& r_a, const Vec3& r_b,
+                      joint_rows::BilateralRows& rows) {
   const Vec3 u = a.q * j.frame.axis_a;
   const Vec3 t1 = joint_rows::anyPerpendicular(u), t2 = u.cross(t1);
   const Vec3 phi = joint_rows::alignment(b.q * j.frame.axis_b, u);
-  joint_rows::BilateralRows rows;
   rows.addPoint((b.x + r_b) - (a.x + r_a));
   rows.addAngular(t1, t1.dot(phi));
   rows.addAngular(t2, t2.dot(phi));
-  return rows;
 }
 
 // How far (rad) a has turned relative to b about the world axis `u` since
@@ -126,8 +125,9 @@ void solveHingeJoint(HingeJoint& j, BodyState& a, BodyState& b, double h) {
   const double alpha_tilde = j.compliance / (h * h);
   const auto block = [&](const joint_rows::ClampedRow* clamped) {
     const Vec3 r_a = a.q * j.frame.anchor_a, r_b = b.q * j.frame.anchor_b;
-    joint_rows::solveRows(a, b, r_a, r_b, rotor ? joint_rows::BilateralRows{} : bilateralRows(j, a, b, r_a, r_b),
-                          alpha_tilde, clamped, j.impulse_point, j.impulse_axis);
+    joint_rows::BilateralRows rows;
+    if (!rotor) addBilateralRows(j, a, b, r_a, r_b, rows);
+    joint_rows::solveRows(a, b, r_a, r_b, rows, alpha_tilde, clamped, j.impulse_point, j.impulse_axis);
   };
   bool solved = false;
   if (driven || j.limit.enabled) {
@@ -151,7 +151,8 @@ void solveHingeJoint(HingeJoint& j, BodyState& a, BodyState& b, double h) {
 void joint_rows::hingeRowSet(HingeJoint& j, const BodyState& a, const BodyState& b, double h, JointRowSet& out) {
   const Vec3 r_a = a.q * j.frame.anchor_a, r_b = b.q * j.frame.anchor_b;
   const bool rotor = a.isRotor() || b.isRotor();
-  out.start(r_a, r_b, rotor ? BilateralRows{} : bilateralRows(j, a, b, r_a, r_b));
+  out.start(r_a, r_b);
+  if (!rotor) addBilateralRows(j, a, b, r_a, r_b, out.bilateral);
   Vec6 dir = Vec6::Zero();
   dir.tail<3>() = a.q * j.frame.axis_a;
   addCoordinateRows(j.angle, j.limit, j.drive.mode != HingeDrive::Mode::None, true, hingeAngle(j, a.q, b.q),

@@ -28,11 +28,13 @@ struct JointRowSet {
   // Which clamped rows are a coordinate's drive and limits (-1: none).
   int drive = -1, lower = -1, upper = -1;
 
-  /// Starts the set over: arms, bilateral rows, no clamped rows yet.
-  void start(const Vec3& arm_a, const Vec3& arm_b, const BilateralRows& rows) {
+  /// Starts the set over: arms, no rows yet (the joint adds its bilateral
+  /// rows to `bilateral` in place: a set reused joint after joint is
+  /// neither zeroed nor copied).
+  void start(const Vec3& arm_a, const Vec3& arm_b) {
     r_a = arm_a;
     r_b = arm_b;
-    bilateral = rows;
+    bilateral.count = 0;
     clamped_count = 0;
     drive = lower = upper = -1;
   }

@@ -25,18 +25,17 @@ joint_rows::DriveKind kindOf(PrismaticDrive::Mode mode) {
 // as it slid out, and blew up (1e8 J) within half a second.
 Vec3 railArm(const BodyState& a, const BodyState& b, const Vec3& r_a) { return a.x + r_a - b.x; }
 
-// The rail and orientation rows (solvePrismaticJoint) at arms r_a, r_b.
-joint_rows::BilateralRows bilateralRows(const PrismaticJoint& j, const BodyState& a, const BodyState& b,
-                                        const Vec3& r_a, const Vec3& r_b) {
+// Adds the rail and orientation rows (solvePrismaticJoint) at arms r_a,
+// r_b to `rows`.
+void addBilateralRows(const PrismaticJoint& j, const BodyState& a, const BodyState& b, const Vec3& r_a,
+                      const Vec3& r_b, joint_rows::BilateralRows& rows) {
   const Vec3 u = b.q * j.axis_b;
   const Vec3 t1 = joint_rows::anyPerpendicular(u), t2 = u.cross(t1);
   const Vec3 separation = (b.x + r_b) - (a.x + r_a);
   const Vec3 phi = rotationVector(a.q * (b.q * j.rel).conjugate());
-  joint_rows::BilateralRows rows;
   rows.addPositional(t1, t1.dot(separation));
   rows.addPositional(t2, t2.dot(separation));
   for (int i = 0; i < 3; ++i) rows.addAngular(Vec3::Unit(i), phi[i]);
-  return rows;
 }
 
 }  // namespace
@@ -119,8 +118,10 @@ void solvePrismaticJoint(PrismaticJoint& j, BodyState& a, BodyState& b, double h
   const double alpha_tilde = j.compliance / (h * h);
   const auto block = [&](const joint_rows::ClampedRow* clamped) {
     const Vec3 r_a = a.q * j.anchor_a, r_b = b.q * j.anchor_b;
-    joint_rows::solveRows(a, b, r_a, railArm(a, b, r_a), bilateralRows(j, a, b, r_a, r_b), alpha_tilde, clamped,
-                          j.impulse_linear, j.impulse_angular);
+    joint_rows::BilateralRows rows;
+    addBilateralRows(j, a, b, r_a, r_b, rows);
+    joint_rows::solveRows(a, b, r_a, railArm(a, b, r_a), rows, alpha_tilde, clamped, j.impulse_linear,
+                          j.impulse_angular);
   };
   const bool driven = j.drive.mode != PrismaticDrive::Mode::None;
   bool solved = false;
@@ -143,7 +144,8 @@ void solvePrismaticJoint(PrismaticJoint& j, BodyState& a, BodyState& b, double h
 
 void joint_rows::prismaticRowSet(PrismaticJoint& j, const BodyState& a, const BodyState& b, JointRowSet& out) {
   const Vec3 r_a = a.q * j.anchor_a, r_b = b.q * j.anchor_b;
-  out.start(r_a, railArm(a, b, r_a), bilateralRows(j, a, b, r_a, r_b));
+  out.start(r_a, railArm(a, b, r_a));
+  addBilateralRows(j, a, b, r_a, r_b, out.bilateral);
   Vec6 dir = Vec6::Zero();
   dir.head<3>() = -(b.q * j.axis_b);
   addCoordinateRows(j.slide, j.limit, j.drive.mode != PrismaticDrive::Mode::None, false,

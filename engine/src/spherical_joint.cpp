@@ -98,9 +98,8 @@ void solveSphericalJoint(SphericalJoint& j, BodyState& a, BodyState& b, double h
 
 void joint_rows::sphericalRowSet(SphericalJoint& j, const BodyState& a, const BodyState& b, JointRowSet& out) {
   const Vec3 r_a = a.q * j.frame.anchor_a, r_b = b.q * j.frame.anchor_b;
-  BilateralRows point;
-  point.addPoint((b.x + r_b) - (a.x + r_a));
-  out.start(r_a, r_b, point);
+  out.start(r_a, r_b);
+  out.bilateral.addPoint((b.x + r_b) - (a.x + r_a));
   const Vec3 u_a = a.q * j.frame.axis_a, u_b = b.q * j.frame.axis_b;
   if (j.swing_limit.enabled) {
     // As in solveSphericalJoint; with the axes aligned the row has no

@@ -256,6 +256,7 @@ class DirectSolver {
     std::vector<Vec3> arm, pos;
     std::vector<int> entry;
   } run_;
+  joint_rows::JointRowSet joint_set_;  // evaluateJoint's, joint after joint
   std::vector<Row> rows_;
   std::vector<Entry> entries_;
   std::vector<Entry> start_;      // entries_ at the substep's start (linearizeAtStart); empty: Projection::End

@@ -89,11 +89,14 @@ void DirectSolver::warmStartCaps() {
 void DirectSolver::solveActiveSet(double tolerance) {
   const int n = static_cast<int>(rows_.size());
   std::fill(full_.begin(), full_.end(), 0.0);
+  // J_e1 W J_e2^T = (lin_x wlin_x + ang_x wang_x) + (the same in y) + (in
+  // z): x and y as one pair of doubles.
+  using Pair2 = Eigen::Map<const Eigen::Vector2d>;
   for (const Pair& p : pairs_) {
     const Entry &e1 = entries_[p.e1], &e2 = entries_[p.e2];
-    full_[p.slot] += (e1.lin.x() * e2.wlin.x() + e1.ang.x() * e2.wang.x()) +
-                     (e1.lin.y() * e2.wlin.y() + e1.ang.y() * e2.wang.y()) +
-                     (e1.lin.z() * e2.wlin.z() + e1.ang.z() * e2.wang.z());
+    const Eigen::Vector2d xy = Pair2(e1.lin.data()).cwiseProduct(Pair2(e2.wlin.data())) +
+                               Pair2(e1.ang.data()).cwiseProduct(Pair2(e2.wang.data()));
+    full_[p.slot] += (xy.x() + xy.y()) + (e1.lin.z() * e2.wlin.z() + e1.ang.z() * e2.wang.z());
   }
   assembleHubs();
   std::vector<double>& A = ldlt_.values();

@@ -388,6 +388,7 @@ void DirectSolver::build(World& world) {
   linear_a_.assign(n, nullptr);
   angular_a_.assign(n, nullptr);
   full_.assign(ldlt_.values().size(), 0.0);
+  curvature_.assign(entries_.size(), Mat3::Zero());
   const std::size_t m = bodies_.size();
   frames_.assign(m, BodyFrame{});
   dx_.assign(m, Vec3::Zero());
@@ -602,6 +603,7 @@ void DirectSolver::linearizeAtStart(World& world, double h) {
     std::swap(b.q, b.q_prev);
   }
   start_ = entries_;
+  start_curvature_ = curvature_;
 }
 
 void DirectSolver::chooseStartRows() {
@@ -712,7 +714,8 @@ double DirectSolver::newtonResidual(bool bounded) {
   const bool warm = first_solve_ && last_lambda_.size() == lambda_.size();
   const std::vector<double>& stiff = warm ? last_lambda_ : lambda_;
   stiffened_ = false;
-  for (const Entry& e : entries_) {  // -J^T lambda and K, per body
+  for (std::size_t i = 0; i < entries_.size(); ++i) {  // -J^T lambda and K, per body
+    const Entry& e = entries_[i];
     const double l = lambda_[e.row];
     if (l != 0.0) {
       shift_x_[e.body] -= l * e.lin;
@@ -720,7 +723,7 @@ double DirectSolver::newtonResidual(bool bounded) {
     }
     if (stiff[e.row] == 0.0 || e.flat) continue;
     if (frames_[e.body].inv_axial > 0.0) axial_stiffness_[e.body] += stiff[e.row] * e.axial;
-    else stiffness_[e.body] += stiff[e.row] * e.curvature;
+    else stiffness_[e.body] += stiff[e.row] * curvature_[i];
   }
   // Per body: its g, which newtonStep() turns into dx0 = -W~ g in place,
   // and a bound on |dx0| for any W~ <= W (|K| only adds to M): m or rad,
@@ -930,6 +933,8 @@ bool DirectSolver::iterate(World& world, double h) {
       const Row& row = rows_[r];
       std::copy(start_.begin() + row.first_entry, start_.begin() + row.first_entry + row.entry_count,
                 entries_.begin() + row.first_entry);
+      std::copy(start_curvature_.begin() + row.first_entry,
+                start_curvature_.begin() + row.first_entry + row.entry_count, curvature_.begin() + row.first_entry);
     }
   }
   first_solve_ = first_iteration_;

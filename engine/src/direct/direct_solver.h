@@ -96,11 +96,9 @@ class DirectSolver {
     int row = 0;
     Vec3 lin = Vec3::Zero(), ang = Vec3::Zero();    // dC / d(position, rotation)
     Vec3 wlin = Vec3::Zero(), wang = Vec3::Zero();  // W times those
-    // d2C / d(rotation)^2 (m): sum over the row's points on the body of
-    // sym(g r^T) - (g . r) I, g the point's dC/dp and r its arm. A rotor
-    // turns about its axle u alone, so its entries keep u . curvature . u =
-    // (u . g)(u . r) - g . r instead (axial), the only part newtonStep reads.
-    Mat3 curvature = Mat3::Zero();
+    // A rotor turns about its axle u alone, so its entries keep u .
+    // curvature . u = (u . g)(u . r) - g . r (curvature_) instead, the only
+    // part newtonStep reads.
     double axial = 0.0;
     bool flat = false;  // curvature and axial are 0 (flatten): no stiffness to add
     // wlin and wang are W J for this gradient. evaluate() leaves them for
@@ -149,21 +147,21 @@ class DirectSolver {
   void evaluateBodies();
   /// The entry's W J from its gradient (and weighed set).
   void weigh(Entry& e) const;
-  /// Sets (or, `add`, adds to) the entry's curvature for a point at arm r
+  /// Sets (or, `add`, adds to) entry e's curvature for a point at arm r
   /// whose dC/dp is g: its axial part on a rotor, else the whole.
-  void curve(Entry& e, const Vec3& g, const Vec3& r, bool add) const;
+  void curve(int e, const Vec3& g, const Vec3& r, bool add);
   /// curve() for a path's end point p: at a rolling end the circle's centre
   /// turns with the body but its lever only off the axle (the solve turns
   /// the lever back by its turn about the axle, solvePoint), so the lever's
   /// curvature is taken off the axle, and a rotor keeps the centre's alone.
-  void curveEnd(Entry& e, const Vec3& g, const SolvePoint& p, bool add) const;
-  /// Sets the entry's curvature to 0 (a row whose gradient does not turn
+  void curveEnd(int e, const Vec3& g, const SolvePoint& p, bool add);
+  /// Sets entry e's curvature to 0 (a row whose gradient does not turn
   /// with the body: an angular joint row), once.
-  static void flatten(Entry& e) {
-    if (e.flat) return;
-    e.curvature.setZero();
-    e.axial = 0.0;
-    e.flat = true;
+  void flatten(int e) {
+    if (entries_[e].flat) return;
+    curvature_[e].setZero();
+    entries_[e].axial = 0.0;
+    entries_[e].flat = true;
   }
   /// Every free row meets its equation C + alpha~ lambda = 0 to within
   /// `tolerance` (m or rad), or is held at a bound it presses against.
@@ -259,7 +257,14 @@ class DirectSolver {
   joint_rows::JointRowSet joint_set_;  // evaluateJoint's, joint after joint
   std::vector<Row> rows_;
   std::vector<Entry> entries_;
+  // Per entry, d2C / d(rotation)^2 (m): the sum over the row's points on
+  // the body of sym(g r^T) - (g . r) I, g the point's dC/dp and r its arm
+  // (a rotor's: Entry::axial). Beside the entries, not in them: the loops
+  // over entries (the assembly, the motion) read 120 bytes an entry, not
+  // 192, and a rotor's entry never reads it.
+  std::vector<Mat3> curvature_;
   std::vector<Entry> start_;      // entries_ at the substep's start (linearizeAtStart); empty: Projection::End
+  std::vector<Mat3> start_curvature_;  // ... and their curvature_
   bool at_start_ = false;         // evaluating at the start poses
   bool first_iteration_ = false;  // the substep's first iterate() is next
   std::vector<char> use_start_;   // per row: moves along start_ (chooseStartRows)

@@ -64,31 +64,32 @@ const Mat3& DirectSolver::rotation(int slot) {
 // Inlined: called, its gradient went through the stack and was read back
 // a pair of doubles across two stores, which the store buffer could not
 // forward (the hand 1.5 % faster inlined, the same bits).
-EIGEN_STRONG_INLINE void DirectSolver::curve(Entry& e, const Vec3& g, const Vec3& r, bool add) const {
+EIGEN_STRONG_INLINE void DirectSolver::curve(int i, const Vec3& g, const Vec3& r, bool add) {
+  Entry& e = entries_[i];
   const BodyFrame& f = frames_[e.body];
   e.flat = false;
   if (f.inv_axial > 0.0) {
     const double k = f.axle.dot(g) * f.axle.dot(r) - g.dot(r);
     e.axial = add ? e.axial + k : k;
   } else if (add) {
-    e.curvature += curvatureAt(g, r);
+    curvature_[i] += curvatureAt(g, r);
   } else {
-    e.curvature = curvatureAt(g, r);
+    curvature_[i] = curvatureAt(g, r);
   }
 }
 
-void DirectSolver::curveEnd(Entry& e, const Vec3& g, const SolvePoint& p, bool add) const {
+void DirectSolver::curveEnd(int e, const Vec3& g, const SolvePoint& p, bool add) {
   if (p.axis.isZero()) return curve(e, g, p.arm, add);
   // C as evaluated: the centre c = arm - lever moves with the body; the
   // lever turns with it, then back about the axle a by the turn about a,
   // so a turn theta moves it by (P theta) x lever, P = I - a a^T, and the
   // pay-out is linear in theta. A rotor turns about a alone: no lever term.
   const Vec3 centre = p.arm - p.lever;
-  if (frames_[e.body].inv_axial > 0.0) return curve(e, g, centre, add);
+  if (frames_[entries_[e].body].inv_axial > 0.0) return curve(e, g, centre, add);
   const Mat3 P = Mat3::Identity() - p.axis * p.axis.transpose();
   const Mat3 k = curvatureAt(g, centre) + P * curvatureAt(g, p.lever) * P;
-  e.curvature = add ? Mat3(e.curvature + k) : k;
-  e.flat = false;
+  curvature_[e] = add ? Mat3(curvature_[e] + k) : k;
+  entries_[e].flat = false;
 }
 
 void DirectSolver::weigh(Entry& e) const {
@@ -153,7 +154,7 @@ void DirectSolver::evaluateSpan(const World& world, int r, const PathPoint& p0, 
   if (s0 >= 0) {
     entries_[e].lin = g0;
     entries_[e].ang = m0;
-    curveEnd(entries_[e], -u, e0, false);
+    curveEnd(e, -u, e0, false);
     ++e;
   }
   if (s1 >= 0) {
@@ -161,11 +162,11 @@ void DirectSolver::evaluateSpan(const World& world, int r, const PathPoint& p0, 
       if (slid0 || slid1) entries_[e - 1].lin += g1;
       else entries_[e - 1].lin.setZero();
       entries_[e - 1].ang += m1;
-      curveEnd(entries_[e - 1], u, e1, true);
+      curveEnd(e - 1, u, e1, true);
     } else {
       entries_[e].lin = g1;
       entries_[e].ang = m1;
-      curveEnd(entries_[e], u, e1, false);
+      curveEnd(e, u, e1, false);
     }
   }
   for (e = row.first_entry; e < row.first_entry + row.entry_count; ++e) entries_[e].weighed = false;
@@ -303,7 +304,7 @@ void DirectSolver::evaluateRun(const World& world, int r, const PathPoint* point
   for (int e = row.first_entry; e < row.first_entry + row.entry_count; ++e) {
     entries_[e].lin.setZero();
     entries_[e].ang.setZero();
-    entries_[e].curvature.setZero();
+    curvature_[e].setZero();
     entries_[e].axial = 0.0;
     entries_[e].flat = false;
   }
@@ -322,8 +323,8 @@ void DirectSolver::evaluateRun(const World& world, int r, const PathPoint* point
       entries_[entry[i]].lin += grad;
       const bool end = i == 0 || i + 1 == count;  // a rolling end pays out per radian (SolvePoint::moment)
       entries_[entry[i]].ang += end ? ends[i == 0 ? 0 : 1].moment(grad) : Vec3(arm[i].cross(grad));
-      if (end) curveEnd(entries_[entry[i]], grad, ends[i == 0 ? 0 : 1], true);
-      else curve(entries_[entry[i]], grad, arm[i], true);
+      if (end) curveEnd(entry[i], grad, ends[i == 0 ? 0 : 1], true);
+      else curve(entry[i], grad, arm[i], true);
     }
     prev_u = u;
   }
@@ -408,15 +409,15 @@ int DirectSolver::evaluateJoint(World& world, int r, double h) {
     if (a_moves) {
       entries_[e].lin = -sp;
       entries_[e].ang = sw - set.r_a.cross(sp);
-      if (angular) flatten(entries_[e]);
-      else curve(entries_[e], -sp, set.r_a, false);
+      if (angular) flatten(e);
+      else curve(e, -sp, set.r_a, false);
       ++e;
     }
     if (b_moves) {
       entries_[e].lin = sp;
       entries_[e].ang = set.r_b.cross(sp) - sw;
-      if (angular) flatten(entries_[e]);
-      else curve(entries_[e], sp, set.r_b, false);
+      if (angular) flatten(e);
+      else curve(e, sp, set.r_b, false);
     }
     for (e = rows_[r].first_entry; e < rows_[r].first_entry + rows_[r].entry_count; ++e) entries_[e].weighed = false;
     dir_[r] = Eigen::Map<const Vec6>(s);

@@ -96,8 +96,8 @@ class DirectSolver {
     int row = 0;
     Vec3 lin = Vec3::Zero(), ang = Vec3::Zero();    // dC / d(position, rotation)
     Vec3 wlin = Vec3::Zero(), wang = Vec3::Zero();  // W times those
-    // A rotor turns about its axle u alone, so its entries keep u .
-    // curvature . u = (u . g)(u . r) - g . r (curvature_) instead, the only
+    // A rotor turns about its axle u alone: its entries keep only u . K . u
+    // = (u . g)(u . r) - g . r of their curvature (curvature_), the only
     // part newtonStep reads.
     double axial = 0.0;
     bool flat = false;  // curvature and axial are 0 (flatten): no stiffness to add

@@ -656,7 +656,15 @@ bool DirectSolver::converged(double tolerance) const {
       if (violated(row, C_[r], tolerance)) return false;
       continue;
     }
-    if (state_[r] == State::Free && !met(row, C_[r], tolerance)) return false;
+    // A row fixed at a finite cap (a motor stalled at its most torque, a
+    // slipping brake) is met as a free one is: a new substep starts its
+    // lambda at 0, inside its bounds (a motor driving a rotor into its stop
+    // found everything met there and pushed nothing). An unlimited drive
+    // fixed against its limit (the limit wins) or a row let go at 0 stays
+    // as the solve fixed it.
+    const bool capped = state_[r] == State::Fixed && std::isfinite(lo_[r]) && std::isfinite(hi_[r]) &&
+                        lo_[r] != 0.0 && hi_[r] != 0.0;
+    if ((state_[r] == State::Free || capped) && !met(row, C_[r], tolerance)) return false;
   }
   return true;
 }

@@ -235,7 +235,9 @@ TEST(OutOfPlane, ATangentPointSlidingRoundItsGrooveOutOfPlaneMakesNoEnergy) {
       EXPECT_LT(rise, 1e-6 * fell);
       EXPECT_NEAR(s.cables->totalLength(0), total, 1e-9 * total);
       // Converged, what it loses is the integrator's own, as in the plane.
-      if (b.substeps == fine.substeps) EXPECT_LT(-run.end_J, 1e-4 * fell);
+      if (b.substeps == fine.substeps) {
+        EXPECT_LT(-run.end_J, 1e-4 * fell);
+      }
     }
 }
 

@@ -20,6 +20,18 @@ done
   -DCMAKE_BUILD_TYPE=Release > "$work/configure.log"
 "$cmake" --build "$work/build" > "$work/build.log"
 "$work/build/consumer"
+# Built for a wider x86-64 (AVX2 and FMA, as -march=native on most machines
+# is) against the library built for any: the same layouts of its types
+# (EIGEN_MAX_STATIC_ALIGN_BYTES, engine/CMakeLists.txt), the same answer.
+# Run only where the CPU has both.
+if grep -qw avx2 /proc/cpuinfo 2>/dev/null && grep -qw fma /proc/cpuinfo; then
+  "$cmake" -S "$here" -B "$work/build-wide" -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_CXX_COMPILER="$cxx" \
+    -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS="-mavx2 -mfma" > "$work/configure-wide.log"
+  "$cmake" --build "$work/build-wide" > "$work/build-wide.log"
+  "$work/build-wide/consumer"
+else
+  echo "run.sh: no AVX2 and FMA here: the consumer built for them is not run"
+fi
 # 0.x: another minor version is another API, and is refused.
 if "$cmake" -S "$here" -B "$work/build-0.3" -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_CXX_COMPILER="$cxx" \
      -DREEVE_WANTED=0.3 > "$work/configure-0.3.log" 2>&1; then

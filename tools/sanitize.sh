@@ -131,6 +131,10 @@ release_only=(
   # its contacts and joints through here, and the swing tests the start
   # projection's rows).
   'RopeSegments\.UnderTheStartProjection'
+  # Issue 30's thirty-third session: drives stalled against their limits,
+  # 252 cells (14 s here, 0.3 s in Release; Rotors.ADriveIntoALimitStops...,
+  # one of those cells, takes the fixed caps through here).
+  'Rotors\.ADriveIntoALimitPushesWithAllItHasAtEveryBudget'
 )
 long="^($(IFS='|'; echo "${release_only[*]}"))"
 all=$(ctest --test-dir build-sanitize -N | grep -o 'Total Tests: [0-9]*')

@@ -96,8 +96,8 @@ TEST(Rotors, ADriveIntoALimitPushesWithAllItHasAtEveryBudget) {
   // the limit takes the rest. The direct solve once found the rows met at a
   // new substep (the drive's lambda starts at 0, inside its bounds) and the
   // drive pushed nothing, or kept the push that took it to its target with
-  // the limit away (2.7 N m at one substep a frame): 204 of these cells
-  // read 0 or 2.7, the test above's being one that rounding passed.
+  // the limit away (2.7 N m at one substep a frame): 64 of these checks
+  // failed so, the test above's cell being one that rounding passed.
   // Gauss-Seidel at one iteration a substep is left out: its drive row,
   // visited once before the limit moves the wheel back, keeps that push.
   struct Budget {
@@ -141,8 +141,8 @@ TEST(Rotors, ADriveIntoALimitPushesWithAllItHasAtEveryBudget) {
               effort = world.hingeDriveTorque(id);
               at = world.hingeAngle(id);
             }
-            // Gauss-Seidel's turns are first order (rotateBy), the last
-            // visit's 2.4e-7 rad short of a limit at 1 x 2.
+            // Gauss-Seidel's turns are first order (rotateBy): the wheel
+            // ends 2.4e-7 rad past its limit at 1 x 2.
             EXPECT_NEAR(at, std::copysign(limit, speed), method == SolverKind::Direct ? 1e-9 : 1e-6);
             EXPECT_NEAR(effort, std::copysign(5.0, speed), 1e-9);
           }

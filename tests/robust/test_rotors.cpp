@@ -90,36 +90,50 @@ TEST(Rotors, ADriveIntoALimitStopsThereAndPushesWithAllItHas) {
 }
 
 TEST(Rotors, ADriveIntoALimitPushesWithAllItHasAtEveryBudget) {
-  // A velocity drive of at most 5 N m (or N) turning a wheel into a limit
-  // of its hinge, or sliding the same body along a rail into a limit of its
-  // slide, either way round: once stalled there it pushes with all 5 and
-  // the limit takes the rest. The direct solve once found the rows met at a
-  // new substep (the drive's lambda starts at 0, inside its bounds) and the
-  // drive pushed nothing, or kept the push that took it to its target with
-  // the limit away (2.7 N m at one substep a frame): 64 of these checks
-  // failed so, the test above's cell being one that rounding passed.
-  // Gauss-Seidel at one iteration a substep is left out: its drive row,
-  // visited once before the limit moves the wheel back, keeps that push.
+  // A velocity drive of at most `cap` N m (or N) turning a wheel into a
+  // limit of its hinge, or sliding the same body along a rail into a limit
+  // of its slide, either way round: once stalled there it pushes with all
+  // of its cap and the limit takes the rest. The direct solve once found
+  // the rows met at a new substep (the drive's lambda starts at 0, inside
+  // its bounds) and the drive pushed nothing, or kept the push that took it
+  // to its target with the limit away (2.7 of 5 N m at one substep a
+  // frame): 64 of the 1 kg checks failed so, the test above's cell being
+  // one that rounding passed. The direct solver again with a wheel of 1 mg
+  // and of a tonne, and a cap of 5 kN m. Gauss-Seidel takes the 1 kg wheel
+  // from two iterations a substep: each visit of its drive row adds only
+  // what the row's error asks (I w / h at the first), so at one iteration,
+  // or on a wheel light against its cap, it stalls short of the cap.
   struct Budget {
     int substeps, iterations;
   };
+  struct Case {
+    SolverKind method;
+    double mass_kg, cap;
+  };
   const Budget budgets[] = {{1, 1}, {1, 2}, {4, 2}, {10, 10}};
-  for (const SolverKind method : kBoth)
+  const Case cases[] = {{SolverKind::GaussSeidel, 1.0, 5.0}, {SolverKind::Direct, 1.0, 5.0},
+                        {SolverKind::Direct, 1e-6, 5.0}, {SolverKind::Direct, 1e-6, 5e3},
+                        {SolverKind::Direct, 1e3, 5e3}};
+  for (const Case& c : cases)
     for (const Budget& b : budgets) {
-      if (method == SolverKind::GaussSeidel && b.iterations == 1) continue;
+      if (c.method == SolverKind::GaussSeidel && b.iterations == 1) continue;
       for (const bool slider : {false, true})
         for (const double limit : {0.3, 0.5, 1.0})
           for (const double speed : {1.0, 2.0, 5.0, -1.0, -2.0, -5.0}) {
-            SCOPED_TRACE(std::string(solverMethodName(method)) + " " + std::to_string(b.substeps) + " x " +
-                         std::to_string(b.iterations) + (slider ? ", slider" : ", hinge") + ", limit " +
+            SCOPED_TRACE(std::string(solverMethodName(c.method)) + " " + std::to_string(b.substeps) + " x " +
+                         std::to_string(b.iterations) + (slider ? ", slider" : ", hinge") + ", " +
+                         std::to_string(c.mass_kg) + " kg, cap " + std::to_string(c.cap) + ", limit " +
                          std::to_string(limit) + ", speed " + std::to_string(speed));
             SolverSettings settings;
-            settings.solver = method;
+            settings.solver = c.method;
             settings.substeps = b.substeps;
             settings.iterations = b.iterations;
             settings.gravity.setZero();
             World world(settings);
-            const BodyId body = addWheel(world);
+            BodyDef def;
+            def.shape = Shape::cylinder(0.3, 0.05);
+            def.mass = c.mass_kg;
+            const BodyId body = world.addBody(def);
             double effort = 0.0, at = 0.0;
             if (slider) {
               PrismaticDef rail;
@@ -127,7 +141,7 @@ TEST(Rotors, ADriveIntoALimitPushesWithAllItHasAtEveryBudget) {
               rail.limit = {true, -limit, limit};
               rail.drive.mode = PrismaticDrive::Mode::Velocity;
               rail.drive.target = speed;
-              rail.drive.max_force = 5.0;
+              rail.drive.max_force = c.cap;
               const PrismaticId id = world.addPrismatic(rail);
               for (int f = 0; f < 90; ++f) world.step(1.0 / 60.0);
               effort = world.prismaticDriveForce(id);
@@ -135,16 +149,22 @@ TEST(Rotors, ADriveIntoALimitPushesWithAllItHasAtEveryBudget) {
             } else {
               HingeDef hinge(body, kWorldBody, Vec3::Zero(), Vec3::UnitZ());
               hinge.limit = {true, -limit, limit};
-              hinge.drive = {HingeDrive::Mode::Velocity, speed, 5.0};
+              hinge.drive = {HingeDrive::Mode::Velocity, speed, c.cap};
               const HingeId id = world.addHinge(hinge);
               for (int f = 0; f < 90; ++f) world.step(1.0 / 60.0);
               effort = world.hingeDriveTorque(id);
               at = world.hingeAngle(id);
             }
-            // Gauss-Seidel's turns are first order (rotateBy): the wheel
-            // ends 2.4e-7 rad past its limit at 1 x 2.
-            EXPECT_NEAR(at, std::copysign(limit, speed), method == SolverKind::Direct ? 1e-9 : 1e-6);
-            EXPECT_NEAR(effort, std::copysign(5.0, speed), 1e-9);
+            // The drive's push over a substep (m or rad; I = m r^2 / 2) and
+            // the limit's push back cancel: at one iteration the stop is met
+            // to their rounding, 1e-15 of it (3.7e-9 rad for the 1 mg wheel
+            // under 5 kN m). Gauss-Seidel's turns are first order (rotateBy):
+            // the wheel ends 2.4e-7 rad past its limit at 1 x 2.
+            const double h = 1.0 / (60.0 * b.substeps);
+            const double push = c.cap * h * h / (slider ? c.mass_kg : 0.5 * c.mass_kg * 0.3 * 0.3);
+            EXPECT_NEAR(at, std::copysign(limit, speed),
+                        c.method == SolverKind::Direct ? 1e-9 + 1e-15 * push : 1e-6);
+            EXPECT_NEAR(effort, std::copysign(c.cap, speed), 1e-12 * c.cap);
           }
     }
 }

@@ -360,7 +360,7 @@ TEST(Contacts, ThinRodRestsOnAWheelWithoutSpinningOrSlidingAlongTheAxle) {
         EXPECT_LT(spin, 1e-3);
         EXPECT_LT(off_axle, 1e-5);
         // On the static wheel it stays where it was laid, but for rocking
-        // about its balance point (test_rocking_rod.cpp): at 20 deg its
+        // about its balance point (test_friction_bounds.cpp): at 20 deg its
         // centre swings up to 0.3 mm from where it started.
         if (!hinged) {
           EXPECT_LT((world.body(rod).x - 0.31 * radial).norm(), 2e-4);

@@ -71,6 +71,27 @@ void freshAnchor(ContactManifold& m, const BodyState& a, const BodyState& b) {
   m.anchor_kept = false;
 }
 
+/// The couple (kg m^2; on b, its opposite on a) by which
+/// a patch with area keeps a and b from tilting against each other under
+/// a tangential impulse P at arms r_a, r_b: its pressure shifts toward one
+/// side, a couple in the patch's plane (u, v). With K = I_a^-1 + I_b^-1 and
+/// tau = I_b^-1 (r_b x P) + I_a^-1 (r_a x P) the relative turn, the couple
+/// M = m_u u + m_v v solves [u v]^T (K M + tau) = 0: b then turns
+/// relative to a about n alone.
+Vec3 patchCouple(const Mat3& inv_inertia_a, const Mat3& inv_inertia_b, const Vec3& r_a, const Vec3& r_b,
+                 const Vec3& P, const Vec3& u, const Vec3& v) {
+  const Mat3 K = inv_inertia_a + inv_inertia_b;
+  const Vec3 tau = inv_inertia_b * r_b.cross(P) + inv_inertia_a * r_a.cross(P);
+  const Vec3 Ku = K * u, Kv = K * v;
+  Eigen::Matrix2d A;
+  A << u.dot(Ku), u.dot(Kv), v.dot(Ku), v.dot(Kv);
+  const Vec2 rhs(-u.dot(tau), -v.dot(tau));
+  const double det = A.determinant();
+  if (!(std::abs(det) > 0.0)) return Vec3::Zero();
+  const Vec2 m = A.inverse() * rhs;
+  return m.x() * u + m.y() * v;
+}
+
 }  // namespace
 
 bool solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, BodyState& b) {
@@ -107,6 +128,7 @@ bool solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, 
     if (largest <= kSettled) break;
   }
   const double lambda_n = pressed();
+  m.pressure = lambda_n;
   if (lambda_n <= 0.0) {  // not pressed: nothing holds the anchor
     m.stuck = false;
     return changed;
@@ -145,13 +167,45 @@ bool solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, 
   // and weighs the bound against the pressure that leaves. (Against the
   // pressure before, a thin rod rocking on a wheel let go with its
   // friction 0.494 of the pressure, 1.3 % short of what holding would have
-  // left: test_rocking_rod.cpp.) A patch of many points takes the moment
+  // left: test_friction_bounds.cpp.) A patch of many points takes the moment
   // by moving pressure between its points, which rows that only push
   // would count twice: its bound stays the pressure before (DESIGN,
   // "Thirty-fourth session").
-  bool applied = false;
-  const auto hold = [&](const Vec3& local_a, const Vec3& local_b, const Quat& anchor_turn) {
-    applied = false;
+  //
+  // `level`: on a patch with area between a body and one that does not
+  // move (the ground, a fixed ramp), the hold moves the body as the
+  // patch's pressure lets it move, without tilting (patchCouple): the
+  // friction it asks is then what stops it. (Between two moving bodies it
+  // stays free to tilt: DESIGN, "Thirty-fourth session".) Free to
+  // tilt, a hold at the base of a unit cube asked 2.5 x less (1/m + r^2/I
+  // against 1/m), the next iteration's normal rows took the tilt back, and
+  // a cube held on a ramp up to 29 degrees where mu_s = 0.5 holds it to
+  // 26.6 (test_friction_bounds.cpp). Where the couple would put the pressure's
+  // centre off the patch, the bodies tip or roll instead: the hold is
+  // redone free.
+  const bool level_pair = m.patch_has_area && (!a.takesImpulses() || !b.takesImpulses());
+  const Vec3 u = n.unitOrthogonal(), v = n.cross(u);
+  const Mat3 inv_inertia_a = level_pair ? inverseInertiaWorld(a) : Mat3::Zero();
+  const Mat3 inv_inertia_b = level_pair ? inverseInertiaWorld(b) : Mat3::Zero();
+  // Whether the patch's pressure `pressure` (kg m) can put up the couple
+  // `couple` (on b): its centre, moved by n x couple / pressure from the
+  // patch centre, stays on the patch (the hull of its points along n).
+  const auto pressureCentreOnPatch = [&](const Vec3& couple, double pressure) {
+    thread_local std::vector<Vec2> points, hull;
+    points.clear();
+    points.reserve(scratchPoints(m.count));
+    for (int i = m.first; i < end; ++i) {
+      const Vec3 p = b.toWorld(contacts[i].local_b);
+      points.emplace_back(u.dot(p), v.dot(p));
+    }
+    convexHull(points, hull);
+    const Vec3 centre = b.toWorld(m.centre_b) + n.cross(couple) / pressure;
+    return distanceToHull(hull, Vec2(u.dot(centre), v.dot(centre))) == 0.0;
+  };
+  bool applied = false, tipped = false;
+  const auto hold = [&](const Vec3& local_a, const Vec3& local_b, const Quat& anchor_turn, bool level,
+                        double kept_pressure) {
+    applied = tipped = false;
     for (const bool pressing : {false, true}) {
       if (pressing && m.count != 1) break;
       for (int sweep = 0; sweep < kManifoldSweeps; ++sweep) {
@@ -160,7 +214,20 @@ bool solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, 
         const Vec3 dp = (b.x + r_b) - (a.x + r_a);
         const Vec3 dp_t = dp - n * n.dot(dp);
         const double len = dp_t.norm();
-        if (len > kSettled) {
+        if (len > kSettled && level) {
+          // w: how far a unit impulse along t, with its couple, moves the
+          // anchor points apart along t.
+          const Vec3 t = dp_t / len;
+          const Vec3 couple = patchCouple(inv_inertia_a, inv_inertia_b, r_a, r_b, t, u, v);
+          const Vec3 turn_b = inv_inertia_b * (r_b.cross(t) + couple);
+          const Vec3 turn_a = -(inv_inertia_a * (r_a.cross(t) + couple));
+          const double w = a.inv_mass + b.inv_mass + t.dot(turn_b.cross(r_b) - turn_a.cross(r_a));
+          const double dl = w > 0.0 ? -len / w : 0.0;
+          m.friction_impulse += dl * t;
+          applyPositionalImpulse(a, b, r_a, r_b, dl * t);
+          applyAngularImpulse(a, b, dl * couple);
+          applied = true;
+        } else if (len > kSettled) {
           const Vec3 t = dp_t / len;
           const Vec3 P = positionalDeltaLambda(a, b, r_a, r_b, t, len, 0.0, 0.0) * t;
           m.friction_impulse += P;
@@ -179,8 +246,17 @@ bool solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, 
         applied |= pushed > 0.0;
         if (len <= kSettled && std::abs(turn) * radius <= kSettled && pushed <= kSettled) break;
       }
-      const double holding = pressing ? pressed() : lambda_n;
-      if (m.friction_impulse.norm() <= mu_s * holding && std::abs(m.twist_impulse) <= mu_s * holding * radius)
+      // A kept anchor's pressure is at least what it was at the end of
+      // the substep it comes from: an unconverged solve carries a stack's
+      // weight to its bottom late (its pressure dipped 10 % a few substeps
+      // after it was put, at 10 x 2, and a push at 0.9 mu_s slid it).
+      const double holding = std::max(pressing ? pressed() : lambda_n, level ? kept_pressure : 0.0);
+      const bool tips = level && !pressureCentreOnPatch(patchCouple(inv_inertia_a, inv_inertia_b, a.q * local_a,
+                                                                     b.q * local_b, m.friction_impulse, u, v),
+                                                         holding);
+      tipped |= tips;
+      if (!tips && m.friction_impulse.norm() <= mu_s * holding &&
+          std::abs(m.twist_impulse) <= mu_s * holding * radius)
         return true;
     }
     // Sliding or spinning: undone.
@@ -192,7 +268,15 @@ bool solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, 
     applied = false;
     return false;
   };
-  m.stuck = hold(m.anchor_a, m.anchor_b, m.anchor_turn);
+  const auto holdAnchor = [&](const Vec3& local_a, const Vec3& local_b, const Quat& anchor_turn,
+                              double kept_pressure) {
+    if (level_pair) {
+      if (hold(local_a, local_b, anchor_turn, true, kept_pressure)) return true;
+      if (!tipped) return false;  // it slides
+    }
+    return hold(local_a, local_b, anchor_turn, false, 0.0);
+  };
+  m.stuck = holdAnchor(m.anchor_a, m.anchor_b, m.anchor_turn, m.anchor_kept ? m.kept_pressure : 0.0);
   changed |= applied;
   if (m.stuck || !m.anchor_kept) return changed;
   // Pulling back what earlier substeps let slip passes the bound (in an
@@ -202,7 +286,7 @@ bool solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, 
   // holds the kept anchor.
   ContactManifold fresh = m;
   freshAnchor(fresh, a, b);
-  hold(fresh.anchor_a, fresh.anchor_b, fresh.anchor_turn);
+  holdAnchor(fresh.anchor_a, fresh.anchor_b, fresh.anchor_turn, 0.0);
   return changed || applied;
 }
 
@@ -229,6 +313,7 @@ void anchorFriction(ContactManifold& m, const Contact* contacts, const ContactMa
       m.anchor_b = on_b;
       m.anchor_turn = same ? previous->anchor_turn : previous->anchor_turn.conjugate();
       m.anchor_kept = true;
+      m.kept_pressure = previous->pressure;
       return;
     }
   }
@@ -277,6 +362,7 @@ void describePatch(ContactManifold& m, const Contact* contacts, const BodyState&
   m.centre_a = a.toLocal(centre);
   m.centre_b = b.toLocal(centre);
   m.patch_radius = std::max(2.0 / 3.0 * std::sqrt(std::abs(area) / std::numbers::pi), 0.25 * spread);
+  m.patch_has_area = !flat && hull.size() >= 3;
 }
 
 namespace {

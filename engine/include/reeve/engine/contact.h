@@ -45,12 +45,21 @@ struct ContactManifold {
   /// a and on b (m), and the lever arm of twisting friction (m).
   Vec3 centre_a = Vec3::Zero(), centre_b = Vec3::Zero();
   double patch_radius = 0.0;
+  /// The patch has area (three or more points not on one line): its
+  /// pressure can shift from point to point and hold the bodies from
+  /// tilting against each other.
+  bool patch_has_area = false;
   /// Static friction's anchor (anchorFriction): body-local points of a and
   /// b (m) that lay together along the patch when it began to stick, and
   /// b's orientation relative to a then (q_a^-1 q_b).
   Vec3 anchor_a = Vec3::Zero(), anchor_b = Vec3::Zero();
   Quat anchor_turn = Quat::Identity();
   bool anchor_kept = false;  // from an earlier substep, not this one's start
+  /// lambda_n of the whole manifold (kg m) at its last visit, before
+  /// static friction; `kept_pressure`: with a kept anchor, the `pressure`
+  /// of the earlier substep's manifold it came from (a floor under the
+  /// bound of a level hold, solveContactPositions).
+  double pressure = 0.0, kept_pressure = 0.0;
   /// Static friction held the anchor at the manifold's last visit
   /// (solveContactPositions): the next substep may keep it.
   bool stuck = false;

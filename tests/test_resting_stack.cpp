@@ -86,9 +86,10 @@ TEST(RestingStack, ThreeBoxesStayWhereTheyWerePutAtTheFourBudgets) {
 TEST(RestingStack, PushedBelowStaticFrictionItStaysAboveItSlidesAtTheClosedFormRate) {
   // A sideways force F on the bottom box of three 1 kg boxes, mu_s 0.5,
   // mu_d 0.3, for 3 s. At 0.9 mu_s 3 m g they stay: the bottom box moves
-  // 0.09 mm at 10 x 2 while the stack settles in its first frames, then
-  // stops (before, it crept on: 2 cm in 3 s and moving 5 mm/s), 0.5 um at
-  // 32 x 32 (44 um). At 1.2 mu_s 3 m g all three slide together at a =
+  // 43 um at 10 x 2 while the stack settles in its first frames, then
+  // stops (before anchors were kept, it crept on: 2 cm in 3 s and moving
+  // 5 mm/s; 0.09 mm before the ground's hold moved it level), 5 nm at 32 x
+  // 32 (0.5 um, 44 um before). At 1.2 mu_s 3 m g all three slide together at a =
   // F / 3m - mu_d g = 2.943 m/s^2 (the upper boxes need a < mu_s g to ride
   // along), measured to 1e-5.
   const ContactMaterial m = material(0.5, 0.3, 0.0);

@@ -171,16 +171,17 @@ TEST(RockingRod, LaidAtItsBalancePointItHoldsUpToTheFrictionAngle) {
   }
 }
 
-/// A box of half extents `half` (m), 1 kg, put on the ground tilted by
+/// A box of half extents `half` (m) and `mass` (kg), put on the ground tilted by
 /// `theta` (rad), from rest for 2 s: how far it moved downhill (m), and its
 /// acceleration from 0.5 s on (m/s^2).
-Slide boxOnRamp(const Vec3& half, double theta, int substeps, int iterations, SolverKind solver) {
+Slide boxOnRamp(const Vec3& half, double theta, int substeps, int iterations, SolverKind solver,
+                double mass = 1.0) {
   World world = makeWorld(substeps, iterations);
   world.settings().solver = solver;
   const Vec3 n(-std::sin(theta), std::cos(theta), 0.0), downhill(-std::cos(theta), -std::sin(theta), 0.0);
   world.setGround(ground(n, material(0.5, 0.3, 0.0)));
   const Vec3 start = half.y() * n;
-  const BodyId box = add(world, Shape::box(half), 1.0, start, material(0.5, 0.3, 0.0), true,
+  const BodyId box = add(world, Shape::box(half), mass, start, material(0.5, 0.3, 0.0), true,
                          Quat(Eigen::AngleAxisd(theta, Vec3::UnitZ())));
   return measureSlide(world, box, start, downhill, 2.0);
 }
@@ -217,6 +218,23 @@ TEST(BoxOnARamp, StaysBelowTheFrictionAngleAndSlidesAtTheClosedFormRateAbove) {
           EXPECT_NEAR(s.acceleration_m_per_s2, expected, 1e-3 * expected) << degrees << " deg";
         }
       }
+}
+
+TEST(BoxOnARamp, ItsFrictionDoesNotDependOnItsMass) {
+  // Friction and weight both scale with the mass: a microgram cube and a
+  // thousand-tonne one (10 MN on the ramp) do what the kilogram does, to
+  // rounding (measured: the same digits).
+  const Vec3 half(0.1, 0.1, 0.1);
+  for (const SolverKind solver : {SolverKind::Direct, SolverKind::GaussSeidel})
+    for (const double degrees : {26.3, 27.5}) {
+      const Slide one = boxOnRamp(half, degrees * kDeg, 10, 2, solver);
+      for (const double mass : {1e-9, 1e6}) {
+        const Slide s = boxOnRamp(half, degrees * kDeg, 10, 2, solver, mass);
+        EXPECT_NEAR(s.displacement_m, one.displacement_m, 1e-9 + 1e-9 * std::abs(one.displacement_m))
+            << mass << " kg, " << degrees << " deg";
+        EXPECT_NEAR(s.acceleration_m_per_s2, one.acceleration_m_per_s2, 1e-9) << mass << " kg, " << degrees << " deg";
+      }
+    }
 }
 
 }  // namespace

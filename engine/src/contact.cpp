@@ -172,18 +172,21 @@ bool solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, 
   // would count twice: its bound stays the pressure before (DESIGN,
   // "Thirty-fourth session").
   //
-  // `level`: on a patch with area between a body and one that does not
-  // move (the ground, a fixed ramp), the hold moves the body as the
-  // patch's pressure lets it move, without tilting (patchCouple): the
-  // friction it asks is then what stops it. Free to tilt, a hold at the
-  // base of a unit cube asked 2.5 x less (1/m + r^2/I against 1/m), the
-  // next iteration's normal rows took the tilt back, and a cube held on a
-  // ramp up to 29 degrees where mu_s = 0.5 holds it to 26.6
-  // (test_friction_bounds.cpp). Where the couple would put the pressure's
-  // centre off the patch, the body tips or rolls instead: the hold is
-  // redone free. Between two moving bodies it stays free to tilt (DESIGN,
-  // "Thirty-fourth session").
-  const bool level_pair = m.patch_has_area && (!a.takesImpulses() || !b.takesImpulses());
+  // `level`: on a patch with area between a body and one that
+  // constraints do not move (the ground, a fixed ramp, a kinematic slab),
+  // the hold moves the body as the patch's pressure lets it move, without
+  // tilting (patchCouple): the friction it asks is then what stops it.
+  // Free to tilt, a hold at the base of a unit cube asked 2.5 x less (1/m +
+  // r^2/I against 1/m), the next iteration's normal rows took the tilt
+  // back, and a cube held on a ramp up to 29 degrees where mu_s = 0.5
+  // holds it to 26.6 (test_friction_bounds.cpp). Where the couple would
+  // put the pressure's centre off the patch, the body tips or rolls
+  // instead: the hold is redone free. Between two moving bodies it stays
+  // free to tilt (DESIGN, "Thirty-fourth session"). A kinematic body takes
+  // impulses (its work is booked) but moves as its schedule says, as the
+  // ground does: counted as moving, it held a box up to a degree past the
+  // friction angle (DESIGN, "Thirty-fifth session").
+  const bool level_pair = m.patch_has_area && (!a.moves() || !b.moves());
   const Vec3 u = n.unitOrthogonal(), v = n.cross(u);
   const Mat3 inv_inertia_a = level_pair ? inverseInertiaWorld(a) : Mat3::Zero();
   const Mat3 inv_inertia_b = level_pair ? inverseInertiaWorld(b) : Mat3::Zero();

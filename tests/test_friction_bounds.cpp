@@ -245,14 +245,14 @@ TEST(BoxOnARamp, StaysBelowTheFrictionAngleAndSlidesAtTheClosedFormRateAbove) {
         }
 }
 
-/// The low wide box on a kinematic slab tilting at 0.02 rad/s from 24
-/// degrees (about its long axis, through the box's centre), up to 28
-/// degrees: the tilt (deg) at which it has slid 1 mm along the slab, and how
-/// far it slid by 28 degrees (m).
+/// A box of half extents `half` (m) on a kinematic slab tilting at 0.02
+/// rad/s from 24 degrees (about its long axis, through the box's centre),
+/// up to 28 degrees: the tilt (deg) at which it has slid 1 mm along the
+/// slab, and how far it slid by 28 degrees (m).
 struct Onset {
   double degrees, slid_m;
 };
-Onset wideBoxOnATiltingSlab(int substeps, int iterations, SolverKind solver) {
+Onset boxOnATiltingSlab(const Vec3& half, int substeps, int iterations, SolverKind solver) {
   constexpr double kTurnRate = 0.02, kStart = 24.0 * kDeg, kEnd = 28.0 * kDeg;  // rad/s, rad
   World world = makeWorld(substeps, iterations);
   world.settings().solver = solver;
@@ -263,7 +263,7 @@ Onset wideBoxOnATiltingSlab(int substeps, int iterations, SolverKind solver) {
   slab.collides = true;
   slab.motion = {MotionKeyframe{0.0, Vec3::Zero(), Vec3(0.0, 0.0, kTurnRate)}};
   const BodyId ramp = world.addBody(slab);
-  const BodyId box = add(world, Shape::box(Vec3(0.3, 0.1, 0.2)), 1.0, slab.orientation * Vec3(0.0, 0.2, 0.0),
+  const BodyId box = add(world, Shape::box(half), 1.0, slab.orientation * Vec3(0.0, 0.1 + half.y(), 0.0),
                          material(0.5, 0.3, 0.0), true, slab.orientation);
   Onset onset{0.0, 0.0};
   const int frames = static_cast<int>(std::lround((kEnd - kStart) / kTurnRate / kFrame));
@@ -278,13 +278,20 @@ Onset wideBoxOnATiltingSlab(int substeps, int iterations, SolverKind solver) {
 }
 
 TEST(BoxOnARamp, OnATiltingKinematicSlabItLetsGoAtTheFrictionAngleAndSlidesAsMechanicsSays) {
-  // From the friction angle atan(mu_s) on, the box slides at g (sin - mu_d
+  // From the friction angle atan(mu_s) on, a box slides at g (sin - mu_d
   // cos) of the slab's tilt at each moment (the slab's turn, 0.02 rad/s,
   // adds 4e-4 of that at most): integrated here. Measured: it has slid 1 mm
-  // by 26.60-26.62 deg at every budget, and 1.43-1.48 m by 28 deg (0.3 to
-  // 2.5 % of the closed form, the most at one substep a frame). Before the
-  // hold kept a box level on a kinematic body, it let go at 26.7 to 27.6
-  // deg and had slid 0.14 to 0.17 m by 28 from 1 x 10 up (-90 %).
+  // by 26.58-26.62 deg, and by 28 deg 0.3 to 0.8 % short of the closed
+  // form from ten substeps a frame, 2.5 % (the wide box) and 5 % (the cube)
+  // past it at one, whose 1/60 s steps put the start up to a step early.
+  // Before, the hold kept a box level on the ground only: on a kinematic
+  // slab the wide box let go at 26.7 to 27.6 deg and had slid 0.14 to 0.17
+  // m by 28 (-90 %) from 1 x 10 up. The cube then let go on time but slid
+  // 12 to 21 % short: its hold gave way at the last of a substep's visits
+  // but not at the first, on alternate substeps, and dynamic friction
+  // braked it again on top of that hold (contact.cpp,
+  // solveContactVelocities). With one iteration a substep the cube still
+  // sticks (as on the ground above); those cells are left out.
   constexpr double kTurnRate = 0.02;
   const double onset = std::atan(0.5), end = 28.0 * kDeg;
   double x = 0.0, v = 0.0;  // downhill, from the friction angle on
@@ -296,15 +303,61 @@ TEST(BoxOnARamp, OnATiltingKinematicSlabItLetsGoAtTheFrictionAngleAndSlidesAsMec
     x += v * dt + 0.5 * a * dt * dt;
     v += a * dt;
   }
+  struct Box {
+    const char* name;
+    Vec3 half;
+  };
+  for (const Box& box : {Box{"cube", Vec3(0.1, 0.1, 0.1)}, Box{"wide box", Vec3(0.3, 0.1, 0.2)}})
+    for (const SolverKind solver : {SolverKind::Direct, SolverKind::GaussSeidel})
+      for (const auto& [substeps, iterations] : {std::pair{1, 1}, {1, 10}, {10, 2}, {32, 32}, {100, 1}}) {
+        if (iterations == 1 && box.half.x() == box.half.y()) continue;
+        SCOPED_TRACE(testing::Message() << box.name << ", " << (solver == SolverKind::Direct ? "direct " : "gauss-seidel ")
+                                        << substeps << " x " << iterations);
+        const Onset o = boxOnATiltingSlab(box.half, substeps, iterations, solver);
+        EXPECT_GT(o.degrees, onset / kDeg);
+        EXPECT_LT(o.degrees, 26.7);
+        EXPECT_NEAR(o.slid_m, x, (substeps == 1 ? 0.06 : 0.02) * x);
+      }
+}
+
+TEST(StackOnARamp, TwoBoxesStayTogetherBelowTheFrictionAngleAndSlideTogetherAboveIt) {
+  // Two flat boxes (0.6 x 0.1 x 0.4 m, 1 kg each), one on the other, mu_s
+  // 0.5 and mu_d 0.3 everywhere. Below atan(mu_s) both hold. Above it the
+  // pair slides at g (sin - mu_d cos), and the top box stays on the bottom
+  // one: it needs mu_d of its pressure to follow, less than mu_s. Before
+  // the hold's friction counted toward the dynamic friction of a patch
+  // that let go later in its substep (solveContactVelocities), the bottom
+  // box stayed stuck at 27.5 and 29 deg and the top one slid off it (2.6
+  // to 2.9 m in 2 s). Measured: at rest to 8e-6 m; sliding at the closed form to
+  // 1e-4, the top box within 0.4 mm of where it began on the bottom one.
+  // Not checked, as they are not right yet: at 10 x 2 they creep 11 mm in
+  // 2 s at 26.3 deg and stick at 26.9; with one iteration a substep the
+  // top box slides off below 29 deg (DESIGN, "Thirty-fifth session").
   for (const SolverKind solver : {SolverKind::Direct, SolverKind::GaussSeidel})
-    for (const auto& [substeps, iterations] : {std::pair{1, 1}, {1, 10}, {10, 2}, {32, 32}, {100, 1}}) {
-      SCOPED_TRACE(testing::Message() << (solver == SolverKind::Direct ? "direct " : "gauss-seidel ") << substeps
-                                      << " x " << iterations);
-      const Onset o = wideBoxOnATiltingSlab(substeps, iterations, solver);
-      EXPECT_GT(o.degrees, onset / kDeg);
-      EXPECT_LT(o.degrees, 26.7);
-      EXPECT_NEAR(o.slid_m, x, 0.03 * x);
-    }
+    for (const auto& [substeps, iterations] : {std::pair{1, 10}, {10, 2}, {32, 32}})
+      for (const double degrees : {25.0, 27.5, 29.0}) {
+        SCOPED_TRACE(testing::Message() << (solver == SolverKind::Direct ? "direct " : "gauss-seidel ") << substeps
+                                        << " x " << iterations << ", " << degrees << " deg");
+        const double theta = degrees * kDeg;
+        World world = makeWorld(substeps, iterations);
+        world.settings().solver = solver;
+        const Vec3 n(-std::sin(theta), std::cos(theta), 0.0), downhill(-std::cos(theta), -std::sin(theta), 0.0);
+        world.setGround(ground(n, material(0.5, 0.3, 0.0)));
+        const Vec3 half(0.3, 0.05, 0.2);
+        const Quat tilt(Eigen::AngleAxisd(theta, Vec3::UnitZ()));
+        const BodyId bottom = add(world, Shape::box(half), 1.0, 0.05 * n, material(0.5, 0.3, 0.0), true, tilt);
+        const BodyId top = add(world, Shape::box(half), 1.0, 0.15 * n, material(0.5, 0.3, 0.0), true, tilt);
+        const Slide s = measureSlide(world, bottom, 0.05 * n, downhill, 2.0);
+        const double apart = (world.body(top).x - world.body(bottom).x - 0.1 * n).dot(downhill);
+        if (std::tan(theta) < 0.5) {
+          EXPECT_LT(std::abs(s.displacement_m), 1e-4);
+          EXPECT_LT(std::abs(apart), 1e-4);
+        } else {
+          const double expected = kG * (std::sin(theta) - 0.3 * std::cos(theta));
+          EXPECT_NEAR(s.acceleration_m_per_s2, expected, 1e-3 * expected);
+          EXPECT_LT(std::abs(apart), 1e-3);
+        }
+      }
 }
 
 TEST(BoxOnARamp, ItsFrictionDoesNotDependOnItsMass) {

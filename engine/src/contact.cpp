@@ -398,13 +398,24 @@ void solveContactVelocities(const ContactManifold& m, const Contact* contacts, B
   double lambda_n = 0.0;
   for (int i = m.first; i < end; ++i) lambda_n += contacts[i].lambda_n;
   if (lambda_n <= 0.0) return;
+  // The velocity of a body's point at world lever r. A kinematic body's is
+  // the chord its material point travelled over the substep, as a dynamic
+  // body's velocity is read from its poses: its own velocity at the end
+  // pose (a turntable's tangent there) is off a held point's chord by
+  // omega^2 |r| h / 2 toward the axle, which dynamic friction braked on
+  // top of the static friction (a box on a turntable held to 26-46 % past
+  // mu_s m g; DESIGN, "Thirty-fifth session").
+  const auto pointVelocity = [&](const BodyState& s, const Vec3& r) -> Vec3 {
+    if (s.kinematic) return ((s.x + r) - (s.x_prev + s.q_prev * (s.q.conjugate() * r))) / h;
+    return s.v + s.omega.cross(r);
+  };
   for (int i = m.first; i < end; ++i) {
     // Restitution (eq. 34), per pressed point; e = 0 for slow contacts.
     const Contact& c = contacts[i];
     if (c.lambda_n <= 0.0) continue;
     const Vec3 r_a = a.q * c.local_a, r_b = b.q * c.local_b;
     const Vec3& n = c.normal;
-    const Vec3 v = (b.v + b.omega.cross(r_b)) - (a.v + a.omega.cross(r_a));
+    const Vec3 v = pointVelocity(b, r_b) - pointVelocity(a, r_a);
     const double e = std::abs(c.normal_speed_before) <= rest_speed ? 0.0 : c.restitution;
     const double dvn = -n.dot(v) + std::max(-e * c.normal_speed_before, 0.0);
     if (const double w = inverseMassAlong(a, b, r_a, r_b, n); w > 0.0 && dvn != 0.0)
@@ -422,7 +433,7 @@ void solveContactVelocities(const ContactManifold& m, const Contact* contacts, B
   const Contact& c = contacts[m.first];
   const bool slid_after_holding = !m.stuck && m.patch_has_area;
   const Vec3 r_a = a.q * m.centre_a, r_b = b.q * m.centre_b;
-  const Vec3 v = (b.v + b.omega.cross(r_b)) - (a.v + a.omega.cross(r_a));
+  const Vec3 v = pointVelocity(b, r_b) - pointVelocity(a, r_a);
   const Vec3 vt = v - c.normal * c.normal.dot(v);
   const double vt_len = vt.norm();
   if (vt_len >= 1e-15) {

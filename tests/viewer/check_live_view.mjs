@@ -45,6 +45,15 @@ const sceneFile = path.join(workdir, 'machine.json');
 // duration, and the shipped one ends at 1.4 s).
 const atwood = fs.readFileSync(path.join(scenesDir, 'atwood.json'), 'utf8').replace('"duration_s": 1.4', '"duration_s": 60');
 fs.writeFileSync(sceneFile, atwood);
+// A new scene text saved as most editors save, whole, by a rename: written
+// in place, a shipped scene was once read empty on a loaded machine (CI,
+// 2026-11-30: "machine.json:1:1: invalid JSON ... unexpected end of
+// input") and its error counted against it. (The server also drops an
+// error from a file that changed while it was read: view_server.cpp.)
+const saveScene = (text) => {
+  fs.writeFileSync(`${sceneFile}.part`, text);
+  fs.renameSync(`${sceneFile}.part`, sceneFile);
+};
 
 // --- the server ---
 const server = spawn(reeve, ['view', sceneFile, '--port', '0'], { stdio: ['ignore', 'pipe', 'inherit'] });
@@ -264,9 +273,9 @@ try {
   // shown with its JSON path and the old scene runs on.
   await page.evaluate(() => window.reeveLive.send('{"cmd":"play"}'));
   before = (await live()).generation;
-  fs.writeFileSync(sceneFile, atwood.replace('"mass_kg": 2.0, "position_m": [0.3', '"mass_kg": 3.0, "position_m": [0.3'));
+  saveScene(atwood.replace('"mass_kg": 2.0, "position_m": [0.3', '"mass_kg": 3.0, "position_m": [0.3'));
   await until('an edited scene reloads', (st) => st.generation === before + 1 && st.frame >= 2);
-  fs.writeFileSync(sceneFile, atwood.replace('"mass_kg": 2.0, "position_m": [0.3', '"mass_kg": -3.0, "position_m": [0.3'));
+  saveScene(atwood.replace('"mass_kg": 2.0, "position_m": [0.3', '"mass_kg": -3.0, "position_m": [0.3'));
   await until('an invalid edit is shown with its JSON path', (st) => st.errors.some((e) => e.includes('/bodies/2/mass_kg')));
   check((await live()).generation === before + 1, 'the invalid edit left the scene running');
 
@@ -276,7 +285,7 @@ try {
   for (const name of shipped) {
     before = (await live()).generation;
     const errorsBefore = (await live()).errors.length;
-    fs.writeFileSync(sceneFile, fs.readFileSync(path.join(scenesDir, name), 'utf8'));
+    saveScene(fs.readFileSync(path.join(scenesDir, name), 'utf8'));
     await until(`${name} loads and steps`, (st) => st.generation === before + 1 && st.frame >= 3, 40000);
     const errors = (await live()).errors.slice(errorsBefore);
     check(errors.length === 0, `${name}: no error (${errors})`);

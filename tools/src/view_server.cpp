@@ -162,6 +162,13 @@ struct ViewServer::Impl {
       live.reloadFile(options.scene);
       publishScene();
     } catch (const SceneError& e) {
+      // Saved again while it was read (a save in place, caught between
+      // its truncation and its bytes): no error, the next watches read it
+      // whole once it stays.
+      if (stampOf(options.scene) != loaded) {
+        loaded = seen = FileStamp{};
+        return;
+      }
       publishError(e.what(), e.file(), e.jsonPath());
     }
   }

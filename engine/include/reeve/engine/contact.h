@@ -139,7 +139,8 @@ bool solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, 
 
 /// The velocity pass of one manifold (SCA 2020, eq. 29-34), after the
 /// velocities were read from the positions. With v = (v_b + w_b x r_b) -
-/// (v_a + w_a x r_a), v_n = n . v, v_t = v - n v_n and w_n, w_t the
+/// (v_a + w_a x r_a) (for a kinematic body, the chord its point travelled
+/// over the substep), v_n = n . v, v_t = v - n v_n and w_n, w_t the
 /// generalized inverse masses (correction.h) along n and v_t:
 ///   restitution, per point: impulse n (-v_n + max(-e v~_n, 0)) / w_n,
 ///     with e = 0 when |v~_n| <= `rest_speed` (SCA 2020 use 2 |g| h, so

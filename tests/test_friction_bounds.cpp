@@ -178,6 +178,20 @@ TEST(RockingRod, LaidAtItsBalancePointItHoldsUpToTheFrictionAngle) {
 /// (kinematic), here standing still.
 enum class Ramp { Ground, KinematicSlab };
 
+/// A 24 x 0.2 x 2 m slab at `position` (m), tilted by `tilt` about z, moved
+/// by its schedule (kinematic) at `turn_rate` (rad/s) about z; mu_s 0.5,
+/// mu_d 0.3.
+BodyDef kinematicSlab(const Vec3& position, double tilt, double turn_rate) {
+  BodyDef slab;
+  slab.shape = Shape::box(Vec3(12.0, 0.1, 1.0));
+  slab.position = position;
+  slab.orientation = Quat(Eigen::AngleAxisd(tilt, Vec3::UnitZ()));
+  slab.material = material(0.5, 0.3, 0.0);
+  slab.collides = true;
+  slab.motion = {MotionKeyframe{0.0, Vec3::Zero(), Vec3(0.0, 0.0, turn_rate)}};
+  return slab;
+}
+
 /// A box of half extents `half` (m) and `mass` (kg), put on a `ramp` tilted by
 /// `theta` (rad), from rest for 2 s: how far it moved downhill (m), and its
 /// acceleration from 0.5 s on (m/s^2).
@@ -189,14 +203,7 @@ Slide boxOnRamp(const Vec3& half, double theta, int substeps, int iterations, So
   if (ramp == Ramp::Ground) {
     world.setGround(ground(n, material(0.5, 0.3, 0.0)));
   } else {
-    BodyDef slab;
-    slab.shape = Shape::box(Vec3(12.0, 0.1, 1.0));
-    slab.position = -0.1 * n;
-    slab.orientation = Quat(Eigen::AngleAxisd(theta, Vec3::UnitZ()));
-    slab.material = material(0.5, 0.3, 0.0);
-    slab.collides = true;
-    slab.motion = {MotionKeyframe{}};  // kinematic, at rest
-    world.addBody(slab);
+    world.addBody(kinematicSlab(-0.1 * n, theta, 0.0));
   }
   const Vec3 start = half.y() * n;
   const BodyId box = add(world, Shape::box(half), mass, start, material(0.5, 0.3, 0.0), true,
@@ -257,12 +264,7 @@ Onset boxOnATiltingSlab(const Vec3& half, int substeps, int iterations, SolverKi
   constexpr double kTurnRate = 0.02, kStart = 24.0 * kDeg, kEnd = 28.0 * kDeg;  // rad/s, rad
   World world = makeWorld(substeps, iterations);
   world.settings().solver = solver;
-  BodyDef slab;
-  slab.shape = Shape::box(Vec3(12.0, 0.1, 1.0));
-  slab.orientation = Quat(Eigen::AngleAxisd(kStart, Vec3::UnitZ()));
-  slab.material = material(0.5, 0.3, 0.0);
-  slab.collides = true;
-  slab.motion = {MotionKeyframe{0.0, Vec3::Zero(), Vec3(0.0, 0.0, kTurnRate)}};
+  const BodyDef slab = kinematicSlab(Vec3::Zero(), kStart, kTurnRate);
   const BodyId ramp = world.addBody(slab);
   const BodyId box = add(world, Shape::box(half), 1.0, slab.orientation * Vec3(0.0, 0.1 + half.y(), 0.0),
                          material(0.5, 0.3, 0.0), true, slab.orientation);
@@ -284,7 +286,8 @@ TEST(BoxOnARamp, OnATiltingKinematicSlabItLetsGoAtTheFrictionAngleAndSlidesAsMec
   // adds 4e-4 of that at most): integrated here. Measured: it has slid 1 mm
   // by 26.58-26.62 deg, and by 28 deg 0.3 to 0.8 % short of the closed
   // form from ten substeps a frame, 2.5 % (the wide box) and 5 % (the cube)
-  // past it at one, whose 1/60 s steps put the start up to a step early.
+  // past it at one, whose 1/60 s steps put the start up to a step early
+  // and run the first frames ahead (as on the ground).
   // Before, the hold kept a box level on the ground only: on a kinematic
   // slab the wide box let go at 26.7 to 27.6 deg and had slid 0.14 to 0.17
   // m by 28 (-90 %) from 1 x 10 up. The cube then let go on time but slid
@@ -332,10 +335,18 @@ TEST(BoxOnATurntable, ItSlipsWhereItsFrictionReachesMuSOfItsWeight) {
   // on top of its static friction: 7.02 to 7.58 s, 26 to 46 % past mu_s.
   constexpr double kAlpha = 0.5, kRadius = 0.5;  // rad/s^2, m
   const double due = std::pow((0.5 * kG / kRadius) * (0.5 * kG / kRadius) - kAlpha * kAlpha, 0.25) / kAlpha;  // s
-  for (const Vec3& half : {Vec3(0.05, 0.05, 0.05), Vec3(0.1, 0.05, 0.1)})
+  // Friction and weight scale with the mass: a milligram and a tonne (10
+  // kN on the table) slip when the kilogram does.
+  struct Case {
+    Vec3 half;
+    double mass;
+  };
+  for (const Case& box : {Case{Vec3(0.05, 0.05, 0.05), 1.0}, Case{Vec3(0.1, 0.05, 0.1), 1.0},
+                          Case{Vec3(0.05, 0.05, 0.05), 1e-6}, Case{Vec3(0.05, 0.05, 0.05), 1e3}})
     for (const SolverKind solver : {SolverKind::Direct, SolverKind::GaussSeidel})
       for (const auto& [substeps, iterations] : {std::pair{1, 1}, {1, 10}, {10, 2}, {32, 32}, {100, 1}}) {
-        SCOPED_TRACE(testing::Message() << half.x() << " m half-width, "
+        const Vec3& half = box.half;
+        SCOPED_TRACE(testing::Message() << half.x() << " m half-width, " << box.mass << " kg, "
                                         << (solver == SolverKind::Direct ? "direct " : "gauss-seidel ") << substeps
                                         << " x " << iterations);
         World world = makeWorld(substeps, iterations);
@@ -349,11 +360,12 @@ TEST(BoxOnATurntable, ItSlipsWhereItsFrictionReachesMuSOfItsWeight) {
                         MotionKeyframe{20.0, Vec3::Zero(), Vec3(0.0, 20.0 * kAlpha, 0.0)}};
         const BodyId turntable = world.addBody(table);
         const Vec3 on_table(kRadius, 0.1 + half.y(), 0.0);  // the box's centre in the table's frame
-        const BodyId box = add(world, Shape::box(half), 1.0, Vec3(kRadius, half.y(), 0.0), material(0.5, 0.3, 0.0), true);
+        const BodyId box_id =
+            add(world, Shape::box(half), box.mass, Vec3(kRadius, half.y(), 0.0), material(0.5, 0.3, 0.0), true);
         double slipped = 0.0;
         for (int f = 1; f <= static_cast<int>(std::lround((due + 1.0) / kFrame)) && slipped == 0.0; ++f) {
           world.step(kFrame);
-          const BodyState &t = world.body(turntable), &b = world.body(box);
+          const BodyState &t = world.body(turntable), &b = world.body(box_id);
           if ((t.q.conjugate() * (b.x - t.x) - on_table).norm() > 1e-3) slipped = f * kFrame;
         }
         EXPECT_GT(slipped, due);

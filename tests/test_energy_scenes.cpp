@@ -77,13 +77,11 @@ const std::set<std::string>& knownCreating() {
       // spool turns 2.1 rad in the solve its last 13 mm run out in, its
       // span's end fixed on the body meanwhile (issue 29, item 3); the
       // catch takes 98 % of the kinetic energy, and tying the end on 5 cm
-      // past the tangent point gives 0.94 J back. Gauss-Seidel at 1 x 10
-      // since its wheels on fixed axles are rotors (issue 30): the spools
-      // spin at 540 rad/s, 9 rad a substep, when their cable runs out; the
-      // catch frame takes 13.1 J and the next gives 15.3 J back (its ten
-      // sweeps leave the tie point's turn unsolved; the direct solve
-      // converges there). The spool at 1 x 1 came off then.
-      "hybrid direct 1x1", "hybrid gauss-seidel 1x1", "hybrid gauss-seidel 1x10", "spool direct 1x1",
+      // past the tangent point gives 0.94 J back. (Gauss-Seidel's 1 x 1
+      // and 1 x 10, where the spools spin 9 rad a substep, came off when a
+      // tie point passing a tangent point rolled again in the sense it
+      // travelled, not the short way back: CableSystem::switchHybrids.)
+      "hybrid direct 1x1", "spool direct 1x1",
       // The segment rope's chain of contacts, 0.1 to 2 % of its scale in a
       // frame from 0.05 s on: the contacts' velocity pass credits as a loss
       // what the next solve gives back, frame for frame (DESIGN). (Its

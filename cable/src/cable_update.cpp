@@ -77,6 +77,13 @@ double unwrappedTurn(const Quat& dq, const Vec3& n, double spin) {
   return spin + wrapAngle(twist - spin);
 }
 
+// The bearing (rad) of the world point p from the link's section centre,
+// in its cable plane, in the body's frame.
+double bearing(const Link& link, const BodyState& body, const Vec3& p) {
+  const Vec2 r = toPlane(body, p) - link.section.centre;
+  return std::atan2(r.y(), r.x());
+}
+
 }  // namespace
 
 double CableSystem::turnSinceUpdate(BodyId b, double spin) const {
@@ -434,16 +441,26 @@ void CableSystem::switchHybrids(Cable& cable, int c, double time_s) {
       anchor = link.point;
       joint.rest_length += link.stored;  // the overdraft, so the total is kept
       link.unwindAll();
+      link.tie_bearing = bearing(link, world_.body(link.body), leaving ? endPointOf(cable, j) : startPointOf(cable, j));
       updates_[c].events.push_back({CableEvent::Kind::HybridRunsOut, time_s, c, k, link.orientation});
       continue;
     }
     // Alg. 2 l. 14-20: the tie point is hidden from the span's other end
     // once it has passed one of the two rolling tangent points a+ and a-;
     // then the wraps from it to a+ and to a- add up to less than the whole
-    // boundary. Roll again the short way round.
+    // boundary. Roll again from the tangent point it passed (below).
     const BodyState& body = world_.body(link.body);
-    const Vec2 seen_from = toPlane(body, leaving ? endPointOf(cable, j) : startPointOf(cable, j));
+    const Vec3 other_end = leaving ? endPointOf(cable, j) : startPointOf(cable, j);
+    const Vec2 seen_from = toPlane(body, other_end);
     const Vec2 tie = planePoint(link.point);
+    // The tie point's travel round the section since the last update,
+    // relative to the span (rad, + counter-clockwise in the plane): the
+    // body's turn less the other end's bearing change, whole turns from
+    // the turn (the bearing in the body's frame moves by -turn).
+    const double bearing_now = bearing(link, body, other_end), turn = turn_[link.body];
+    const double travel =
+        std::isnan(link.tie_bearing) ? 0.0 : turn - reeve::wrapAngle(bearing_now - link.tie_bearing + turn);
+    link.tie_bearing = bearing_now;
     double wrap[2] = {0.0, 0.0};
     Vec2 tangent[2];
     bool found = true;
@@ -458,8 +475,21 @@ void CableSystem::switchHybrids(Cable& cable, int c, double time_s) {
       wrap[i] = leaving ? sectionWrappedArc(link.section, tie, *t, o) : sectionWrappedArc(link.section, *t, tie, o);
     }
     if (!found || wrap[0] + wrap[1] >= link.section.perimeter()) continue;
-    const int i = wrap[0] <= wrap[1] ? 0 : 1;
+    // The tie point is hidden past the tangent point it passed, so the
+    // cable wraps from that tangent point to it in the sense it travelled:
+    // orientation -sense where the span leaves the link (its wrap runs
+    // from the tie to the tangent point), +sense where it arrives. A spool
+    // that ran out and spins on winds back on the other way (a yo-yo); one
+    // turned back winds on as before. With no travel measured yet, the
+    // short way round. Taken the short way whatever the travel, a spool
+    // turning 3.4 rad a substep past its run-out (a yo-yo on a braking cart
+    // at one substep a frame) wound on the way it came, ran out again at
+    // once and was spun up by its load: 27 J made in a frame (DESIGN,
+    // "Thirty-sixth session").
+    int i = wrap[0] <= wrap[1] ? 0 : 1;  // i = 0: orientation +1
+    if (travel != 0.0) i = (leaving ? -travel : travel) > 0.0 ? 0 : 1;
     link.attached = false;
+    link.tie_bearing = std::numeric_limits<double>::quiet_NaN();
     link.orientation = i == 0 ? 1 : -1;
     link.unwindAll();
     wind(cable, k, j, wrap[i]);

@@ -191,6 +191,13 @@ struct Link {
   /// changes its sign (the swept split); its sign before the split is the
   /// side the span met the section from, which sets `orientation` there.
   double side = std::numeric_limits<double>::quiet_NaN();
+  /// While a hybrid is tied: the bearing (rad, in its cable plane, about
+  /// its section's centre, in the body's frame) of its span's other end at
+  /// the last update; NaN before there is one. Less the body's turn, its
+  /// change is the tie point's travel round the section relative to the
+  /// span, whose sense says which tangent point the tie point passed when
+  /// it is hidden (CableSystem::switchHybrids).
+  double tie_bearing = std::numeric_limits<double>::quiet_NaN();
 
   /// True when the cable wraps the body's section here (rolling, or a
   /// hybrid that still has cable).

@@ -393,6 +393,36 @@ TEST_F(Cli, ARunThatBlowsUpUnderGaussSeidelPointsToTheDirectSolver) {
   EXPECT_EQ(direct.code, 0) << direct.err;
 }
 
+TEST_F(Cli, ADrumHaulingOverAWheelFixedInTheWorldStopsTheRunSayingWhatToChange) {
+  // A kinematic drum hauls a rigid cable over a wheel fixed in the world
+  // (static, no mu): nothing can pull the drum's span in, and a run that
+  // went on would leave the load where it is with the span stretched
+  // unseen (Kinematic.ADrumHauling... in the tests of the physics).
+  const std::string scene = write("winch.json", R"({"name": "winch",
+    "solver": {"frame_rate_hz": 60, "substeps": 10, "iterations": 2}, "duration_s": 1,
+    "bodies": [
+      {"name": "drum", "shape": {"type": "cylinder", "radius_m": 0.1, "half_length_m": 0.05}, "position_m": [-1, 0, 0],
+       "motion": [{"t_s": 0, "angular_velocity_rad_per_s": [0, 0, -2]}]},
+      {"name": "sheave", "shape": {"type": "cylinder", "radius_m": 0.1, "half_length_m": 0.05}, "static": true,
+       "position_m": [1, 0.5, 0]},
+      {"name": "load", "shape": {"type": "box", "half_extents_m": [0.1, 0.1, 0.1]}, "mass_kg": 5, "position_m": [1.1, -1, 0]}],
+    "cables": [{"name": "rope", "links": [
+      {"body": "drum", "type": "rolling", "orientation": "ccw", "stored_m": 2},
+      {"body": "sheave", "type": "rolling", "orientation": "cw"},
+      {"body": "load", "type": "attachment", "point_m": [0, 0.1, 0]}]}]})");
+  const Result r = reeve("run " + scene + " --csv " + path("out.csv"));
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_NE(r.err.find("a rigid cable was stretched at t = "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("cable 'rope': its run from 'drum' to 'sheave' is "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("Give such a wheel \"mu\""), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("bookkeeping broke"), std::string::npos) << r.err;
+  // Given mu 0 it slides over the wheel: the run goes through.
+  const std::string sliding = write("sliding.json", std::regex_replace(test::slurp(scene), std::regex(R"("orientation": "cw")"),
+                                                                       R"("orientation": "cw", "mu": 0)"));
+  const Result ok = reeve("run " + sliding);
+  EXPECT_EQ(ok.code, 0) << ok.err;
+}
+
 TEST_F(Cli, ASpoolThatRunsOutOfCableStopsTheRunSayingSo) {
   // The fuzzer's second finding: gear_1_to_4 with the small hub's rope
   // given no stored cable. The weight pays 1e-5 m out of it in the first

@@ -445,5 +445,51 @@ TEST(MergeSplit, ABallSweptIntoASlackSpanOffItsMiddleWrapsItsSectionThere) {
   }
 }
 
+TEST(MergeSplit, APendulumWhosePivotACartCarriesOffAFixedPegIsStoppedBeforeTheStringMerges) {
+  // merge_split.json's pendulum with its pivot on a cart (kinematic) that
+  // speeds up to (1, 0.5) m/s and turns back. Once the string wraps the
+  // fixed peg (0.65 s), its run from the pivot to the peg lies between
+  // bodies that nothing moves: the cart stretches it and no row pulls it in
+  // (it reached 0.5 m past its rest length). When the string left the peg
+  // (1.85 s) the merged span yanked the bob by all of it: 45 kJ in a frame.
+  // The run is stopped as soon as it stretches (firstBreach), with nothing
+  // made before. Turned round: an elastic string holds the stretch as
+  // tension, and runs on with nothing made.
+  const auto pendulum = [](const test::Budget& b, const std::string& compliance) {
+    return parseScene(R"({"name": "carried_pendulum", )" + test::solverJson(b) + R"(,
+      "bodies": [
+        {"name": "pivot", "shape": {"type": "box", "half_extents_m": [0.05, 0.05, 0.05]}, "position_m": [0, 0, 0],
+         "motion": [{"t_s": 0}, {"t_s": 1, "velocity_m_per_s": [1, 0.5, 0]}, {"t_s": 2, "velocity_m_per_s": [-1, 0, 0]}]},
+        {"name": "peg", "shape": {"type": "cylinder", "radius_m": 0.01, "half_length_m": 0.1}, "static": true,
+         "position_m": [0, -1, 0]},
+        {"name": "bob", "shape": {"type": "sphere", "radius_m": 0.1}, "mass_kg": 1, "position_m": [-1.4142135623730951, -1.4142135623730951, 0]}],
+      "cables": [{"name": "string", )" + compliance + R"("links": [
+        {"body": "pivot", "type": "attachment", "point_m": [0, 0, 0]},
+        {"body": "peg", "type": "rolling", "orientation": "ccw", "active": false},
+        {"body": "bob", "type": "attachment", "point_m": [0, 0, 0]}]}]})",
+                      "carried_pendulum");
+  };
+  for (const test::Budget& b : test::kFourBudgets)
+    for (const bool elastic : {false, true}) {
+      SCOPED_TRACE(test::name(b) + (elastic ? ", elastic" : ", rigid"));
+      Scene s = pendulum(b, elastic ? R"("compliance_m_per_N": 0.001, )" : "");
+      EnergyWatch watch(s);
+      for (int f = 0; f < 180 && !s.cables->firstBreach(); ++f) {  // 3 s
+        test::frame(s);
+        const auto created = watch.check(s);
+        ASSERT_FALSE(created) << energyCreatedMessage(*created);
+      }
+      if (elastic) {
+        EXPECT_FALSE(s.cables->firstBreach()) << s.cables->firstBreach()->what;
+        continue;
+      }
+      ASSERT_TRUE(s.cables->firstBreach());
+      EXPECT_TRUE(s.cables->firstBreach()->held_stretched);
+      EXPECT_GT(s.cables->firstBreach()->time_s, 0.6);
+      EXPECT_LT(s.cables->firstBreach()->time_s, 0.7);
+      EXPECT_NE(s.cables->firstBreach()->what.find("its run from 'pivot' to 'peg'"), std::string::npos);
+    }
+}
+
 }  // namespace
 }  // namespace reeve::test_merge_split

@@ -195,6 +195,7 @@ std::optional<CableBreach> CableSystem::cableBreach(int c) const {
   if (std::abs(total - cable.total_length) > slack)
     return broken("the total length changed from " + metres(cable.total_length) + " to " + metres(total) + " (by " +
                   metres(total - cable.total_length) + ")");
+  if (c < static_cast<int>(updates_.size()) && updates_[c].held) return updates_[c].held;
   if (cable.junction < 0) return std::nullopt;
   const Junction& junction = junctions_[cable.junction];
   double joined = 0.0;  // its branches trade cable: the junction keeps the sum

@@ -3,8 +3,11 @@
 // links that slip, beyond the paper) are solved as one path constraint.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numbers>
+#include <string>
+#include <utility>
 
 #include "link_geometry.h"
 #include "links.h"
@@ -325,6 +328,55 @@ void CableSystem::buildRuns(Cable& cable) {
     PathConstraint& reeled = world_.path(cable.joints[cable.joints[winchSpan(cable).second].run].path);
     reeled.max_tension = std::min(reeled.max_tension, cable.winch->max_pull);
   }
+}
+
+void CableSystem::watchHeldRuns(const Cable& cable, int c, bool switched) {
+  // A rigid, unbreakable run through bodies that no constraint moves
+  // (static, or kinematic: moved by their schedules) has no row that can
+  // pull it in: the solvers leave out rows of bodies that do not move. A
+  // kinematic body carrying it away, or a kinematic drum hauling it, then
+  // stretches it unseen, and a body that joins the run later (a merge) is
+  // yanked by all of it at once (45 kJ in a frame). A run that can slip at
+  // an end (a friction link, which the stick-or-slip recheck lets go) or
+  // that holds its stretch as tension (an elastic cable) is not held; the
+  // stretch it started with (a split's share of a loaded span's strain) is
+  // no growth.
+  CableUpdate& out = updates_[c];
+  const int n = static_cast<int>(cable.joints.size());
+  if (out.held_least.size() != cable.joints.size() || switched)
+    out.held_least.assign(n, std::numeric_limits<double>::quiet_NaN());
+  if (out.held || cable.compliance_per_m != 0.0) return;
+  const double tolerance = 1e-6 * std::max(1.0, cable.total_length);  // m: no rounding
+  forEachRun(cable, [&](int j, bool loop) {
+    const PathConstraint& path = world_.path(cable.joints[j].path);
+    bool held = path.enabled && path.weights.empty() && !std::isfinite(path.max_tension);
+    walkRun(cable, j, loop, [&](int k) {
+      held = held && !hasFriction(cable.links[k]) && !hasFriction(cable.links[cable.joints[k].to]);
+    });
+    for (const PathPoint& p : path.points) held = held && !world_.body(p.body).moves();
+    double& least = out.held_least[j];
+    if (!held) {
+      least = std::numeric_limits<double>::quiet_NaN();
+      return;
+    }
+    const double stretch = world_.pathLength(cable.joints[j].path) - path.rest_length;
+    least = std::isnan(least) ? stretch : std::min(least, stretch);
+    if (out.held || !(stretch - std::max(0.0, least) > tolerance)) return;
+    const auto name = [&](BodyId b) {
+      return b == kWorldBody ? std::string("the world") : "'" + world_.bodyDef(b).name + "'";
+    };
+    char by[32], rest[32];
+    std::snprintf(by, sizeof by, "%.4g m", stretch);
+    std::snprintf(rest, sizeof rest, "%.6g m", path.rest_length);
+    CableBreach b;
+    b.cable = c;
+    b.held_stretched = true;
+    b.stretch = stretch;
+    b.what = "cable '" + cable.name + "': its run from " + name(path.points.front().body) + " to " +
+             name(path.points.back().body) + " is " + by + " longer than its rest length (" + rest +
+             "), and none of the bodies it passes can move";
+    out.held = std::move(b);
+  });
 }
 
 double CableSystem::wrapAngle(const Cable& cable, int k) const {

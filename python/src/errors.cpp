@@ -26,8 +26,9 @@ void bindErrors(py::module_& m) {
   scene_error = scene_exc.ptr();
   static py::exception<std::runtime_error> sim_exc(m, "SimulationError", PyExc_RuntimeError);
   sim_exc.doc() =
-      "A simulation that had to stop: a non-finite state, or the cable bookkeeping broken (a spool that ran "
-      "out of cable, a diverged solve). The message says where, when and what to try.";
+      "A simulation that had to stop: a non-finite state, the cable bookkeeping broken (a spool that ran "
+      "out of cable, a diverged solve), or a rigid cable stretched between bodies that cannot move. The "
+      "message says where, when and what to try.";
   simulation_error = sim_exc.ptr();
   py::register_exception_translator([](std::exception_ptr p) {
     try {

@@ -61,6 +61,12 @@ std::string breachMessage(const CableBreach& breach, const World& world) {
   char when[32], turn[32];
   std::snprintf(when, sizeof when, "%.9g", breach.time_s);
   std::snprintf(turn, sizeof turn, "%.3g", breach.fastest_turn);
+  if (breach.held_stretched)
+    return std::string("a rigid cable was stretched at t = ") + when + " s: " + breach.what +
+           ". Constraints move neither static nor kinematic bodies (a wheel among them holds the cable without "
+           "slipping), so nothing pulls the run in. Give such a wheel \"mu\" (0: a frictionless pulley the "
+           "cable slides over) or a hinge so that it turns, give the cable a compliance, or let one of the "
+           "bodies move. Nothing of that frame was written";
   std::string message = std::string("the cable bookkeeping broke at t = ") + when + " s: " + breach.what;
   if (breach.spool_ran_out)
     return message + ". Its rolling end ran out of cable: it holds only the stored_m it was given. Give it "

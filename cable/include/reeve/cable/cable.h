@@ -346,7 +346,8 @@ struct Cable {
   bool broken = false;  // a span has parted
 };
 
-/// A break of the cable bookkeeping's invariants (CableSystem::firstBreach).
+/// A break of the cable bookkeeping's invariants, or a rigid run held
+/// stretched (CableSystem::firstBreach).
 struct CableBreach {
   double time_s = 0.0;        ///< the update's time stamp (s)
   std::string what;           ///< invariantViolation()'s message
@@ -355,6 +356,16 @@ struct CableBreach {
   /// stored: the scene's spool ran out, not the solver (a hybrid link
   /// would have tied the cable there, Alg. 2 l. 12-13).
   bool spool_ran_out = false;
+  /// A rigid run through bodies that no constraint moves (static, or
+  /// kinematic: moved by their schedules), with no friction link at its
+  /// ends that could let it slip, was stretched further than it was when
+  /// it came to be so held: nothing can pull it in, and a rigid cable does
+  /// not stretch (a kinematic drum hauling over a wheel fixed in the world,
+  /// which holds the cable without slipping). Left alone, the stretch came
+  /// back as a yank the moment a moving body joined the run (a merge): 45
+  /// kJ in a frame. `stretch`: its length less its rest length then (m).
+  bool held_stretched = false;
+  double stretch = 0.0;
   BodyId fastest = -1;        ///< the rolling body that turned furthest in that update
   double fastest_turn = 0.0;  ///< its turn in that update (rad, signed)
   /// The rolling body that moved furthest since the update before, for its
@@ -615,6 +626,11 @@ class CableSystem {
   /// and turns are left to update(). cableBreach: cable c's alone.
   std::optional<CableBreach> findBreach() const;
   std::optional<CableBreach> cableBreach(int c) const;
+  /// After buildRuns: records in updates_[c].held a rigid run that no
+  /// body can pull in stretched further since it was held
+  /// (CableBreach::held_stretched). `switched`: the runs changed in this
+  /// update (an event), so each held run's stretch is measured afresh.
+  void watchHeldRuns(const Cable& cable, int c, bool switched);
   /// Current length (m) and world end points of joint j's straight span.
   double spanLength(const Cable& cable, int j) const;
   Vec3 startPointOf(const Cable& cable, int j) const;
@@ -659,6 +675,11 @@ class CableSystem {
     // earlier one's.
     double news_at = 0.0;
     std::vector<FixedSpan> fixed;  // per joint
+    // Per joint starting a held run (watchHeldRuns): the least its run was
+    // stretched since it was held (m, length less rest length; negative:
+    // slack); NaN where none is held.
+    std::vector<double> held_least;
+    std::optional<CableBreach> held;  // the first held run stretched further (sticky)
     std::vector<CableEvent> events;
     double friction_loss = 0.0;  // J, since the system was made: its part of frictionLoss()
     double winch_work = 0.0;     // J, this substep's

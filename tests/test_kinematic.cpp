@@ -9,6 +9,7 @@
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "reeve/cable/cable.h"
 #include "reeve/engine/world.h"
@@ -306,6 +307,50 @@ TEST(Kinematic, ADrumHaulingOverAWheelFixedInTheWorldIsStoppedUnlessTheCableCanS
         EXPECT_NEAR(world.body(load).x.y(), -1.0 + r * -omega, 2e-3);
         EXPECT_NEAR(cables.tension(0, 1), m * kG, 1e-3 * m * kG);
       }
+}
+
+TEST(Kinematic, ABreakableCableHauledOverAWheelFixedInTheWorldParts) {
+  // The drum and fixed wheel above, the cable rated 200 N (four times the
+  // load): holding the drum's span takes an unbounded tension, so it parts
+  // there within two substeps, as an overloaded cable does (a Break event
+  // at its rating), and the run goes on. The fixed wheel holds the cable
+  // without slipping, so the load still hangs from it, unmoved.
+  constexpr double r = 0.1, m = 5.0;
+  for (const test::Budget& b : test::kFourBudgets) {
+    SCOPED_TRACE(test::name(b));
+    World world = worldWith(b);
+    CableSystem cables(world);
+    BodyDef drum;
+    drum.shape = Shape::cylinder(r, 0.05);
+    drum.position = Vec3(-1.0, 0.0, 0.0);
+    drum.motion = {{0.0, Vec3::Zero(), Vec3(0.0, 0.0, -2.0)}};
+    BodyDef sheave = drum;
+    sheave.motion.clear();
+    sheave.is_static = true;
+    sheave.position = Vec3(1.0, 0.5, 0.0);
+    const BodyId d = world.addBody(drum), s = world.addBody(sheave);
+    const BodyId load = addLoad(world, m, Vec3(1.0 + r, -1.0, 0.0));
+    LinkDef spool = LinkDef::rolling(d, 1);
+    spool.stored = 2.0;
+    CableDef rope;
+    rope.breaking_tension = 200.0;
+    rope.links = {spool, LinkDef::rolling(s, -1), LinkDef::attachment(load, Vec3(0.0, 0.05, 0.0))};
+    cables.addCable(rope);
+    std::vector<CableEvent> events;
+    for (int f = 0; f < 60; ++f) {
+      world.step(1.0 / 60.0);
+      for (const CableEvent& e : cables.takeEvents()) events.push_back(e);
+    }
+    ASSERT_FALSE(cables.firstBreach()) << cables.firstBreach()->what;
+    ASSERT_EQ(events.size(), 1u);
+    EXPECT_EQ(events[0].kind, CableEvent::Kind::Break);
+    EXPECT_EQ(events[0].link, 0);
+    EXPECT_EQ(events[0].tension, 200.0);
+    EXPECT_LE(events[0].time_s, 2.0 / (60.0 * b.substeps) + 1e-12);
+    EXPECT_TRUE(cables.cables()[0].joints[0].parted);
+    EXPECT_NEAR(world.body(load).x.y(), -1.0, 1e-6);
+    EXPECT_NEAR(cables.tension(0, 1), m * kG, 1e-3 * m * kG);
+  }
 }
 
 TEST(Kinematic, WorldRefusesABadMotion) {

@@ -330,26 +330,29 @@ void CableSystem::buildRuns(Cable& cable) {
   }
 }
 
-void CableSystem::watchHeldRuns(const Cable& cable, int c, bool switched) {
-  // A rigid, unbreakable run through bodies that no constraint moves
-  // (static, or kinematic: moved by their schedules) has no row that can
-  // pull it in: the solvers leave out rows of bodies that do not move. A
-  // kinematic body carrying it away, or a kinematic drum hauling it, then
-  // stretches it unseen, and a body that joins the run later (a merge) is
-  // yanked by all of it at once (45 kJ in a frame). A run that can slip at
-  // an end (a friction link, which the stick-or-slip recheck lets go) or
-  // that holds its stretch as tension (an elastic cable) is not held; the
-  // stretch it started with (a split's share of a loaded span's strain) is
-  // no growth.
+void CableSystem::watchHeldRuns(Cable& cable, int c, double time_s, bool switched) {
+  // A rigid run through bodies that no constraint moves (static, or
+  // kinematic: moved by their schedules) has no row that can pull it in:
+  // the solvers leave out rows of bodies that do not move. A kinematic body
+  // carrying it away, or a kinematic drum hauling it, then stretched it
+  // unseen, and a body that joined the run later (a merge) was yanked by
+  // all of it at once (45 kJ in a frame). Holding it takes an unbounded
+  // tension: a cable with a breaking tension parts, one without stops the
+  // run (CableBreach::held_stretched). A run that can slip at an end (a
+  // friction link, which the stick-or-slip recheck lets go), that holds
+  // its stretch as tension (an elastic cable) or that a winch's capped pull
+  // reels is not held; the stretch it started with (a split's share of a
+  // loaded span's strain) is no growth.
   CableUpdate& out = updates_[c];
   const int n = static_cast<int>(cable.joints.size());
   if (out.held_least.size() != cable.joints.size() || switched)
     out.held_least.assign(n, std::numeric_limits<double>::quiet_NaN());
   if (out.held || cable.compliance_per_m != 0.0) return;
   const double tolerance = 1e-6 * std::max(1.0, cable.total_length);  // m: no rounding
+  int parts = -1;  // the run that parts
   forEachRun(cable, [&](int j, bool loop) {
     const PathConstraint& path = world_.path(cable.joints[j].path);
-    bool held = path.enabled && path.weights.empty() && !std::isfinite(path.max_tension);
+    bool held = path.enabled && path.weights.empty() && path.max_tension == cable.breaking_tension;
     walkRun(cable, j, loop, [&](int k) {
       held = held && !hasFriction(cable.links[k]) && !hasFriction(cable.links[cable.joints[k].to]);
     });
@@ -361,7 +364,11 @@ void CableSystem::watchHeldRuns(const Cable& cable, int c, bool switched) {
     }
     const double stretch = world_.pathLength(cable.joints[j].path) - path.rest_length;
     least = std::isnan(least) ? stretch : std::min(least, stretch);
-    if (out.held || !(stretch - std::max(0.0, least) > tolerance)) return;
+    if (out.held || parts >= 0 || !(stretch - std::max(0.0, least) > tolerance)) return;
+    if (std::isfinite(cable.breaking_tension)) {
+      parts = j;
+      return;
+    }
     const auto name = [&](BodyId b) {
       return b == kWorldBody ? std::string("the world") : "'" + world_.bodyDef(b).name + "'";
     };
@@ -377,6 +384,14 @@ void CableSystem::watchHeldRuns(const Cable& cable, int c, bool switched) {
              "), and none of the bodies it passes can move";
     out.held = std::move(b);
   });
+  if (parts < 0) return;
+  // As breakOverloaded parts a run: its first span (all of a held run's
+  // spans pull alike), at the cable's rating.
+  part(cable, parts, 0.5);
+  out.events.push_back({CableEvent::Kind::Break, time_s, c, parts, cable.links[parts].orientation, cable.breaking_tension});
+  releaseFreeEnds(cable, c, time_s);
+  buildRuns(cable);
+  out.held_least.assign(n, std::numeric_limits<double>::quiet_NaN());
 }
 
 double CableSystem::wrapAngle(const Cable& cable, int k) const {

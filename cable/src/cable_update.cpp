@@ -264,7 +264,7 @@ bool CableSystem::updateCable(int c, double time_s, double h) {
   splitAtCrossedLinks(cable, c, time_s);
   if (h > 0.0) switchSlips(cable, h);
   buildRuns(cable);
-  watchHeldRuns(cable, c, out.events.size() != events_before);
+  watchHeldRuns(cable, c, time_s, out.events.size() != events_before);
   // A run of one span whose tangent points were kept lies where it lay
   // (PathConstraint::placement), unless a link switched, merged or split
   // since updateJoint kept them.

@@ -626,11 +626,12 @@ class CableSystem {
   /// and turns are left to update(). cableBreach: cable c's alone.
   std::optional<CableBreach> findBreach() const;
   std::optional<CableBreach> cableBreach(int c) const;
-  /// After buildRuns: records in updates_[c].held a rigid run that no
-  /// body can pull in stretched further since it was held
+  /// After buildRuns: a rigid run that no body can pull in, stretched
+  /// further since it was held, parts if the cable has a breaking tension
+  /// (a Break event at time_s) and is recorded in updates_[c].held if not
   /// (CableBreach::held_stretched). `switched`: the runs changed in this
   /// update (an event), so each held run's stretch is measured afresh.
-  void watchHeldRuns(const Cable& cable, int c, bool switched);
+  void watchHeldRuns(Cable& cable, int c, double time_s, bool switched);
   /// Current length (m) and world end points of joint j's straight span.
   double spanLength(const Cable& cable, int j) const;
   Vec3 startPointOf(const Cable& cable, int j) const;

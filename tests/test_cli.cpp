@@ -405,7 +405,8 @@ TEST_F(Cli, ADrumHaulingOverAWheelFixedInTheWorldStopsTheRunSayingWhatToChange) 
        "motion": [{"t_s": 0, "angular_velocity_rad_per_s": [0, 0, -2]}]},
       {"name": "sheave", "shape": {"type": "cylinder", "radius_m": 0.1, "half_length_m": 0.05}, "static": true,
        "position_m": [1, 0.5, 0]},
-      {"name": "load", "shape": {"type": "box", "half_extents_m": [0.1, 0.1, 0.1]}, "mass_kg": 5, "position_m": [1.1, -1, 0]}],
+      {"name": "load", "shape": {"type": "box", "half_extents_m": [0.1, 0.1, 0.1]}, "mass_kg": 5,
+       "position_m": [1.1, -1, 0]}],
     "cables": [{"name": "rope", "links": [
       {"body": "drum", "type": "rolling", "orientation": "ccw", "stored_m": 2},
       {"body": "sheave", "type": "rolling", "orientation": "cw"},
@@ -417,8 +418,9 @@ TEST_F(Cli, ADrumHaulingOverAWheelFixedInTheWorldStopsTheRunSayingWhatToChange) 
   EXPECT_NE(r.err.find("Give such a wheel \"mu\""), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find("bookkeeping broke"), std::string::npos) << r.err;
   // Given mu 0 it slides over the wheel: the run goes through.
-  const std::string sliding = write("sliding.json", std::regex_replace(test::slurp(scene), std::regex(R"("orientation": "cw")"),
-                                                                       R"("orientation": "cw", "mu": 0)"));
+  const std::string sliding =
+      write("sliding.json", std::regex_replace(test::slurp(scene), std::regex(R"("orientation": "cw")"),
+                                               R"("orientation": "cw", "mu": 0)"));
   const Result ok = reeve("run " + sliding);
   EXPECT_EQ(ok.code, 0) << ok.err;
 }

@@ -459,10 +459,12 @@ TEST(MergeSplit, APendulumWhosePivotACartCarriesOffAFixedPegIsStoppedBeforeTheSt
     return parseScene(R"({"name": "carried_pendulum", )" + test::solverJson(b) + R"(,
       "bodies": [
         {"name": "pivot", "shape": {"type": "box", "half_extents_m": [0.05, 0.05, 0.05]}, "position_m": [0, 0, 0],
-         "motion": [{"t_s": 0}, {"t_s": 1, "velocity_m_per_s": [1, 0.5, 0]}, {"t_s": 2, "velocity_m_per_s": [-1, 0, 0]}]},
+         "motion": [{"t_s": 0}, {"t_s": 1, "velocity_m_per_s": [1, 0.5, 0]},
+                    {"t_s": 2, "velocity_m_per_s": [-1, 0, 0]}]},
         {"name": "peg", "shape": {"type": "cylinder", "radius_m": 0.01, "half_length_m": 0.1}, "static": true,
          "position_m": [0, -1, 0]},
-        {"name": "bob", "shape": {"type": "sphere", "radius_m": 0.1}, "mass_kg": 1, "position_m": [-1.4142135623730951, -1.4142135623730951, 0]}],
+        {"name": "bob", "shape": {"type": "sphere", "radius_m": 0.1}, "mass_kg": 1,
+         "position_m": [-1.4142135623730951, -1.4142135623730951, 0]}],
       "cables": [{"name": "string", )" + compliance + R"("links": [
         {"body": "pivot", "type": "attachment", "point_m": [0, 0, 0]},
         {"body": "peg", "type": "rolling", "orientation": "ccw", "active": false},

@@ -246,9 +246,11 @@ TEST(Spool, ADriveTurnedBackOnceTheCableRanOutWindsItOnAsBefore) {
                                     {SolverKind::GaussSeidel, 10, 2}}) {
         SCOPED_TRACE(test::name(b) + (back ? ", turned back" : ", driven on") + ", cart " + motion);
         // cw unwinds: the spool turns at -speed paying out.
-        const std::string drive = std::string(R"({"mode": "velocity", "schedule": [{"t_s": 0, "target_rad_per_s": -5},)") +
-                                  (back ? R"({"t_s": 2.2, "target_rad_per_s": -5}, {"t_s": 2.25, "target_rad_per_s": 5}])"
-                                        : R"({"t_s": 3, "target_rad_per_s": -5}])") + "}";
+        const std::string drive =
+            std::string(R"({"mode": "velocity", "schedule": [{"t_s": 0, "target_rad_per_s": -5},)") +
+            (back ? R"({"t_s": 2.2, "target_rad_per_s": -5}, {"t_s": 2.25, "target_rad_per_s": 5}])"
+                  : R"({"t_s": 3, "target_rad_per_s": -5}])") +
+            "}";
         Scene s = spoolOnACart(b, motion, drive, 0.3);
         const BodyId weight = test::body(s, "weight");
         EnergyWatch watch(s);

@@ -388,7 +388,8 @@ void CableSystem::watchHeldRuns(Cable& cable, int c, double time_s, bool switche
   // As breakOverloaded parts a run: its first span (all of a held run's
   // spans pull alike), at the cable's rating.
   part(cable, parts, 0.5);
-  out.events.push_back({CableEvent::Kind::Break, time_s, c, parts, cable.links[parts].orientation, cable.breaking_tension});
+  out.events.push_back(
+      {CableEvent::Kind::Break, time_s, c, parts, cable.links[parts].orientation, cable.breaking_tension});
   releaseFreeEnds(cable, c, time_s);
   buildRuns(cable);
   out.held_least.assign(n, std::numeric_limits<double>::quiet_NaN());

@@ -359,8 +359,9 @@ struct CableBreach {
   /// A rigid run through bodies that no constraint moves (static, or
   /// kinematic: moved by their schedules), with no friction link at its
   /// ends that could let it slip, was stretched further than it was when
-  /// it came to be so held: nothing can pull it in, and a rigid cable does
-  /// not stretch (a kinematic drum hauling over a wheel fixed in the world,
+  /// it came to be so held (where the cable has no breaking tension; one
+  /// with parts there instead): nothing can pull it in, and a rigid cable
+  /// does not stretch (a kinematic drum hauling over a wheel fixed in the world,
   /// which holds the cable without slipping). Left alone, the stretch came
   /// back as a yank the moment a moving body joined the run (a merge): 45
   /// kJ in a frame. `stretch`: its length less its rest length then (m).

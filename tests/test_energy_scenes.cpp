@@ -63,8 +63,10 @@ const std::set<std::string>& knownCreating() {
       "springs gauss-seidel 1x1", "springs gauss-seidel 1x10", "springs gauss-seidel 10x2",
       "springs gauss-seidel 32x32",
       // Gauss-Seidel unconverged on light wheels and phalanges (README:
-      // its limits; issue 29).
-      "gym gauss-seidel 1x10", "gym gauss-seidel 10x2", "hand gauss-seidel 1x1", "hand gauss-seidel 1x10",
+      // its limits; issue 29). (The hand at 1 x 1 came off when a visit
+      // stopped turning a phalanx's tendon ends past their line-up:
+      // line_up.h.)
+      "gym gauss-seidel 1x10", "gym gauss-seidel 10x2", "hand gauss-seidel 1x10",
       "hand gauss-seidel 10x2", "hilbert2 gauss-seidel 10x2", "pulley gauss-seidel 1x1",
       "servin gauss-seidel 1x1",
       // One solve that must turn wheels by radians: the bow's release.
@@ -73,15 +75,17 @@ const std::set<std::string>& knownCreating() {
       // hilbert3 at 1 x 1 came off when a dependent row's release stopped
       // judging the other rows by the unmet solve. Not traced further.)
       "bow direct 1x1", "bow direct 1x10",
-      // A spool or hybrid link running out at one substep a frame: the
-      // spool turns 2.1 rad in the solve its last 13 mm run out in, its
-      // span's end fixed on the body meanwhile (issue 29, item 3); the
-      // catch takes 98 % of the kinetic energy, and tying the end on 5 cm
-      // past the tangent point gives 0.94 J back. (Gauss-Seidel's 1 x 1
-      // and 1 x 10, where the spools spin 9 rad a substep, came off when a
-      // tie point passing a tangent point rolled again in the sense it
-      // travelled, not the short way back: CableSystem::switchHybrids.)
-      "hybrid direct 1x1", "spool direct 1x1",
+      // A spool running out at one substep a frame: the spool turns 2.1
+      // rad in the solve its last 13 mm run out in, its span's end fixed
+      // on the body meanwhile (issue 29, item 3); the catch takes 98 % of
+      // the kinetic energy, and tying the end on 5 cm past the tangent
+      // point gives 0.94 J back. (Gauss-Seidel's hybrid at 1 x 1 and 1 x
+      // 10, where the spools spin 9 rad a substep, came off when a tie
+      // point passing a tangent point rolled again in the sense it
+      // travelled, not the short way back: CableSystem::switchHybrids; the
+      // direct hybrid at 1 x 1 when a solve stopped turning a tie point
+      // past its line-up: line_up.h.)
+      "spool direct 1x1",
       // The segment rope's chain of contacts, 0.1 to 2 % of its scale in a
       // frame from 0.05 s on: the contacts' velocity pass credits as a loss
       // what the next solve gives back, frame for frame (DESIGN). (Its
@@ -91,22 +95,21 @@ const std::set<std::string>& knownCreating() {
       "rope_segments gauss-seidel 32x32",
       // The direct solver's start projection (issue 29, "Numerical
       // damping"; its ledger pairs the half-step velocity with the height
-      // half a substep back): the end's six cells above, and three more,
-      // none a drift of the step: hybrid at 1 x 10, whose balance ripples by up to 1 J a frame after
-      // the spools' catches (1.1 and 1.28 s) and rises 2.97 J from a low
-      // (the tolerance 2.8 J; the end's ripple rises 2.4 J); the bow at 10
-      // x 2, whose rail drive's work is booked with the force of the
+      // half a substep back): the end's cells above, and two more, none a
+      // drift of the step (hybrid at 1 x 1 and 1 x 10, whose balance rose
+      // 2.97 J after its spools' catches, came off when a solve stopped
+      // turning a tie point past its line-up: line_up.h): the bow at 10 x
+      // 2, whose rail drive's work is booked with the force of the
       // substep's start poses while the draw force rises (a left sum: +1.8
       // mJ a frame, 0.1 % of its scale by 0.22 s; the end's right sum falls
-      // 1.3 mJ a frame); and spool at 32 x 32, +0.16 J in the frame the
-      // yo-yo turns round and -0.16 J the next (a one-frame blip of the
-      // pairing: that catch keeps its energy under start, where the end
-      // loses 10.2 J of 38.6 in it). The
-      // segment rope makes what it makes under the end (an island with
-      // contacts projects every row at the end: its joints along their start
-      // gradients fought its contacts, 99 % of its scale in its first frame
-      // at 32 x 32).
-      "bow start 1x1", "bow start 1x10", "bow start 10x2", "hybrid start 1x1", "hybrid start 1x10",
+      // 1.3 mJ a frame); and spool at 32 x 32, +0.16 J in the frame the yo-yo turns
+      // round and -0.16 J the next (a one-frame blip of the pairing: that
+      // catch keeps its energy under start, where the end loses 10.2 J of
+      // 38.6 in it). The segment rope makes what it makes under the end (an
+      // island with contacts projects every row at the end: its joints
+      // along their start gradients fought its contacts, 99 % of its scale
+      // in its first frame at 32 x 32).
+      "bow start 1x1", "bow start 1x10", "bow start 10x2",
       "spool start 1x1", "spool start 32x32", "rope_segments start 10x2", "rope_segments start 32x32",
   };
   return cells;

@@ -8,6 +8,7 @@
 
 #include "reeve/engine/correction.h"
 #include "gauss_seidel/span_ends.h"
+#include "line_up.h"
 
 namespace reeve {
 namespace {
@@ -17,6 +18,10 @@ namespace {
 // visit once warm.
 struct Scratch {
   std::vector<Vec3> arm, grad, force, pos, torque, turn;
+  // Per point: its body's response to the visit (line_up.h); at a body's
+  // first point (by body), its turn per unit lambda and its share of w.
+  std::vector<double> scale, share;
+  std::vector<Vec3> body_turn;
   // A rolling end's tangent slide (tangentSlide) at the run's ends and their
   // neighbours: dC/dp and dC/d(rotation), and their weighted forces.
   std::vector<Vec3> slide_grad, slide_moment, slide_force, slide_torque;
@@ -27,6 +32,9 @@ struct Scratch {
                                    &slide_torque})
         v->resize(n);
     by_body.resize(n);
+    scale.resize(n);
+    share.resize(n);
+    body_turn.resize(n);
   }
 };
 thread_local Scratch scratch;
@@ -129,6 +137,22 @@ bool isSpan(const PathConstraint& path) {
   return path.points.size() == 2 && path.points[0].body != path.points[1].body && path.scales.empty();
 }
 
+// The scale s <= 1 of a body's response to a row that turns it at most
+// `most` (rad) where the row's step dl (target / w_all) turns it `angle`,
+// `per` a unit of lambda, a = t . turn its share of w_all; dl is updated.
+// Where nothing else can move, s stays 1 and dl shrinks.
+double fixedTurnScale(double most, double angle, double per, double a, double w_all, double target, double& dl) {
+  const double rest = w_all - a;  // the other bodies' share and the compliance
+  if (!(rest > 1e-12 * w_all)) {
+    dl *= most / angle;
+    return 1.0;
+  }
+  // |dl(s)| s per = most, dl(s) = target / (rest + s a).
+  const double s = most * rest / (std::abs(target) * per - most * a);
+  dl = target / (rest + s * a);
+  return s;
+}
+
 // The kernel below for a span between two bodies, the common case (every
 // span of a cable over wheels): the same maths without its per-point
 // arrays and per-body sums, each rolling end's pay-out per radian taken
@@ -203,7 +227,31 @@ void solveSpan(PathConstraint& path, BodyState& b0, BodyState& b1, double alpha_
   const double w = weight * linear + t0.dot(turn0) + t1.dot(turn1);
   const DampedRow row = dampedRow(C, alpha_tilde, alpha_tilde * h * path.damping, length - path.start_length);
   if (!(w + row.alpha_tilde > 0.0)) return;
-  double dl = (-row.C - row.alpha_tilde * path.lambda) / (w + row.alpha_tilde);
+  const double target = -row.C - row.alpha_tilde * path.lambda;
+  double dl = target / (w + row.alpha_tilde);
+  // A fixed point (an attachment, a spool's tie point once run out) turns
+  // on a circle (line_up.h): a 2 g crank under 1 kg swung back and forth
+  // by radians a substep, and v = dx / h made energy without bound (1e152
+  // J at 100 x 1). The visit turns such an end at most to its line-up;
+  // the rest of its correction goes to the other end, this end's response
+  // to the row scaled by s (as geometric stiffness stiffens it, Andrews et
+  // al. 2017; its torque impulse is booked in full).
+  double s0 = 1.0, s1 = 1.0, w_all = w + row.alpha_tilde;
+  const bool fixed0 = !steady0 && p0.roll_axis.isZero() && b0.takesImpulses();
+  const bool fixed1 = !steady1 && p1.roll_axis.isZero() && b1.takesImpulses();
+  const auto cap = [&](bool fixed, const SolvePoint& end, const Vec3& toward, const Vec3& turn, const Vec3& t,
+                       double& scale) {
+    const double per = scale * turn.norm(), angle = std::abs(dl) * per;
+    if (!fixed || !(angle > kTrustedVisitTurn)) return;
+    const double most = turnToLineUp(end.arm, turn / turn.norm(), dl, toward);
+    if (angle <= most) return;
+    const double a = scale * t.dot(turn), more = fixedTurnScale(most, angle, per, a, w_all, target, dl);
+    w_all -= (1.0 - more) * a;
+    scale *= more;
+  };
+  cap(fixed0, first, u, turn0, t0, s0);
+  cap(fixed1, last, -u, turn1, t1, s1);
+  if (s1 < 1.0) cap(fixed0, first, u, turn0, t0, s0);  // end 1 took less: end 0 may turn more
   dl = std::clamp(path.lambda + dl, -path.max_tension * h * h, 0.0) - path.lambda;
   path.lambda += dl;
   const auto move = [&](BodyState& b, const Vec3& g, const Vec3& t, const Vec3& turn) {
@@ -215,8 +263,8 @@ void solveSpan(PathConstraint& path, BodyState& b0, BodyState& b1, double alpha_
     b.angular_impulse += dl * weight * t;
     b.solve_turn += dphi;
   };
-  move(b0, g0, t0, turn0);
-  move(b1, g1, t1, turn1);
+  move(b0, g0, t0, s0 * turn0);
+  move(b1, g1, t1, s1 * turn1);
 }
 
 }  // namespace
@@ -329,18 +377,58 @@ void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double a
     }
     const BodyState& b = bodies(id);
     Vec3 body_turn = Vec3::Zero();  // I^-1 (sum_j t(f_j)), per unit of lambda
+    const size_t start = k;
     for (; k < end; ++k) body_turn += turn[by_body[k]] = b.applyInvInertia(torque[by_body[k]]);
-    w += b.inv_mass * g.dot(f) + t.dot(body_turn);
+    const double a = t.dot(body_turn);
+    w += b.inv_mass * g.dot(f) + a;
+    scratch.body_turn[start] = body_turn;  // for the line-up below, at the body's first point
+    scratch.share[start] = a;
   }
   const DampedRow row = dampedRow(C, alpha_tilde, alpha_tilde * h * path.damping, length - path.start_length);
   if (!(w + row.alpha_tilde > 0.0)) return;
-  double dl = (-row.C - row.alpha_tilde * path.lambda) / (w + row.alpha_tilde);
+  const double target = -row.C - row.alpha_tilde * path.lambda;
+  double dl = target / (w + row.alpha_tilde);
+  // Each body's fixed points turn at most to the first line-up among them
+  // (line_up.h; solveSpan): a point's length is most or least over the
+  // turn where its arm lines up with its gradient. A body with a rolling
+  // end pays cable out linearly there and is left as it is.
+  double w_all = w + row.alpha_tilde;
+  bool scaled = false;
+  std::vector<double>& scale = scratch.scale;
+  std::fill(scale.begin(), scale.begin() + n, 1.0);
+  const auto cap = [&]() {
+    for (size_t k = 0; k < n;) {
+      const size_t start = k;
+      const BodyId id = path.points[by_body[k]].body;
+      while (k < n && path.points[by_body[k]].body == id) ++k;
+      const Vec3& body_turn = scratch.body_turn[start];
+      const double s = scale[by_body[start]], per = s * body_turn.norm(), angle = std::abs(dl) * per;
+      if (!(angle > kTrustedVisitTurn) || !bodies(id).takesImpulses()) continue;
+      const Vec3 e = body_turn / body_turn.norm();
+      double most = angle;
+      for (size_t j = start; j < k; ++j) {
+        const size_t i = by_body[j];
+        if (!path.points[i].roll_axis.isZero()) {  // pays out linearly: left as it is
+          most = angle;
+          break;
+        }
+        if (grad[i].squaredNorm() > kLeastGradient2) most = std::min(most, turnToLineUp(arm[i], e, dl, -grad[i]));
+      }
+      if (angle <= most) continue;
+      const double a = s * scratch.share[start], more = fixedTurnScale(most, angle, per, a, w_all, target, dl);
+      w_all -= (1.0 - more) * a;
+      for (size_t j = start; j < k; ++j) scale[by_body[j]] *= more;
+      scaled = true;
+    }
+  };
+  cap();
+  if (scaled) cap();  // a body after took less: one before may turn more
   dl = std::clamp(path.lambda + dl, -path.max_tension * h * h, 0.0) - path.lambda;
   path.lambda += dl;
   for (size_t i = 0; i < n; ++i) {
     BodyState& b = bodies(path.points[i].body);
     if (!b.takesImpulses()) continue;
-    const Vec3 dphi = dl * turn[i];
+    const Vec3 dphi = dl * scale[i] * turn[i];
     b.x += dl * b.inv_mass * force[i];
     rotateBy(b.q, dphi);
     b.impulse += dl * force[i];

@@ -14,6 +14,7 @@
 
 #include "reeve/engine/correction.h"
 #include "../island.h"
+#include "../line_up.h"
 #include "reeve/engine/world.h"
 
 namespace reeve {
@@ -84,6 +85,10 @@ constexpr double kStartSteady = 0.5;
 // A solve whose largest step (m, rad) is below this fraction of the
 // tolerance moved nothing a row can tell (iterate()).
 constexpr double kStalled = 1e-3;
+
+// Rounds of stiffenTurns() and a solve in an iteration: a body in other
+// rows (a spool hinged to a cart) may turn past again after the first.
+constexpr int kLineUpRounds = 3;
 
 using joint_rows::kInf;
 using joint_rows::Vec6;
@@ -389,7 +394,12 @@ void DirectSolver::build(World& world) {
   angular_a_.assign(n, nullptr);
   full_.assign(ldlt_.values().size(), 0.0);
   curvature_.assign(entries_.size(), Mat3::Zero());
+  std::size_t points = 0;  // no allocation in a step: at most a fixed end a point
+  for (const Row& row : rows_)
+    points += row.source == Source::Path ? world.path(row.index).points.size() : row.source == Source::Distance ? 2 : 0;
+  fixed_ends_.reserve(points);
   const std::size_t m = bodies_.size();
+  stiffened_turns_.reserve(m);
   frames_.assign(m, BodyFrame{});
   dx_.assign(m, Vec3::Zero());
   dphi_.assign(m, Vec3::Zero());
@@ -978,8 +988,28 @@ bool DirectSolver::iterate(World& world, double h) {
   plain_solve_ = first_solve_ && !lifted_ && !stiffened_ && start_.empty() && linearRows(world);
   shiftValues();
   warmStartCaps();
-  solveActiveSet(tolerance > 0.0 ? tolerance : 1e-10 * scale);
-  const double omega = extrapolation();
+  const double solve_tolerance = tolerance > 0.0 ? tolerance : 1e-10 * scale;
+  solveActiveSet(solve_tolerance);
+  double omega = extrapolation();
+  // A step that turns a fixed end past its line-up (line_up.h: a 2 g crank
+  // under 1 kg swung radians each way a solve, and v = dx / h made energy
+  // without bound) is solved again with that body's turn stiffened, then
+  // shortened, lambda with the motion (a damped Newton step), to whatever
+  // still turns one past: a row that nothing else can move meets the rest
+  // later.
+  stiffened_turns_.clear();
+  for (int round = 0; round < kLineUpRounds && stiffenTurns(omega); ++round) {
+    warmStartCaps();
+    solveActiveSet(solve_tolerance);
+    omega = 1.0;
+    extrapolated_ = false;
+  }
+  restoreTurns();
+  const double share = lineUpShare(omega);
+  if (share < 1.0) {
+    omega *= share;
+    for (double& dl : dlambda_) dl *= share;
+  }
   double step2 = 0.0;
   for (std::size_t i = 0; i < frames_.size(); ++i) {
     dx_[i] = omega * (dx_[i] + shift_x_[i]);
@@ -1035,8 +1065,85 @@ bool DirectSolver::iterate(World& world, double h) {
   // between, so every iteration left would evaluate and solve the same:
   // 18 of them at that frame of the paper's 1 x 20.
   const double stalled = kStalled * tolerance;
-  if (!rows_met && moves_alone_ && settled_ && tolerance > 0.0 && step2 <= stalled * stalled) met_ = true;
+  if (!rows_met && moves_alone_ && settled_ && share == 1.0 && tolerance > 0.0 && step2 <= stalled * stalled)
+    met_ = true;
   return true;
+}
+
+double DirectSolver::turnPast(const FixedEnd& f, double omega, double& most) const {
+  const Vec3 dphi = omega * (dphi_[f.body] + shift_phi_[f.body]);
+  const double angle = dphi.norm();
+  most = angle;
+  if (angle > kTrustedStepTurn) most = turnToLineUp(f.arm, dphi / angle, 1.0, f.toward);
+  return angle;
+}
+
+bool DirectSolver::stiffenTurns(double omega) {
+  bool changed = false;
+  for (const FixedEnd& f : fixed_ends_) {
+    double most;
+    const double angle = turnPast(f, omega, most);
+    if (angle <= most) continue;
+    // The end's row alone, as Gauss-Seidel's visit: dl = target / (rest +
+    // s a) turns it |dl| s per, a = j W j^T its own share of the row's w.
+    // Where that says nothing (nothing else in the row moves, or the row's
+    // other rows hold the rest), the turn asked shrinks in proportion.
+    const Row& row = rows_[f.row];
+    double w_all = alpha_[f.row];
+    for (int e = row.first_entry; e < row.first_entry + row.entry_count; ++e)
+      w_all += entries_[e].lin.dot(entries_[e].wlin) + entries_[e].ang.dot(entries_[e].wang);
+    const Entry& own = entries_[f.entry];
+    const double a = own.ang.dot(own.wang), per = own.wang.norm(), rest = w_all - a;
+    const double target = std::abs(C_[f.row] + alpha_[f.row] * lambda_[f.row]);
+    double s = most / angle;
+    if (rest > 1e-12 * w_all && target * per > most * a) s = std::min(s, most * rest / (target * per - most * a));
+    auto it = std::find_if(stiffened_turns_.begin(), stiffened_turns_.end(),
+                           [&](const Stiffened& t) { return t.body == f.body; });
+    if (it == stiffened_turns_.end()) {
+      const BodyFrame& b = frames_[f.body];
+      stiffened_turns_.push_back({f.body, 1.0, b.inv_inertia, b.inv_axial});
+      it = stiffened_turns_.end() - 1;
+    }
+    scaleTurn(f.body, s);  // on top of the last round's, and of another end's on it
+    it->scale *= s;
+    changed = true;
+  }
+  if (changed)
+    for (Entry& e : entries_)
+      for (const Stiffened& t : stiffened_turns_)
+        if (e.body == t.body) weigh(e);
+  return changed;
+}
+
+void DirectSolver::scaleTurn(int body, double scale) {
+  BodyFrame& b = frames_[body];
+  if (b.inv_axial > 0.0) b.inv_axial *= scale;
+  else b.inv_inertia *= scale;
+  b.turn_scale *= scale;  // a hub's (assembleHubs)
+}
+
+void DirectSolver::restoreTurns() {
+  if (stiffened_turns_.empty()) return;
+  for (const Stiffened& t : stiffened_turns_) {
+    BodyFrame& b = frames_[t.body];
+    b.inv_inertia = t.inv_inertia;
+    b.inv_axial = t.inv_axial;
+    b.turn_scale = 1.0;
+  }
+  for (Entry& e : entries_)
+    for (const Stiffened& t : stiffened_turns_)
+      if (e.body == t.body) weigh(e);
+  stiffened_turns_.clear();
+}
+
+double DirectSolver::lineUpShare(double omega) const {
+  double share = 1.0;
+  for (const FixedEnd& f : fixed_ends_) {
+    double most;
+    const double angle = turnPast(f, omega, most);
+    if (angle > most) share = std::min(share, most / angle);
+  }
+  return share;
 }
 
 bool DirectSolver::metAsSolved(double tolerance) const {

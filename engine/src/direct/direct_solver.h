@@ -263,6 +263,34 @@ class DirectSolver {
   // over entries (the assembly, the motion) read 120 bytes an entry, not
   // 192, and a rotor's entry never reads it.
   std::vector<Mat3> curvature_;
+  struct FixedEnd {  // a span's or run's fixed point on a moving body, as evaluated (line_up.h)
+    int body;        // index into bodies_
+    int row, entry;  // its row and its body's entry in that row
+    Vec3 arm;        // world, from its body's centre of mass
+    Vec3 toward;     // minus its gradient (a span's: the unit span away from it)
+  };
+  std::vector<FixedEnd> fixed_ends_;  // the last evaluate()'s (evaluateSpan, evaluateRun)
+  struct Stiffened {  // a body whose turn stiffenTurns() scaled, and its W before
+    int body;
+    double scale;
+    Mat3 inv_inertia;
+    double inv_axial;
+  };
+  std::vector<Stiffened> stiffened_turns_;
+  /// The turn (rad) the step (dphi_ + shift_phi_, times `omega`) gives
+  /// fixed end `f`'s body, and in `most` the most it may be (line_up.h;
+  /// the turn itself below kTrustedStepTurn).
+  double turnPast(const FixedEnd& f, double omega, double& most) const;
+  /// Scales the angular W of each body whose step turns a fixed end past
+  /// its line-up, as Gauss-Seidel's visit does (path_constraint.cpp): the
+  /// end's row then turns it at most to there, the rest of its correction
+  /// going to the row's other bodies. Returns whether any scale changed;
+  /// restoreTurns() puts W back.
+  bool stiffenTurns(double omega);
+  void scaleTurn(int body, double scale);
+  void restoreTurns();
+  /// The share (0, 1] of the step that turns no fixed end past its line-up.
+  double lineUpShare(double omega) const;
   std::vector<Entry> start_;      // entries_ at the substep's start (linearizeAtStart); empty: Projection::End
   std::vector<Mat3> start_curvature_;  // ... and their curvature_
   bool at_start_ = false;         // evaluating at the start poses
@@ -352,6 +380,7 @@ class DirectSolver {
     // it): keepsSpan.
     Vec3 placed_x = Vec3::Zero(), placed_axle = Vec3::Zero();
     bool still = false;
+    double turn_scale = 1.0;  // a hub's angular W scaled by stiffenTurns(), its inertia divided
   };
   std::vector<BodyFrame> frames_;
   std::vector<Vec3> dx_, dphi_;

@@ -29,7 +29,7 @@ void DirectSolver::assembleHubs() {
   // J_h, -M_h, and each row's delta from its hub part of J W J^T.
   for (std::size_t h = 0; h < hubs_.size(); ++h) {
     const BodyFrame& f = frames_[hubs_[h].body];
-    hub_inertia_[h] = f.R * f.state->inertia * f.R.transpose();
+    hub_inertia_[h] = f.R * f.state->inertia * f.R.transpose() / f.turn_scale;
   }
   for (const Coupling& c : couplings_) full_[c.slot] = hubGradient(entries_[c.entry], c.dof);
   for (const MassSlot& m : mass_slots_) full_[m.slot] = -hubMass(m.hub, m.i, m.j);

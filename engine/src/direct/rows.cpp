@@ -8,6 +8,7 @@
 
 #include "reeve/engine/correction.h"
 #include "reeve/engine/world.h"
+#include "../line_up.h"
 
 namespace reeve {
 namespace {
@@ -150,6 +151,12 @@ void DirectSolver::evaluateSpan(const World& world, int r, const PathPoint& p0, 
   bool slid0 = leavesPlane(e0, d), slid1 = leavesPlane(e1, d);
   if ((slid0 || slid1) && linearEnd(p0) && linearEnd(p1)) slid0 = slid1 = false;
   addSpanSlides(e0, e1, d, slid0, slid1, length, g0, m0, g1, m1);
+  // Fixed points on moving bodies, for the step's line-up (line_up.h); a
+  // span with both ends on one body has no turn in its length.
+  if (s0 != s1) {
+    if (s0 >= 0 && e0.axis.isZero()) fixed_ends_.push_back({s0, r, row.first_entry, a0, u});
+    if (s1 >= 0 && e1.axis.isZero()) fixed_ends_.push_back({s1, r, row.first_entry + (s0 >= 0 ? 1 : 0), a1, -u});
+  }
   int e = row.first_entry;
   if (s0 >= 0) {
     entries_[e].lin = g0;
@@ -325,6 +332,11 @@ void DirectSolver::evaluateRun(const World& world, int r, const PathPoint* point
       entries_[entry[i]].ang += end ? ends[i == 0 ? 0 : 1].moment(grad) : Vec3(arm[i].cross(grad));
       if (end) curveEnd(entry[i], grad, ends[i == 0 ? 0 : 1], true);
       else curve(entry[i], grad, arm[i], true);
+      // Its length is most or least over its body's turn where its arm
+      // lines up with its gradient (line_up.h); a pinhole the cable runs
+      // straight through has none to speak of.
+      if ((!end || ends[i == 0 ? 0 : 1].axis.isZero()) && grad.squaredNorm() > kLeastGradient2)
+        fixed_ends_.push_back({entries_[entry[i]].body, r, entry[i], arm[i], -grad});
     }
     prev_u = u;
   }
@@ -482,6 +494,7 @@ void DirectSolver::driveAgainstLimit(int first_clamped, const JointRowSet& set) 
 
 void DirectSolver::evaluate(World& world, double h) {
   damped_ = false;
+  fixed_ends_.clear();
   evaluateBodies();
   const int n = static_cast<int>(rows_.size());
   for (int r = 0; r < n;) {

@@ -1,0 +1,40 @@
+// A fixed point on a turning body moves on a circle, and a span's length
+// from it is first order in the turn only until the point's arm lines up
+// with the span, where the length is least or most over the turn. A
+// solver step that turns the point past there overshoots: both solvers
+// turn such a point at most to that pose (DESIGN, "A light crank").
+#pragma once
+
+#include <cmath>
+
+#include "reeve/engine/math.h"
+
+namespace reeve {
+
+/// Turns below these (rad) are not checked. Gauss-Seidel's visit turns a
+/// body by its one row: past the line-up by 1e-3 rad the span's length is
+/// off its linear model by r 5e-7. The direct solver's step turns it by
+/// all its rows: a fixed end at its line-up (the crane's luff on its mast)
+/// is turned by the others' (a few mrad), which a cap there locked (1.3e6 J
+/// made at 1 x 10); under 0.1 rad the model is off by r 0.005 at most.
+inline constexpr double kTrustedVisitTurn = 1e-3;
+inline constexpr double kTrustedStepTurn = 0.1;
+
+/// A point whose length gradient is shorter than this squared (a pinhole
+/// the cable bends through by under 0.06 degrees) is not checked: its
+/// length hardly turns with it, and its line-up is rounding's.
+inline constexpr double kLeastGradient2 = 1e-6;
+
+/// The turn (rad, in [0, pi]) that brings a fixed point's world arm `arm`,
+/// turning about the unit axis `e` in the sense of `sign`, in line with
+/// `toward` (where its length shrinks fastest: minus its gradient, a
+/// span's direction away from it) or against it.
+inline double turnToLineUp(const Vec3& arm, const Vec3& e, double sign, const Vec3& toward) {
+  const Vec3 r = arm - e * e.dot(arm), v = toward - e * e.dot(toward);
+  const double a = std::atan2(e.dot(v.cross(r)), v.dot(r));  // from v to r about e, in (-pi, pi]
+  constexpr double kPi = 3.14159265358979323846;
+  if (sign > 0.0) return a < 0.0 ? -a : kPi - a;
+  return a > 0.0 ? a : kPi + a;
+}
+
+}  // namespace reeve

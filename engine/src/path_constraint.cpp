@@ -363,7 +363,7 @@ void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double a
       const BodyId bx = path.points[x].body, by = path.points[y].body;
       return bx < by || (bx == by && x < y);
     });
-  double w = 0.0;
+  double w = 0.0, most_turn2 = 0.0;  // the largest |body_turn|^2 of a body the visit moves
   for (size_t k = 0; k < n;) {
     const BodyId id = path.points[by_body[k]].body;
     Vec3 g = Vec3::Zero(), t = Vec3::Zero(), f = Vec3::Zero();
@@ -383,6 +383,7 @@ void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double a
     w += b.inv_mass * g.dot(f) + a;
     scratch.body_turn[start] = body_turn;  // for the line-up below, at the body's first point
     scratch.share[start] = a;
+    if (b.takesImpulses()) most_turn2 = std::max(most_turn2, body_turn.squaredNorm());
   }
   const DampedRow row = dampedRow(C, alpha_tilde, alpha_tilde * h * path.damping, length - path.start_length);
   if (!(w + row.alpha_tilde > 0.0)) return;
@@ -395,7 +396,8 @@ void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double a
   double w_all = w + row.alpha_tilde;
   bool scaled = false;
   std::vector<double>& scale = scratch.scale;
-  std::fill(scale.begin(), scale.begin() + n, 1.0);
+  const bool turns = dl * dl * most_turn2 > kTrustedVisitTurn * kTrustedVisitTurn;  // most visits: none
+  if (turns) std::fill(scale.begin(), scale.begin() + n, 1.0);
   const auto cap = [&]() {
     for (size_t k = 0; k < n;) {
       const size_t start = k;
@@ -421,14 +423,14 @@ void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double a
       scaled = true;
     }
   };
-  cap();
+  if (turns) cap();
   if (scaled) cap();  // a body after took less: one before may turn more
   dl = std::clamp(path.lambda + dl, -path.max_tension * h * h, 0.0) - path.lambda;
   path.lambda += dl;
   for (size_t i = 0; i < n; ++i) {
     BodyState& b = bodies(path.points[i].body);
     if (!b.takesImpulses()) continue;
-    const Vec3 dphi = dl * scale[i] * turn[i];
+    const Vec3 dphi = scaled ? Vec3(dl * scale[i] * turn[i]) : Vec3(dl * turn[i]);
     b.x += dl * b.inv_mass * force[i];
     rotateBy(b.q, dphi);
     b.impulse += dl * force[i];

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "reeve/cable/cable.h"
+#include "reeve/engine/distance_constraint.h"
 #include "reeve/scene/energy.h"
 #include "scene_fixture.h"
 #include "solver_budgets.h"
@@ -74,6 +75,40 @@ TEST(LightCrank, CatchingALoadFiveHundredToAMillionTimesHeavierItMakesNoEnergyAn
         EXPECT_LT(0.5 * w.v.squaredNorm() / w.inv_mass, 0.1) << "of the 38 J it was caught with";
         EXPECT_NEAR(s.cables->tension(0, 0), 1.0 * g, 0.1 * g);
       }
+}
+
+TEST(LightCrank, OnAPlainDistanceConstraintItMakesNoEnergyEither) {
+  // The C++ API's distance constraint between the crank's rim and the box,
+  // in place of the cable: under Gauss-Seidel its visit is its own kernel.
+  const double r = 0.03, L = 4.4, top = 0.1;
+  for (const test::Budget& b : kLightBudgets)
+    for (const double mass : {2e-3, 1e-6}) {
+      SCOPED_TRACE(test::name(b) + ", crank " + std::to_string(mass) + " kg");
+      const std::string json = R"({"name": "light_crank_rod", )" + test::solverJson(b) + R"(,
+        "bodies": [
+          {"name": "crank", "shape": {"type": "cylinder", "radius_m": 0.03, "half_length_m": 0.05},
+           "mass_kg": )" + std::to_string(mass) + R"(, "position_m": [0, 0, 0]},
+          {"name": "weight", "shape": {"type": "box", "half_extents_m": [0.1, 0.1, 0.1]}, "mass_kg": 1.0,
+           "position_m": [0.03, -0.5, 0]}],
+        "hinges": [{"body": "crank", "anchor_m": [0, 0, 0], "axis": [0, 0, 1]}]})";
+      Scene s = parseScene(json, "light_crank_rod");
+      const BodyId weight = test::body(s, "weight");
+      DistanceConstraint rod;
+      rod.a = test::body(s, "crank");
+      rod.local_a = Vec3(r, 0.0, 0.0);
+      rod.b = weight;
+      rod.local_b = Vec3(0.0, top, 0.0);
+      rod.rest_length = L;
+      s.world->addDistance(rod);
+      EnergyWatch watch(s);
+      for (int f = 0; f < 180; ++f) {
+        test::frame(s);
+        const auto created = watch.check(s);
+        ASSERT_FALSE(created) << energyCreatedMessage(*created);
+      }
+      EXPECT_GT(s.world->body(weight).x.y(), -(L + r + top) - 1e-4);
+      EXPECT_LT(s.world->body(weight).x.y(), -(L + r + top) + 3e-3);
+    }
 }
 
 TEST(LightCrank, AYoYoWhoseSpoolIsFiveHundredToAMillionTimesLighterThanItsWeightMakesNoEnergy) {

@@ -25,8 +25,8 @@ double positionalDeltaLambda(const BodyState& a, const BodyState& b, const Vec3&
 }
 
 void applyPositionalImpulse(BodyState& a, BodyState& b, const Vec3& r_a, const Vec3& r_b,
-                            const Vec3& P) {
-  const Vec3 turn_b = turnOf(b, r_b.cross(P)), turn_a = -turnOf(a, r_a.cross(P));
+                            const Vec3& P, double scale_a, double scale_b) {
+  const Vec3 turn_b = scale_b * turnOf(b, r_b.cross(P)), turn_a = -scale_a * turnOf(a, r_a.cross(P));
   if (b.takesImpulses()) {
     b.x += P * b.inv_mass;
     rotateBy(b.q, turn_b);

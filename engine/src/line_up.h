@@ -2,7 +2,9 @@
 // from it is first order in the turn only until the point's arm lines up
 // with the span, where the length is least or most over the turn. A
 // solver step that turns the point past there overshoots: both solvers
-// turn such a point at most to that pose (DESIGN, "A light crank").
+// turn such a point at most to that pose (DESIGN, "A light crank"):
+// Gauss-Seidel's visits (path_constraint.cpp, distance_constraint.cpp)
+// and the direct solver's steps (DirectSolver::stiffenTurns).
 #pragma once
 
 #include <cmath>
@@ -35,6 +37,39 @@ inline double turnToLineUp(const Vec3& arm, const Vec3& e, double sign, const Ve
   constexpr double kPi = 3.14159265358979323846;
   if (sign > 0.0) return a < 0.0 ? -a : kPi - a;
   return a > 0.0 ? a : kPi + a;
+}
+
+// The scale s <= 1 of a body's response to a row that turns it at most
+// `most` (rad) where the row's step dl (target / w_all) turns it `angle`,
+// `per` a unit of lambda, a = t . turn its share of w_all; dl is updated.
+// Where nothing else can move, s stays 1 and dl shrinks.
+inline double fixedTurnScale(double most, double angle, double per, double a, double w_all, double target,
+                             double& dl) {
+  const double rest = w_all - a;  // the other bodies' share and the compliance
+  if (!(rest > 1e-12 * w_all)) {
+    dl *= most / angle;
+    return 1.0;
+  }
+  // |dl(s)| s per = most, dl(s) = target / (rest + s a).
+  const double s = most * rest / (std::abs(target) * per - most * a);
+  dl = target / (rest + s * a);
+  return s;
+}
+
+// A visit's cap on one fixed end (Gauss-Seidel: solveSpan, the distance
+// constraint): its world arm, the direction its length shrinks along,
+// its turn per unit lambda and that turn's share t . turn of the row's w;
+// the row's target (-C - alpha~ lambda), w_all (w + alpha~) and step dl,
+// and the end's response scale, are updated for it.
+inline void capVisitTurn(const Vec3& arm, const Vec3& toward, const Vec3& turn, double share, double target,
+                         double& w_all, double& dl, double& scale) {
+  const double per = scale * turn.norm(), angle = std::abs(dl) * per;
+  if (!(angle > kTrustedVisitTurn)) return;
+  const double most = turnToLineUp(arm, turn / turn.norm(), dl, toward);
+  if (angle <= most) return;
+  const double a = scale * share, more = fixedTurnScale(most, angle, per, a, w_all, target, dl);
+  w_all -= (1.0 - more) * a;
+  scale *= more;
 }
 
 }  // namespace reeve

@@ -137,22 +137,6 @@ bool isSpan(const PathConstraint& path) {
   return path.points.size() == 2 && path.points[0].body != path.points[1].body && path.scales.empty();
 }
 
-// The scale s <= 1 of a body's response to a row that turns it at most
-// `most` (rad) where the row's step dl (target / w_all) turns it `angle`,
-// `per` a unit of lambda, a = t . turn its share of w_all; dl is updated.
-// Where nothing else can move, s stays 1 and dl shrinks.
-double fixedTurnScale(double most, double angle, double per, double a, double w_all, double target, double& dl) {
-  const double rest = w_all - a;  // the other bodies' share and the compliance
-  if (!(rest > 1e-12 * w_all)) {
-    dl *= most / angle;
-    return 1.0;
-  }
-  // |dl(s)| s per = most, dl(s) = target / (rest + s a).
-  const double s = most * rest / (std::abs(target) * per - most * a);
-  dl = target / (rest + s * a);
-  return s;
-}
-
 // The kernel below for a span between two bodies, the common case (every
 // span of a cable over wheels): the same maths without its per-point
 // arrays and per-body sums, each rolling end's pay-out per radian taken
@@ -239,19 +223,10 @@ void solveSpan(PathConstraint& path, BodyState& b0, BodyState& b1, double alpha_
   double s0 = 1.0, s1 = 1.0, w_all = w + row.alpha_tilde;
   const bool fixed0 = !steady0 && p0.roll_axis.isZero() && b0.takesImpulses();
   const bool fixed1 = !steady1 && p1.roll_axis.isZero() && b1.takesImpulses();
-  const auto cap = [&](bool fixed, const SolvePoint& end, const Vec3& toward, const Vec3& turn, const Vec3& t,
-                       double& scale) {
-    const double per = scale * turn.norm(), angle = std::abs(dl) * per;
-    if (!fixed || !(angle > kTrustedVisitTurn)) return;
-    const double most = turnToLineUp(end.arm, turn / turn.norm(), dl, toward);
-    if (angle <= most) return;
-    const double a = scale * t.dot(turn), more = fixedTurnScale(most, angle, per, a, w_all, target, dl);
-    w_all -= (1.0 - more) * a;
-    scale *= more;
-  };
-  cap(fixed0, first, u, turn0, t0, s0);
-  cap(fixed1, last, -u, turn1, t1, s1);
-  if (s1 < 1.0) cap(fixed0, first, u, turn0, t0, s0);  // end 1 took less: end 0 may turn more
+  if (fixed0) capVisitTurn(first.arm, u, turn0, t0.dot(turn0), target, w_all, dl, s0);
+  if (fixed1) capVisitTurn(last.arm, -u, turn1, t1.dot(turn1), target, w_all, dl, s1);
+  if (fixed0 && s1 < 1.0)  // end 1 took less: end 0 may turn more
+    capVisitTurn(first.arm, u, turn0, t0.dot(turn0), target, w_all, dl, s0);
   dl = std::clamp(path.lambda + dl, -path.max_tension * h * h, 0.0) - path.lambda;
   path.lambda += dl;
   const auto move = [&](BodyState& b, const Vec3& g, const Vec3& t, const Vec3& turn) {

@@ -42,9 +42,10 @@ inline DampedRow dampedRow(double C, double alpha_tilde, double gamma, double dC
 /// Moves b by the positional impulse P (kg m) applied at arm r_b, and a by
 /// -P at r_a: x += P/m, q += 1/2 [I^-1 (r x P), 0] q (SCA 2020, eq. 6-9);
 /// adds P, r x P and the turn to the bodies' impulse, angular_impulse and
-/// solve_turn (body.h).
+/// solve_turn (body.h). `scale_a`, `scale_b` (<= 1) scale each body's turn
+/// alone, where a visit stiffens it (DESIGN, "A light crank").
 void applyPositionalImpulse(BodyState& a, BodyState& b, const Vec3& r_a, const Vec3& r_b,
-                            const Vec3& P);
+                            const Vec3& P, double scale_a = 1.0, double scale_b = 1.0);
 
 /// dlambda for an angular row: w = n^T I^-1 n per body (SCA 2020, eq.
 /// 11-12). `C` in rad.

@@ -1097,15 +1097,12 @@ bool DirectSolver::stiffenTurns(double omega) {
     const double target = std::abs(C_[f.row] + alpha_[f.row] * lambda_[f.row]);
     double s = most / angle;
     if (rest > 1e-12 * w_all && target * per > most * a) s = std::min(s, most * rest / (target * per - most * a));
-    auto it = std::find_if(stiffened_turns_.begin(), stiffened_turns_.end(),
-                           [&](const Stiffened& t) { return t.body == f.body; });
-    if (it == stiffened_turns_.end()) {
+    if (std::none_of(stiffened_turns_.begin(), stiffened_turns_.end(),
+                     [&](const Stiffened& t) { return t.body == f.body; })) {
       const BodyFrame& b = frames_[f.body];
-      stiffened_turns_.push_back({f.body, 1.0, b.inv_inertia, b.inv_axial});
-      it = stiffened_turns_.end() - 1;
+      stiffened_turns_.push_back({f.body, b.inv_inertia, b.inv_axial});
     }
     scaleTurn(f.body, s);  // on top of the last round's, and of another end's on it
-    it->scale *= s;
     changed = true;
   }
   if (changed)

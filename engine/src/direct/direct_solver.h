@@ -272,7 +272,6 @@ class DirectSolver {
   std::vector<FixedEnd> fixed_ends_;  // the last evaluate()'s (evaluateSpan, evaluateRun)
   struct Stiffened {  // a body whose turn stiffenTurns() scaled, and its W before
     int body;
-    double scale;
     Mat3 inv_inertia;
     double inv_axial;
   };

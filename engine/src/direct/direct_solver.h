@@ -276,15 +276,23 @@ class DirectSolver {
     double inv_axial;
   };
   std::vector<Stiffened> stiffened_turns_;
+  struct Secant {  // an entry whose fixed end stiffenTurns() gave its turn's secant, and its gradient before
+    int entry;
+    Vec3 ang;
+  };
+  std::vector<Secant> secants_;
   /// The turn (rad) the step (dphi_ + shift_phi_, times `omega`) gives
   /// fixed end `f`'s body, and in `most` the most it may be (line_up.h;
   /// the turn itself below kTrustedStepTurn).
   double turnPast(const FixedEnd& f, double omega, double& most) const;
-  /// Scales the angular W of each body whose step turns a fixed end past
-  /// its line-up, as Gauss-Seidel's visit does (path_constraint.cpp): the
-  /// end's row then turns it at most to there, the rest of its correction
-  /// going to the row's other bodies. Returns whether any scale changed;
-  /// restoreTurns() puts W back.
+  /// Where the step turns a fixed end's body by more than kTrustedStepTurn,
+  /// gives the end's gradient in its row the turn's secant share
+  /// (turnSecant: what the turn gains of its length, not what the tangent
+  /// promised), and scales the angular W of a body whose step turns the end
+  /// past its line-up, as Gauss-Seidel's visit does (path_constraint.cpp):
+  /// the end's row then turns it at most to there, the rest of its
+  /// correction going to the row's other bodies. Returns whether any
+  /// changed; restoreTurns() puts the gradients and W back.
   bool stiffenTurns(double omega);
   void scaleTurn(int body, double scale);
   void restoreTurns();

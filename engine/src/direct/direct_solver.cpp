@@ -396,6 +396,7 @@ void DirectSolver::build(World& world) {
   angular_a_.assign(n, nullptr);
   full_.assign(ldlt_.values().size(), 0.0);
   curvature_.assign(entries_.size(), Mat3::Zero());
+  bend_.assign(entries_.size(), 0.0);
   std::size_t points = 0;  // no allocation in a step: at most a fixed end a point
   for (const Row& row : rows_)
     points += row.source == Source::Path ? world.path(row.index).points.size() : row.source == Source::Distance ? 2 : 0;
@@ -408,6 +409,10 @@ void DirectSolver::build(World& world) {
   dphi_.assign(m, Vec3::Zero());
   for (auto* v : {&moved_x_, &moved_phi_, &shift_x_, &shift_phi_}) v->assign(m, Vec3::Zero());
   stiffness_.assign(m, Mat3::Zero());
+  lateral_stiffness_.assign(m, Mat3::Zero());
+  jointed_.assign(m, 0);
+  for (const Entry& e : entries_)
+    if (rows_[e.row].source != Source::Path && rows_[e.row].source != Source::Distance) jointed_[e.body] = 1;
   world_inertia_.assign(m, Mat3::Zero());
   axial_stiffness_.assign(m, 0.0);
   reweigh_.assign(m, 0);
@@ -704,6 +709,24 @@ void DirectSolver::warmStiffness(BodyFrame& f, const Mat3& K, std::size_t i) {
   reweigh_[i] = 1;
 }
 
+void DirectSolver::warmLateral(BodyFrame& f, std::size_t i) {
+  // As warmStiffness: only the eigenvalues of the last substep's |K_x|
+  // above the mass (|K_x| is positive semidefinite).
+  const double mass = 1.0 / f.inv_mass;
+  const Mat3& K = lateral_stiffness_[i];
+  if (K.norm() <= mass) return;
+  Eigen::SelfAdjointEigenSolver<Mat3> eig;
+  eig.computeDirect(K);
+  Vec3 k = eig.eigenvalues();
+  for (int a = 0; a < 3; ++a)
+    if (k[a] <= mass) k[a] = 0.0;
+  if (k.isZero()) return;
+  stiffened_ = true;
+  f.inv_mass_x = (mass * Mat3::Identity() + eig.eigenvectors() * k.asDiagonal() * eig.eigenvectors().transpose()).inverse();
+  f.stiff_x = true;
+  reweigh_[i] = 1;
+}
+
 double DirectSolver::newtonResidual(bool bounded) {
   // Newton's step on M (x - x~) = J(x)^T lambda, C(x) + alpha~ lambda = 0
   // (XPBD eq. 8-9) from the iterate x, lambda:
@@ -730,6 +753,7 @@ double DirectSolver::newtonResidual(bool bounded) {
     shift_phi_[i].setZero();
     if (frames_[i].inv_axial > 0.0) axial_stiffness_[i] = 0.0;
     else stiffness_[i].setZero();
+    lateral_stiffness_[i].setZero();
     reweigh_[i] = 0;
   }
   const bool warm = first_solve_ && last_lambda_.size() == lambda_.size();
@@ -742,7 +766,22 @@ double DirectSolver::newtonResidual(bool bounded) {
       shift_x_[e.body] -= l * e.lin;
       shift_phi_[e.body] -= l * e.ang;
     }
-    if (stiff[e.row] == 0.0 || e.flat) continue;
+    if (stiff[e.row] == 0.0) continue;
+    // A span end's sideways curvature, on a body that only cables hold: a
+    // light one between taut spans (a 50 g bead between a ceiling and 40
+    // kg, a floating pulley) is a pendulum of (h omega)^2 = |lambda| / (m
+    // length) that no row holds, and Newton's steps without it diverged
+    // past 1 (the bead flung metres sideways a solve). A jointed body's
+    // rows hold it, and the block-diagonal |K| of two light bodies on one
+    // span (the hand's knuckles) slowed their solve: 0.28 rad from rest
+    // at 1 x 2, where it converged in 6.
+    if (bend_[i] > 0.0 && !jointed_[e.body] && frames_[e.body].inv_axial == 0.0) {
+      const double n2 = e.lin.squaredNorm();
+      if (n2 > 0.0)
+        lateral_stiffness_[e.body] +=
+            (std::abs(stiff[e.row]) * bend_[i]) * (Mat3::Identity() - e.lin * e.lin.transpose() / n2);
+    }
+    if (e.flat) continue;
     if (frames_[e.body].inv_axial > 0.0) axial_stiffness_[e.body] += stiff[e.row] * e.axial;
     else stiffness_[e.body] += stiff[e.row] * curvature_[i];
   }
@@ -798,6 +837,7 @@ void DirectSolver::newtonStep() {
       // (evaluateBodies) but where the last substep's K exceeds the
       // inertia along an eigenvector of K.
       if (hub_of_[i] < 0 && f.inv_mass > 0.0 && !stiffness_[i].isZero()) warmStiffness(f, stiffness_[i], i);
+      if (hub_of_[i] < 0 && f.inv_mass > 0.0 && !lateral_stiffness_[i].isZero()) warmLateral(f, i);
       shift_x_[i] = -f.inv_mass * shift_x_[i];
       shift_phi_[i] = -(f.inv_inertia * shift_phi_[i]);
       shift2 = std::max({shift2, shift_x_[i].squaredNorm(), shift_phi_[i].squaredNorm()});
@@ -847,7 +887,8 @@ void DirectSolver::newtonStep() {
         }
         reweigh_[i] = 1;
       }
-      shift_x_[i] = -f.inv_mass * g_x;
+      if (hub_of_[i] < 0 && f.inv_mass > 0.0 && !lateral_stiffness_[i].isZero()) warmLateral(f, i);
+      shift_x_[i] = f.stiff_x ? Vec3(-(f.inv_mass_x * g_x)) : Vec3(-f.inv_mass * g_x);
       shift_phi_[i] = -(f.inv_inertia * g_phi);
     }
     shift2 = std::max({shift2, shift_x_[i].squaredNorm(), shift_phi_[i].squaredNorm()});

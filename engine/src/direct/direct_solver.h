@@ -263,6 +263,11 @@ class DirectSolver {
   // over entries (the assembly, the motion) read 120 bytes an entry, not
   // 192, and a rotor's entry never reads it.
   std::vector<Mat3> curvature_;
+  // Per entry, a span end's 1 / length: d2C / dp^2 = (I - u u^T) / length
+  // across the span (u its direction), the second order of C as the end
+  // moves sideways; 0 for the other rows' entries (a joint's rows are
+  // linear in the motion; a run's points are left out).
+  std::vector<double> bend_;
   struct FixedEnd {  // a span's or run's fixed point on a moving body, as evaluated (line_up.h)
     int body;        // index into bodies_
     int row, entry;  // its row and its body's entry in that row
@@ -379,6 +384,10 @@ class DirectSolver {
     bool rotated = false;  // R is this iteration's (a rotor's is taken when read: rotation())
     Vec3 axle = Vec3::Zero();
     double inv_mass = 0.0, inv_axial = 0.0;
+    // (m I + |K_x|)^-1 where the spans' sideways stiffness is kept
+    // (newtonStep); W is inv_mass otherwise.
+    Mat3 inv_mass_x = Mat3::Zero();
+    bool stiff_x = false;
     double axial_inv0 = 0.0, axial_inertia = 0.0;  // a rotor's 1 / I_u and I_u, as the substep starts
     // The body's solve_turn when last evaluated, and its turn since then.
     Vec3 evaluated_turn = Vec3::Zero(), turned = Vec3::Zero();
@@ -403,6 +412,8 @@ class DirectSolver {
   std::vector<Vec3> last_a_, last_alpha_;  // per body: the rows' acceleration in the substep before (m/s^2, rad/s^2)
   bool last_lifted_ = false;               // ... which startPoint lifted (else last_a_ says nothing)
   std::vector<Mat3> stiffness_;  // per body: sum of lambda d2C/dtheta^2 this iteration
+  std::vector<Mat3> lateral_stiffness_;  // per body: sum of |lambda| d2C/dx^2 of its span ends (bend_)
+  std::vector<char> jointed_;  // per body: in a joint's rows (no lateral_stiffness_ then)
   std::vector<Mat3> world_inertia_;  // per body but rotors: its world inertia this iteration (newtonResidual)
   std::vector<double> axial_stiffness_;  // per rotor: u . stiffness_ . u (Entry::axial)
   double shift_size_ = 0.0;      // the largest |dx0|, |dphi0| (m, rad) of newtonStep
@@ -431,6 +442,9 @@ class DirectSolver {
   /// substep's K: W~ = (I + |K|)^-1 where an eigenvalue of K exceeds the
   /// inertia along its eigenvector (those kept), else the plain W.
   void warmStiffness(BodyFrame& f, const Mat3& K, std::size_t i);
+  /// The same for body i's sideways stiffness (lateral_stiffness_): its
+  /// translation's W~ where the last substep's exceeds its mass.
+  void warmLateral(BodyFrame& f, std::size_t i);
   /// Whether every row's gradient stays as it is while the bodies move:
   /// spans linear in the solve's turns (linear_) and a rotor's hinge rows.
   bool linearRows(const World& world) const;

@@ -50,6 +50,7 @@ void DirectSolver::evaluateBodies() {
     if (!f.rotated) continue;
     f.R = b.q.toRotationMatrix();
     if (f.inv_axial == 0.0) f.inv_inertia = f.R * b.inv_inertia * f.R.transpose();
+    f.stiff_x = false;
   }
 }
 
@@ -96,7 +97,7 @@ void DirectSolver::curveEnd(int e, const Vec3& g, const SolvePoint& p, bool add)
 void DirectSolver::weigh(Entry& e) const {
   // W J: a rotor's angular part is u u^T / I_u (prepare()).
   const BodyFrame& f = frames_[e.body];
-  e.wlin = f.inv_mass * e.lin;
+  e.wlin = f.stiff_x ? Vec3(f.inv_mass_x * e.lin) : Vec3(f.inv_mass * e.lin);
   e.wang = f.inv_axial > 0.0 ? Vec3(f.axle * (f.inv_axial * f.axle.dot(e.ang))) : Vec3(f.inv_inertia * e.ang);
   e.weighed = true;
 }
@@ -158,9 +159,11 @@ void DirectSolver::evaluateSpan(const World& world, int r, const PathPoint& p0, 
     if (s1 >= 0 && e1.axis.isZero()) fixed_ends_.push_back({s1, r, row.first_entry + (s0 >= 0 ? 1 : 0), a1, -u});
   }
   int e = row.first_entry;
+  const double bend = s0 != s1 && l >= 1e-12 ? 1.0 / l : 0.0;
   if (s0 >= 0) {
     entries_[e].lin = g0;
     entries_[e].ang = m0;
+    bend_[e] = bend;
     curveEnd(e, -u, e0, false);
     ++e;
   }
@@ -173,6 +176,7 @@ void DirectSolver::evaluateSpan(const World& world, int r, const PathPoint& p0, 
     } else {
       entries_[e].lin = g1;
       entries_[e].ang = m1;
+      bend_[e] = bend;
       curveEnd(e, u, e1, false);
     }
   }

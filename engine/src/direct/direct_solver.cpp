@@ -709,9 +709,10 @@ void DirectSolver::warmStiffness(BodyFrame& f, const Mat3& K, std::size_t i) {
   reweigh_[i] = 1;
 }
 
-void DirectSolver::warmLateral(BodyFrame& f, std::size_t i) {
-  // As warmStiffness: only the eigenvalues of the last substep's |K_x|
-  // above the mass (|K_x| is positive semidefinite).
+void DirectSolver::stiffenLateral(BodyFrame& f, std::size_t i) {
+  // As warmStiffness, in every iteration: only |K_x|'s eigenvalues above
+  // the mass (|K_x| is positive semidefinite); the plain step contracts
+  // below that.
   const double mass = 1.0 / f.inv_mass;
   const Mat3& K = lateral_stiffness_[i];
   if (K.norm() <= mass) return;
@@ -722,7 +723,8 @@ void DirectSolver::warmLateral(BodyFrame& f, std::size_t i) {
     if (k[a] <= mass) k[a] = 0.0;
   if (k.isZero()) return;
   stiffened_ = true;
-  f.inv_mass_x = (mass * Mat3::Identity() + eig.eigenvectors() * k.asDiagonal() * eig.eigenvectors().transpose()).inverse();
+  const Mat3& V = eig.eigenvectors();
+  f.inv_mass_x = (mass * Mat3::Identity() + V * k.asDiagonal() * V.transpose()).inverse();
   f.stiff_x = true;
   reweigh_[i] = 1;
 }
@@ -737,8 +739,9 @@ double DirectSolver::newtonResidual(bool bounded) {
   // one (DESIGN "Newton's residual and geometric stiffness"). Eliminating
   // dx = W~ (J^T dlambda - g), W~ = (M + |K|)^-1, leaves the usual system
   // with C shifted by J dx0, dx0 = -W~ g, and dx0 added to the motion.
-  // |K| (K's eigenvalues made positive, rotation only: Andrews et al.
-  // 2017) changes how fast it converges, not where: a body whose rows'
+  // |K| (K's eigenvalues made positive: Andrews et al. 2017; each body's
+  // rotation block, and the translation block of one only cables hold)
+  // changes how fast it converges, not where: a body whose rows'
   // lambda turns with it (a light block under a heavy hook) then stops
   // flipping from frame to frame. The first iteration has lambda = 0, so
   // its K is the last substep's, where K exceeds the inertia alone: below
@@ -837,7 +840,7 @@ void DirectSolver::newtonStep() {
       // (evaluateBodies) but where the last substep's K exceeds the
       // inertia along an eigenvector of K.
       if (hub_of_[i] < 0 && f.inv_mass > 0.0 && !stiffness_[i].isZero()) warmStiffness(f, stiffness_[i], i);
-      if (hub_of_[i] < 0 && f.inv_mass > 0.0 && !lateral_stiffness_[i].isZero()) warmLateral(f, i);
+      if (hub_of_[i] < 0 && f.inv_mass > 0.0 && !lateral_stiffness_[i].isZero()) stiffenLateral(f, i);
       shift_x_[i] = -f.inv_mass * shift_x_[i];
       shift_phi_[i] = -(f.inv_inertia * shift_phi_[i]);
       shift2 = std::max({shift2, shift_x_[i].squaredNorm(), shift_phi_[i].squaredNorm()});
@@ -887,7 +890,7 @@ void DirectSolver::newtonStep() {
         }
         reweigh_[i] = 1;
       }
-      if (hub_of_[i] < 0 && f.inv_mass > 0.0 && !lateral_stiffness_[i].isZero()) warmLateral(f, i);
+      if (hub_of_[i] < 0 && f.inv_mass > 0.0 && !lateral_stiffness_[i].isZero()) stiffenLateral(f, i);
       shift_x_[i] = f.stiff_x ? Vec3(-(f.inv_mass_x * g_x)) : Vec3(-f.inv_mass * g_x);
       shift_phi_[i] = -(f.inv_inertia * g_phi);
     }

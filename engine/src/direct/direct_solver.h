@@ -442,9 +442,10 @@ class DirectSolver {
   /// substep's K: W~ = (I + |K|)^-1 where an eigenvalue of K exceeds the
   /// inertia along its eigenvector (those kept), else the plain W.
   void warmStiffness(BodyFrame& f, const Mat3& K, std::size_t i);
-  /// The same for body i's sideways stiffness (lateral_stiffness_): its
-  /// translation's W~ where the last substep's exceeds its mass.
-  void warmLateral(BodyFrame& f, std::size_t i);
+  /// Body i's translation W~ = (m I + |K_x|)^-1 from its spans' sideways
+  /// stiffness (lateral_stiffness_: the last substep's in the first
+  /// iteration), the eigenvalues above its mass kept, else the plain W.
+  void stiffenLateral(BodyFrame& f, std::size_t i);
   /// Whether every row's gradient stays as it is while the bodies move:
   /// spans linear in the solve's turns (linear_) and a rotor's hinge rows.
   bool linearRows(const World& world) const;

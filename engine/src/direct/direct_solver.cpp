@@ -404,6 +404,7 @@ void DirectSolver::build(World& world) {
   const std::size_t m = bodies_.size();
   stiffened_turns_.reserve(m);
   secants_.reserve(points);
+  secant_of_.assign(entries_.size(), -1);
   frames_.assign(m, BodyFrame{});
   dx_.assign(m, Vec3::Zero());
   dphi_.assign(m, Vec3::Zero());
@@ -1142,13 +1143,12 @@ bool DirectSolver::stiffenTurns(double omega) {
     const Vec3 e = omega * (dphi_[f.body] + shift_phi_[f.body]) / angle;
     const double secant = turnSecant(f.arm, e, f.toward, turn);
     Entry& own = entries_[f.entry];
-    auto kept = std::find_if(secants_.begin(), secants_.end(), [&](const Secant& t) { return t.entry == f.entry; });
-    if (kept == secants_.end()) {
+    if (secant_of_[f.entry] < 0) {
       if (angle <= most && secant > 1.0 - kSecantSlack) continue;
+      secant_of_[f.entry] = static_cast<int>(secants_.size());
       secants_.push_back({f.entry, own.ang});
-      kept = secants_.end() - 1;
     }
-    own.ang = kept->ang + (secant - 1.0) * f.toward.cross(f.arm);
+    own.ang = secants_[secant_of_[f.entry]].ang + (secant - 1.0) * f.toward.cross(f.arm);
     weigh(own);
     changed = true;
     if (angle <= most) continue;
@@ -1189,6 +1189,7 @@ void DirectSolver::restoreTurns() {
   for (const Secant& t : secants_) {
     entries_[t.entry].ang = t.ang;
     weigh(entries_[t.entry]);
+    secant_of_[t.entry] = -1;
   }
   secants_.clear();
   if (stiffened_turns_.empty()) return;

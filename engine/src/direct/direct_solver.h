@@ -286,6 +286,7 @@ class DirectSolver {
     Vec3 ang;
   };
   std::vector<Secant> secants_;
+  std::vector<int> secant_of_;  // per entry: its index in secants_, or -1
   /// The turn (rad) the step (dphi_ + shift_phi_, times `omega`) gives
   /// fixed end `f`'s body, and in `most` the most it may be (line_up.h;
   /// the turn itself below kTrustedStepTurn).

@@ -316,6 +316,7 @@ void DirectSolver::evaluateRun(const World& world, int r, const PathPoint* point
     entries_[e].lin.setZero();
     entries_[e].ang.setZero();
     curvature_[e].setZero();
+    bend_[e] = 0.0;  // a run's points have no sideways block yet
     entries_[e].axial = 0.0;
     entries_[e].flat = false;
   }

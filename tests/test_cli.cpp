@@ -426,12 +426,14 @@ TEST_F(Cli, ADrumHaulingOverAWheelFixedInTheWorldStopsTheRunSayingWhatToChange) 
 }
 
 TEST_F(Cli, ASpoolThatRunsOutOfCableStopsTheRunSayingSo) {
-  // The fuzzer's second finding: gear_1_to_4 with the small hub's rope
-  // given no stored cable. The weight pays 1e-5 m out of it in the first
-  // substeps: not a diverged solve (the hub turned 4.5e-5 rad), and the
-  // run must not say it was; a plain rolling end cannot pay out what it
-  // does not hold, a hybrid one would tie the cable there.
-  const std::string scene = std::string(REEVE_FUZZ_REGRESSIONS_DIR) + "/gear_spool_runs_out.json";
+  // The fuzzer's second finding (fuzz/regressions/gear_spool_runs_out.json),
+  // made a plain machine: gear_1_to_4 with the small hub's rope given no
+  // stored cable and its weight doubled, so it outweighs the gear. The
+  // weight pays 1e-5 m out of the hub in the first substep: not a
+  // diverged solve, and the run must not say it was; a plain rolling end
+  // cannot pay out what it does not hold, a hybrid one would tie the
+  // cable there.
+  const std::string scene = std::string(REEVE_TEST_SCENES_DIR) + "/gear_spool_runs_out.json";
   const Result r = reeve("run " + scene + " --frames 30");
   EXPECT_EQ(r.code, 1) << r.err;
   EXPECT_NE(r.err.find("cable 'rope_small': link 0 stores a negative length of cable"), std::string::npos) << r.err;

@@ -412,16 +412,6 @@ void PrintTo(const Cell& c, std::ostream* os) { *os << cellName(c); }
 // Machine, solver and budget of the cells that create energy today, and why.
 const std::set<std::string>& knownCreating() {
   static const std::set<std::string> cells = {
-      // A velocity-driven carriage (0.46 m/s, uncapped) reaching its rail
-      // stop at 2.17 s while it hauls 4.8 kg over a 1.5 g sheave on a stiff
-      // rope (1.1e-6 m/N), at one substep: both spans go slack in that
-      // solve (the carriage stops, the load coasts up), so the sheave turns
-      // on unconstrained by either, and the update after it winds its whole
-      // turn out of the load's span, 2.7 mm more than that span's slack:
-      // +26.9 J of stretch in a frame (4.9 %), with or without the damping,
-      // at any sheave mass; ten iterations do not see it. Issue 29 (rows
-      // that become active within a solve, rolling ends turned in it).
-      "m06_slider_static direct 1x1", "m06_slider_static direct 1x10",
       // A 2 kg sheave (mu 0.97 over half a turn) between 8.7 kg and a winch
       // on a kinematic carrier that reverses, paying out: after the catch
       // (2.2 kN in a frame) the wrap sticks and slips by turns, substep by

@@ -368,9 +368,9 @@ TEST(LiveScene, PausesOnceAtTheScenesDurationAndStepsOnlyWhatIsAsked) {
 }
 
 TEST(LiveScene, ABrokenBookkeepingPausesWithTheReasonAndResetStartsAgain) {
-  // The fuzzer's spool with no stored cable (tests/test_cli.cpp): its
-  // weight pays out what the spool does not hold within a frame or two.
-  LiveScene live(fs::path(REEVE_FUZZ_REGRESSIONS_DIR) / "gear_spool_runs_out.json", {});
+  // The gear whose spool holds no cable (tests/test_cli.cpp): its weight
+  // pays out what the spool does not hold within a frame.
+  LiveScene live(fs::path(REEVE_TEST_SCENES_DIR) / "gear_spool_runs_out.json", {});
   for (int f = 0; f < 30 && !live.failure(); ++f) live.stepFrame();
   ASSERT_TRUE(live.failure());
   EXPECT_NE(live.failure()->find("Its rolling end ran out of cable"), std::string::npos) << *live.failure();

@@ -85,13 +85,11 @@ def test_a_replay_without_the_viewer_says_how_to_install_it(scenes, tmp_path, mo
     assert not (tmp_path / "r.html").exists()
 
 
-REGRESSIONS = pathlib.Path(__file__).resolve().parents[2] / "tests" / "fuzz" / "regressions"
-
-
 def test_a_run_that_breaks_raises_simulation_error(tmp_path):
-    # gear_1_to_4.json with a hub's rope given no cable to pay out: the
-    # spool runs out, and the run stops as `reeve run` does, leaving no CSV.
-    gear = REGRESSIONS / "gear_spool_runs_out.json"
+    # gear_1_to_4.json with a hub's rope given no cable to pay out and its
+    # weight doubled: the spool runs out, and the run stops as `reeve run`
+    # does, leaving no CSV.
+    gear = pathlib.Path(__file__).parents[2] / "tests" / "scenes" / "gear_spool_runs_out.json"  # shared with the CLI test
     with pytest.raises(reeve.SimulationError, match="ran out of cable"):
         reeve.run(reeve.load(gear), frames=60, csv=tmp_path / "broken.csv")
     assert not (tmp_path / "broken.csv").exists()

@@ -103,6 +103,7 @@ void DirectSolver::solveActiveSet(double tolerance) {
   released_ = -1;
   may_release_ = true;
   settled_ = false;
+  bool held = false;  // held_ keeps a settled solve
   for (int pass = 0; pass < kMaxPasses; ++pass) {
     const int let_go = released_;  // by the last pass: this one solves without it
     released_ = -1;
@@ -218,11 +219,59 @@ void DirectSolver::solveActiveSet(double tolerance) {
       for (int r = 0; r < n; ++r)
         if (state_[r] == State::Fixed && (lambda_[r] + dlambda_[r] == 0.0) && (lo_[r] == 0.0 || hi_[r] == 0.0))
           state_[r] = State::Free;
+    // The other half of block principal pivoting (Judice and Pires 1994):
+    // one-sided rows held at zero that the settled motion leaves violated
+    // are solved again, free. The first pass solves every row in the set
+    // to C = 0, slack ones too (pulled_); where a slack span and a taut one
+    // share a wheel (the crane's hoist either side of its sheave, paying
+    // out) both came out pushing and were held at 0 together, the taut one
+    // stayed stretched, the next substep pulled twice as hard, and the
+    // ropes went slack and taut on alternate substeps (50 J made in a frame
+    // at 100 x 1). Freed again only while each settled solve leaves the
+    // rows held at zero less violated than the last, which cannot cycle;
+    // else the least violated one stands: a row no motion can meet (the
+    // gym's lat bar on its stop, the handle cable taut) only comes back
+    // pushing, and passes spent on it threw the bar about.
     if (!changed) {
+      const double violation = heldAtZeroViolation(tolerance, false);
+      if (violation > 0.0 && (!held || violation < held_.violation - tolerance)) {
+        held_.dlambda = dlambda_;
+        held_.hub_motion = hub_motion_;
+        held_.state = state_;
+        held_.violation = violation;
+        held = true;
+        heldAtZeroViolation(tolerance, true);
+        continue;
+      }
+      if (held && violation >= held_.violation - tolerance) restoreHeld();
       settled_ = true;
       break;
     }
   }
+  if (!settled_ && held) {  // out of passes: the last settled solve stands
+    restoreHeld();
+    settled_ = true;
+  }
+}
+
+void DirectSolver::restoreHeld() {
+  dlambda_ = held_.dlambda;
+  hub_motion_ = held_.hub_motion;
+  state_ = held_.state;
+  bodyMotion();
+}
+
+double DirectSolver::heldAtZeroViolation(double tolerance, bool free_them) {
+  double worst = 0.0;
+  for (int r = 0; r < static_cast<int>(rows_.size()); ++r) {
+    if (state_[r] == State::Free || lambda_[r] + dlambda_[r] != 0.0) continue;
+    if (hi_[r] != 0.0 && lo_[r] != 0.0) continue;
+    const double violation = hi_[r] == 0.0 ? predictedValue(r) : -predictedValue(r);
+    if (!(violation > tolerance)) continue;
+    worst = std::max(worst, violation);
+    if (free_them && state_[r] == State::Fixed) state_[r] = State::Free;
+  }
+  return worst;
 }
 
 bool DirectSolver::factorAndSolve(double tolerance) {

@@ -382,6 +382,9 @@ void DirectSolver::build(World& world) {
   placed_.assign(n, 0);
   for (std::vector<double>* v : {&x_, &rhs_}) v->assign(unknowns, 0.0);
   hub_motion_.assign(unknowns - n, 0.0);
+  held_.dlambda.assign(n, 0.0);
+  held_.hub_motion.assign(unknowns - n, 0.0);
+  held_.state.assign(n, State::Free);
   hub_inertia_.assign(hubs_.size(), Mat3::Zero());
   keep_.assign(unknowns, 0);
   state_.assign(n, State::Free);

@@ -225,6 +225,12 @@ class DirectSolver {
   /// Row r, dropped as dependent and left `residual` (m or rad) unmet: fixes
   /// at 0 the first free one-sided row its dependency brings to its bound.
   bool releaseAlongDependency(int r, double residual);
+  /// The most a one-sided row held at zero (fixed or off, lambda 0) is
+  /// left violated by the solved motion beyond `tolerance` (m or rad), or 0;
+  /// with `free_them`, the fixed ones so violated are made free.
+  double heldAtZeroViolation(double tolerance, bool free_them);
+  /// Puts back the settled solve held_ keeps.
+  void restoreHeld();
   /// dlambda_ and the hubs' motion from the solution in x_.
   void readSolution();
   /// Row r's value C + J (dx, dphi) once the bodies make the motion solved
@@ -372,6 +378,13 @@ class DirectSolver {
   std::vector<signed char> at_cap_, at_cap_start_;  // ... and as this substep started
   std::vector<char> warm_;
   bool settled_ = false;  // the last solveActiveSet ended with no change, not out of passes
+  // The settled solve whose rows held at zero and violated are being
+  // solved again free (solveActiveSet), and the most it left one violated.
+  struct HeldSolve {
+    std::vector<double> dlambda, hub_motion;
+    std::vector<State> state;
+    double violation = 0.0;
+  } held_;
   std::vector<int> drive_of_;  // per limit row: the row of its coordinate's drive, or -1
   std::vector<double*> mirror_;
   std::vector<Eigen::Matrix<double, 6, 1>> dir_;  // joint_rows::Vec6

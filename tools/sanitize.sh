@@ -149,6 +149,11 @@ release_only=(
   # s in Release; contacts.json's stack and hulls.json's block take the
   # same friction through here).
   'StackOnARamp\.' 'BoxOnATurntable\.'
+  # Issue 30's thirty-ninth session: the crane at 100 x 1 (40 s here, 0.9
+  # s in Release; the generated slider's direct 1 x 1 and 1 x 10 ledger
+  # cells take the rows held at zero solved again through here, and the
+  # gym's lat bar at the paper's budget the safeguard).
+  'CraneScene\.PayingOutAtOneIteration'
 )
 long="^($(IFS='|'; echo "${release_only[*]}"))"
 all=$(ctest --test-dir build-sanitize -N | grep -o 'Total Tests: [0-9]*')

@@ -220,27 +220,30 @@ void DirectSolver::solveActiveSet(double tolerance) {
         if (state_[r] == State::Fixed && (lambda_[r] + dlambda_[r] == 0.0) && (lo_[r] == 0.0 || hi_[r] == 0.0))
           state_[r] = State::Free;
     // The other half of block principal pivoting (Judice and Pires 1994):
-    // one-sided rows held at zero that the settled motion leaves violated
-    // are solved again, free. The first pass solves every row in the set
-    // to C = 0, slack ones too (pulled_); where a slack span and a taut one
-    // share a wheel (the crane's hoist either side of its sheave, paying
-    // out) both came out pushing and were held at 0 together, the taut one
-    // stayed stretched, the next substep pulled twice as hard, and the
-    // ropes went slack and taut on alternate substeps (50 J made in a frame
-    // at 100 x 1). Freed again only while each settled solve leaves the
-    // rows held at zero less violated than the last, which cannot cycle;
-    // else the least violated one stands: a row no motion can meet (the
-    // gym's lat bar on its stop, the handle cable taut) only comes back
-    // pushing, and passes spent on it threw the bar about.
+    // rows held at a bound (fixed there, or off) that the settled motion
+    // leaves wanting to come off it are solved again, free. The first pass
+    // solves every row in the set to C = 0, slack ones too (pulled_);
+    // where a slack span and a taut one share a wheel (the crane's hoist
+    // either side of its sheave, paying out) both came out pushing and
+    // were held at 0 together, the taut one stayed stretched, the next
+    // substep pulled twice as hard, and the ropes went slack and taut on
+    // alternate substeps (50 J made in a frame at 100 x 1). And a catch
+    // held at a winch's pull (the hoist and luffing ropes both at 30 kN)
+    // left the rope slack after the motion, the load falling free for the
+    // next three to six substeps. Freed again only while each settled
+    // solve leaves the held rows less violated than the last, which cannot
+    // cycle; else the least violated one stands: a row no motion can meet
+    // (the gym's lat bar on its stop, the handle cable taut) only comes
+    // back pushing, and passes spent on it threw the bar about.
     if (!changed) {
-      const double violation = heldAtZeroViolation(tolerance, false);
+      const double violation = heldViolation(tolerance, false);
       if (violation > 0.0 && (!held || violation < held_.violation - tolerance)) {
         held_.dlambda = dlambda_;
         held_.hub_motion = hub_motion_;
         held_.state = state_;
         held_.violation = violation;
         held = true;
-        heldAtZeroViolation(tolerance, true);
+        heldViolation(tolerance, true);
         continue;
       }
       if (held && violation >= held_.violation - tolerance) restoreHeld();
@@ -261,12 +264,19 @@ void DirectSolver::restoreHeld() {
   bodyMotion();
 }
 
-double DirectSolver::heldAtZeroViolation(double tolerance, bool free_them) {
+double DirectSolver::heldViolation(double tolerance, bool free_them) {
   double worst = 0.0;
   for (int r = 0; r < static_cast<int>(rows_.size()); ++r) {
-    if (state_[r] == State::Free || lambda_[r] + dlambda_[r] != 0.0) continue;
-    if (hi_[r] != 0.0 && lo_[r] != 0.0) continue;
-    const double violation = hi_[r] == 0.0 ? predictedValue(r) : -predictedValue(r);
+    if (state_[r] == State::Free) continue;
+    const double total = lambda_[r] + dlambda_[r];
+    const bool at_hi = total == hi_[r], at_lo = total == lo_[r];
+    if (!at_hi && !at_lo) continue;
+    // The residual grows with lambda (J W J^T + alpha~ > 0): held at hi, a
+    // positive one asks for less (a cable held slack at 0 but stretched);
+    // at lo, a negative one for more (one held at its winch's pull but
+    // slack).
+    const double residual = predictedValue(r) + alpha_[r] * total;
+    const double violation = at_hi ? residual : -residual;
     if (!(violation > tolerance)) continue;
     worst = std::max(worst, violation);
     if (free_them && state_[r] == State::Fixed) state_[r] = State::Free;

@@ -225,10 +225,11 @@ class DirectSolver {
   /// Row r, dropped as dependent and left `residual` (m or rad) unmet: fixes
   /// at 0 the first free one-sided row its dependency brings to its bound.
   bool releaseAlongDependency(int r, double residual);
-  /// The most a one-sided row held at zero (fixed or off, lambda 0) is
-  /// left violated by the solved motion beyond `tolerance` (m or rad), or 0;
-  /// with `free_them`, the fixed ones so violated are made free.
-  double heldAtZeroViolation(double tolerance, bool free_them);
+  /// The most the residual C + J dx + alpha~ lambda of a row held at a
+  /// bound (fixed or off, lambda at lo or hi) asks to come off it, beyond
+  /// `tolerance` (m or rad), or 0; with `free_them`, the fixed ones so
+  /// violated are made free.
+  double heldViolation(double tolerance, bool free_them);
   /// Puts back the settled solve held_ keeps.
   void restoreHeld();
   /// dlambda_ and the hubs' motion from the solution in x_.
@@ -378,8 +379,8 @@ class DirectSolver {
   std::vector<signed char> at_cap_, at_cap_start_;  // ... and as this substep started
   std::vector<char> warm_;
   bool settled_ = false;  // the last solveActiveSet ended with no change, not out of passes
-  // The settled solve whose rows held at zero and violated are being
-  // solved again free (solveActiveSet), and the most it left one violated.
+  // The settled solve whose held rows that ask to come off their bound
+  // are being solved again free (solveActiveSet), and the most one asked.
   struct HeldSolve {
     std::vector<double> dlambda, hub_motion;
     std::vector<State> state;

@@ -141,7 +141,7 @@ void DirectSolver::solveActiveSet(double tolerance) {
       bodyMotion();
       break;
     }
-    bool changed = released, capped = false;
+    bool changed = released;
     // A row let go along a dependency that this solve, without it, now
     // violates was needed after all: the dependent row it was let go for
     // cannot be met, and the others stay as they were (a stack landing on
@@ -185,7 +185,6 @@ void DirectSolver::solveActiveSet(double tolerance) {
           state_[r] = State::Fixed;
           dlambda_[r] = std::clamp(total, lo_[r], hi_[r]) - lambda_[r];
           changed = true;
-          capped |= total > hi_[r] ? hi_[r] != 0.0 : lo_[r] != 0.0;
         }
       } else if (state_[r] == State::Off) {
         // Would the others' motion violate this one-sided row?
@@ -209,16 +208,6 @@ void DirectSolver::solveActiveSet(double tolerance) {
         }
       }
     }
-    // A drive held at its maximum force or torque from now on: the one-sided
-    // rows the uncapped drive let go slack (fixed at 0) are solved again
-    // against the capped one. Fixed for good, the span that a motor lifting
-    // a load over a wheel on its axle slackened in the first pass stayed
-    // slack and the load fell (issue 28, item 7). Each drive caps once, so
-    // this cannot cycle.
-    if (capped)
-      for (int r = 0; r < n; ++r)
-        if (state_[r] == State::Fixed && (lambda_[r] + dlambda_[r] == 0.0) && (lo_[r] == 0.0 || hi_[r] == 0.0))
-          state_[r] = State::Free;
     // The other half of block principal pivoting (Judice and Pires 1994):
     // rows held at a bound (fixed there, or off) that the settled motion
     // leaves wanting to come off it are solved again, free. The first pass

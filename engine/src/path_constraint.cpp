@@ -137,6 +137,62 @@ bool isSpan(const PathConstraint& path) {
   return path.points.size() == 2 && path.points[0].body != path.points[1].body && path.scales.empty();
 }
 
+// A steady end's turn since the solve's start (rad), as the rotor's
+// orientation has it, not as the visits' turn vectors add up: rotateBy
+// turns by 2 atan(|dphi| / 2), not |dphi|, so the sum would count cable the
+// rotor never wound (the lever turned back from the rotor's pose,
+// solvePointRotated, keeps the two in step). The orientation gives it up
+// to whole turns (a jerk spins a wheel radians in one solve); the sum, off
+// by |dphi|^3 / 12 a visit, picks the turn.
+double steadyTurn(const SpanEnds& ends, int k, const BodyState& b) {
+  const Vec3& axis = ends.end[k].axis;
+  const Quat dq = b.q * ends.start_q[k].conjugate();
+  const double summed = axis.dot(b.solve_turn) - ends.start_turn[k];
+  const double turned = 2.0 * atan2Small(dq.vec().dot(axis), dq.w());
+  return ends.start_turn[k] + summed + wrapAngle(turned - summed);
+}
+
+// I^-1 v of a rotor, whose I_body^-1 is a a^T / I_a (body.h): in the world
+// a_w (a_w . v) / I_a, a_w its world axle and 1 / I_a the trace.
+Vec3 rotorResponse(const BodyState& b, const Vec3& axle, const Vec3& v) {
+  return Vec3(axle * (axle.dot(v) * b.inv_inertia.trace()));
+}
+
+// A span's step dl (kg m) applied to one end's body: its gradient g
+// (dC/dp), moment t and response `turn` (its turn per unit lambda), the
+// force along f = weight g.
+void moveEnd(BodyState& b, double dl, double weight, const Vec3& g, const Vec3& t, const Vec3& turn) {
+  if (!b.takesImpulses()) return;
+  const Vec3 f = weight * g, dphi = dl * turn;
+  b.x += dl * b.inv_mass * f;
+  rotateBy(b.q, dphi);
+  b.impulse += dl * f;
+  b.angular_impulse += dl * weight * t;
+  b.solve_turn += dphi;
+}
+
+// solveSpan (below) for a span between two steady ends (SpanEnds::
+// fixed_line): its line, moments and w as the solve's start had them, its
+// length from the turns; the same arithmetic as solveSpan's, so the same
+// bits.
+void solveFixedLine(PathConstraint& path, BodyState& b0, BodyState& b1, double alpha_tilde, double h,
+                    const SpanEnds& ends) {
+  double length = ends.chord;
+  length += steadyTurn(ends, 0, b0) * ends.per_radian[0];
+  length += steadyTurn(ends, 1, b1) * ends.per_radian[1];
+  const double C = length - path.rest_length;
+  if (C <= 0.0 && path.lambda == 0.0) return;  // slack and never pulled
+  const DampedRow row = dampedRow(C, alpha_tilde, alpha_tilde * h * path.damping, length - path.start_length);
+  if (!(ends.w + row.alpha_tilde > 0.0)) return;
+  const double target = -row.C - row.alpha_tilde * path.lambda;
+  double dl = target / (ends.w + row.alpha_tilde);
+  dl = std::clamp(path.lambda + dl, -path.max_tension * h * h, 0.0) - path.lambda;
+  path.lambda += dl;
+  const double weight = path.weights.empty() ? 1.0 : path.weights[0];
+  moveEnd(b0, dl, weight, Vec3(-ends.u), ends.moment[0], ends.response[0]);
+  moveEnd(b1, dl, weight, ends.u, ends.moment[1], ends.response[1]);
+}
+
 // The kernel below for a span between two bodies, the common case (every
 // span of a cable over wheels): the same maths without its per-point
 // arrays and per-body sums, each rolling end's pay-out per radian taken
@@ -147,6 +203,7 @@ bool isSpan(const PathConstraint& path) {
 // `ends`: the span's steady ends (span_ends.h), or none.
 void solveSpan(PathConstraint& path, BodyState& b0, BodyState& b1, double alpha_tilde, double h,
                const SpanEnds* ends) {
+  if (ends && ends->fixed_line) return solveFixedLine(path, b0, b1, alpha_tilde, h, *ends);
   const PathPoint &p0 = path.points[0], &p1 = path.points[1];
   // A steady end needs no rotation matrix: its rotor's inverse inertia
   // (below) is along its axle.
@@ -156,18 +213,8 @@ void solveSpan(PathConstraint& path, BodyState& b0, BodyState& b1, double alpha_
   if (!steady1) R1 = b1.q.toRotationMatrix();
   const auto point = [&](int k, const BodyState& b, const Mat3& R, const PathPoint& p) {
     if (!(ends && ends->steady[k])) return solvePointRotated(b, R, p);
-    // The turn since the solve's start as the rotor's orientation has it,
-    // not as the visits' turn vectors add up: rotateBy turns by 2 atan(|dphi|
-    // / 2), not |dphi|, so the sum would count cable the rotor never wound
-    // (the lever turned back from the rotor's pose, solvePointRotated,
-    // keeps the two in step). The orientation gives it up to whole turns
-    // (a jerk spins a wheel radians in one solve); the sum, off by
-    // |dphi|^3 / 12 a visit, picks the turn.
     SolvePoint s = ends->end[k];
-    const Quat dq = b.q * ends->start_q[k].conjugate();
-    const double summed = s.axis.dot(b.solve_turn) - ends->start_turn[k];
-    const double turned = 2.0 * atan2Small(dq.vec().dot(s.axis), dq.w());
-    s.turn = ends->start_turn[k] + summed + wrapAngle(turned - summed);
+    s.turn = steadyTurn(*ends, k, b);
     return s;
   };
   const SolvePoint first = point(0, b0, R0, p0), last = point(1, b1, R1, p1);
@@ -200,8 +247,7 @@ void solveSpan(PathConstraint& path, BodyState& b0, BodyState& b1, double alpha_
   const auto invInertia = [](const BodyState& b, const Mat3& R, const PathPoint& p, const SolvePoint& s,
                              bool steady, const Vec3& v) {
     if (!b.isRotor()) return Vec3(R * (b.inv_inertia * (R.transpose() * v)));
-    const Vec3 axle = steady || p.roll_axis == b.rotor_axis ? s.axis : Vec3(R * b.rotor_axis);
-    return Vec3(axle * (axle.dot(v) * b.inv_inertia.trace()));
+    return rotorResponse(b, steady || p.roll_axis == b.rotor_axis ? s.axis : Vec3(R * b.rotor_axis), v);
   };
   const Vec3 turn0 = invInertia(b0, R0, p0, first, steady0, weight * t0),
              turn1 = invInertia(b1, R1, p1, last, steady1, weight * t1);
@@ -229,17 +275,8 @@ void solveSpan(PathConstraint& path, BodyState& b0, BodyState& b1, double alpha_
     capVisitTurn(first.arm, u, turn0, t0.dot(turn0), target, w_all, dl, s0);
   dl = std::clamp(path.lambda + dl, -path.max_tension * h * h, 0.0) - path.lambda;
   path.lambda += dl;
-  const auto move = [&](BodyState& b, const Vec3& g, const Vec3& t, const Vec3& turn) {
-    if (!b.takesImpulses()) return;
-    const Vec3 f = weight * g, dphi = dl * turn;
-    b.x += dl * b.inv_mass * f;
-    rotateBy(b.q, dphi);
-    b.impulse += dl * f;
-    b.angular_impulse += dl * weight * t;
-    b.solve_turn += dphi;
-  };
-  move(b0, g0, t0, s0 * turn0);
-  move(b1, g1, t1, s1 * turn1);
+  moveEnd(b0, dl, weight, g0, t0, s0 * turn0);
+  moveEnd(b1, dl, weight, g1, t1, s1 * turn1);
 }
 
 }  // namespace
@@ -452,6 +489,20 @@ void prepareSpanEnds(const std::vector<int>& paths, const std::vector<PathConstr
       e.start_turn[i] = e.end[i].turn;
       e.steady[i] = true;
     }
+    e.fixed_line = e.steady[0] && e.steady[1];
+    if (!e.fixed_line) continue;
+    // solveSpan's line, moments and w, as its first visit computes them.
+    const BodyState &b0 = bodies(path.points[0].body), &b1 = bodies(path.points[1].body);
+    const Vec3 d = (b1.x + e.end[1].arm) - (b0.x + e.end[0].arm);
+    e.chord = d.norm();
+    e.u = e.chord < 1e-12 ? Vec3::Zero() : Vec3(d / e.chord);
+    e.moment[0] = e.end[0].spanMomentPerRadian(-e.u, e.per_radian[0]);
+    e.moment[1] = e.end[1].spanMomentPerRadian(e.u, e.per_radian[1]);
+    const double weight = path.weights.empty() ? 1.0 : path.weights[0];
+    e.response[0] = rotorResponse(b0, e.end[0].axis, weight * e.moment[0]);
+    e.response[1] = rotorResponse(b1, e.end[1].axis, weight * e.moment[1]);
+    const double linear = e.u.squaredNorm() * (b0.inv_mass + b1.inv_mass);
+    e.w = weight * linear + e.moment[0].dot(e.response[0]) + e.moment[1].dot(e.response[1]);
   }
 }
 

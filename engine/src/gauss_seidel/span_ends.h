@@ -24,6 +24,20 @@ struct SpanEnds {
   Quat start_q[2];             // a steady end's rotor's orientation at the solve's start
   double start_turn[2] = {};   // and its solve turn about the axle then (rad)
   bool steady[2] = {false, false};
+  // Both ends steady: the span's line. Neither rotor's centre moves in the
+  // solve and each end's arm and lever stay, so the span's direction u,
+  // its chord, each end's moment t_k (dC/d(rotation)) and response
+  // I_k^-1 (weight t_k), and the row's w stay what they were at the
+  // solve's start; a visit reads only the turns, which wind cable:
+  //   C = chord + turn_0 per_radian_0 + turn_1 per_radian_1 - L.
+  // Hilbert3 under Gauss-Seidel: every span (DESIGN, "Forty-first session").
+  bool fixed_line = false;
+  Vec3 u = Vec3::Zero();        // unit span, end 0 to end 1
+  double chord = 0.0;           // m
+  double per_radian[2] = {};    // m/rad (SolvePoint::spanMomentPerRadian)
+  Vec3 moment[2] = {Vec3::Zero(), Vec3::Zero()};    // m
+  Vec3 response[2] = {Vec3::Zero(), Vec3::Zero()};  // rad per unit lambda
+  double w = 0.0;               // 1/kg
 };
 
 /// `ends[k]` for `paths[k]` (indices into `all`), at the bodies' present

@@ -69,12 +69,19 @@ struct SolvePoint {
   /// (|g| = 1, or 0 for a span of no length): the lever's moment and g's
   /// share in the cable plane taken once for both.
   Vec3 spanMoment(const Vec3& g, double& length) const {
+    double per_radian = 0.0;
+    const Vec3 m = spanMomentPerRadian(g, per_radian);
+    if (!axis.isZero()) length += turn * per_radian;
+    return m;
+  }
+  /// spanMoment(g) without the pay-out: `per_radian` (m/rad) is set to
+  /// the cable the end pays out per radian for g, left at a fixed point.
+  Vec3 spanMomentPerRadian(const Vec3& g, double& per_radian) const {
     const Vec3 m = arm.cross(g);
     if (axis.isZero()) return m;
     const double moment = axis.dot(lever.cross(g));
     const double in_plane = (g - axis.dot(g) * axis).norm();
-    const double per_radian = in_plane > 1e-9 ? moment / in_plane : moment;
-    length += turn * per_radian;
+    per_radian = in_plane > 1e-9 ? moment / in_plane : moment;
     return Vec3(m + axis * (per_radian - moment));
   }
 };

@@ -119,9 +119,9 @@ void solveHingeJoint(HingeJoint& j, BodyState& a, BodyState& b, double h) {
   // about their centres; with no angle row active, the block alone.
   // A rotor (body.h) turns about its axle alone: its point and axis rows
   // hold by construction, and only an angle row is solved.
+  if (hingeSolvesNothing(j, a, b)) return;
   const bool rotor = a.isRotor() || b.isRotor();
   const bool driven = j.drive.mode != HingeDrive::Mode::None;
-  if (rotor && !driven && !j.limit.enabled) return;  // nothing to solve
   const double alpha_tilde = j.compliance / (h * h);
   const auto block = [&](const joint_rows::ClampedRow* clamped) {
     const Vec3 r_a = a.q * j.frame.anchor_a, r_b = b.q * j.frame.anchor_b;

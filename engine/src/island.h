@@ -33,6 +33,7 @@ struct Island {
   std::vector<int> hinges, prismatics, sphericals, fixeds, distances, paths;
   std::vector<int> manifolds;  // this substep's contact manifolds on them (World::contactManifolds)
   DirectSolver direct;
+  std::vector<int> swept_hinges;      // Gauss-Seidel's: the hinges with a row (hingeSolvesNothing), for one solve
   std::vector<SpanEnds> span_ends;  // Gauss-Seidel's, by paths' order, for one solve (World::sweepGaussSeidel)
   int iterations = 0;        // the last solve's
   bool interrupted = false;  // the last solve stopped for the interrupt flag

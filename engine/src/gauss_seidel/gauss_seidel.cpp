@@ -18,10 +18,15 @@ void World::sweepGaussSeidel(Island& island, double h) {
     for (const int i : list) solve(joints[i], body(joints[i].a), body(joints[i].b), h);
   };
   prepareSpanEnds(island.paths, paths_, table, island.span_ends);
+  // A rotor's free hinge has no row: its visits, one a joint and iteration
+  // (Hilbert3: every hinge), would do nothing.
+  island.swept_hinges.clear();
+  for (const int i : island.hinges)
+    if (!hingeSolvesNothing(hinges_[i], body(hinges_[i].a), body(hinges_[i].b))) island.swept_hinges.push_back(i);
   for (int it = 0; it < settings_.iterations; ++it) {
     ++island.iterations;
     // Joints first (all types), then distances and paths (cables).
-    visit(island.hinges, hinges_, solveHingeJoint);
+    visit(island.swept_hinges, hinges_, solveHingeJoint);
     visit(island.prismatics, prismatics_, solvePrismaticJoint);
     visit(island.sphericals, sphericals_, solveSphericalJoint);
     visit(island.fixeds, fixeds_, solveFixedJoint);

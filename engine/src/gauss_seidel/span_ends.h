@@ -30,7 +30,7 @@ struct SpanEnds {
   // I_k^-1 (weight t_k), and the row's w stay what they were at the
   // solve's start; a visit reads only the turns, which wind cable:
   //   C = chord + turn_0 per_radian_0 + turn_1 per_radian_1 - L.
-  // Hilbert3 under Gauss-Seidel: every span (DESIGN, "Forty-first session").
+  // Hilbert3 under Gauss-Seidel: every span (DESIGN, "Fortieth session").
   bool fixed_line = false;
   Vec3 u = Vec3::Zero();        // unit span, end 0 to end 1
   double chord = 0.0;           // m

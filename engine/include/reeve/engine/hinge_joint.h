@@ -133,6 +133,13 @@ HingeJoint makeHingeJoint(const HingeDef& def, const BodyState& a, const BodySta
 void prepareHingeJoint(HingeJoint& joint, const BodyState& a, const BodyState& b, double h,
                        double braking_inverse_inertia);
 
+/// Whether the hinge has no row to solve: a rotor's (body.h) without a
+/// drive or limit, whose axle is the rotor's inverse inertia. Its
+/// Gauss-Seidel visits do nothing, and the sweep leaves them out.
+inline bool hingeSolvesNothing(const HingeJoint& joint, const BodyState& a, const BodyState& b) {
+  return (a.isRotor() || b.isRotor()) && joint.drive.mode == HingeDrive::Mode::None && !joint.limit.enabled;
+}
+
 /// One Gauss-Seidel visit over a substep of `h` s: the point and axis rows
 /// (alpha~ = compliance / h^2) as one block, solved together with each
 /// active drive and limit row on the angle in turn (clamped; rigid, but a

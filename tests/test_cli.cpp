@@ -4,6 +4,7 @@
 #include <png.h>
 #include <sys/wait.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <algorithm>
@@ -343,6 +344,58 @@ TEST_F(Cli, SettingsThatWillTakeHoursAreWarnedOfBeforeTheRun) {
   const Result slow_run = reeve("run " + slow + " --frames 1 --substeps 40");  // the direct solver converges early
   EXPECT_EQ(slow_run.code, 0) << slow_run.err;
   EXPECT_NE(slow_run.err.find("/solver: 40 substeps x 1000 iterations"), std::string::npos) << slow_run.err;
+}
+
+// Gauss-Seidel turns a trapezoidal spring's bodies by first-order
+// corrections and needs omega h below about 1 (a lone disc on one: 3 times
+// its start swing at w h = 2.3, 317 times at 6.8; the bow at the paper's
+// 10 x 10 thrown 2e7 m): validate and run say so first, with the substeps
+// that bring it below. omega^2 = k / I, I about the axle: a 3 kg disc of
+// 0.2 m on its centre, m r^2 / 2; a 1.2 kg bar 1 m long hinged at its end,
+// m (L^2 + t^2) / 12 + m (L / 2)^2 (the parallel axis).
+TEST_F(Cli, TrapezoidalSpringsTooStiffForGaussSeidelAreWarnedOfWithTheSubstepsTheyNeed) {
+  const auto scene = [&](const std::string& name, const std::string& method, int substeps, const std::string& body,
+                         const std::string& anchor) {
+    return write(name + ".json", R"({"name": ")" + name + R"(", "duration_s": 0.1,
+      "solver": {"method": ")" + method + R"(", "substeps": )" + std::to_string(substeps) + R"(, "gravity_m_per_s2": [0, 0, 0]},
+      "bodies": [)" + body + R"(],
+      "hinges": [{"body": "spun", "anchor_m": )" + anchor + R"(, "axis": [0, 0, 1],
+        "drive": {"mode": "angle", "target_rad": 0.5, "stiffness_N_m_per_rad": 10000, "integration": "trapezoidal"}}]})");
+  };
+  const std::string disc = R"({"name": "spun", "shape": {"type": "cylinder", "radius_m": 0.2, "half_length_m": 0.05}, "mass_kg": 3, "position_m": [0, 0, 0]})";
+  const std::string bar = R"({"name": "spun", "shape": {"type": "box", "half_extents_m": [0.5, 0.05, 0.05]}, "mass_kg": 1.2, "position_m": [0.5, 0, 0]})";
+  const double k = 1e4, frame = 1.0 / 60.0;
+  const double w_disc = std::sqrt(k / (0.5 * 3.0 * 0.2 * 0.2));
+  const double w_bar = std::sqrt(k / (1.2 * (1.0 + 0.01) / 12.0 + 1.2 * 0.25));
+  const std::regex warning(R"(/solver: 1 trapezoidal spring at ([0-9]+) substeps a frame: omega h up to ([0-9.]+) \(the hinge of 'spun' and the world, 1e\+04 N m/rad\), where Gauss-Seidel needs it below 1 or may blow up; use the direct solver \("method": "direct"\), ([0-9]+) substeps or more, or "integration": "implicit")");
+  struct Case {
+    std::string name, body, anchor;
+    int substeps;
+    double w;
+  };
+  for (const Case& c : {Case{"disc", disc, "[0, 0, 0]", 2, w_disc}, Case{"bar", bar, "[0, 0, 0]", 1, w_bar}}) {
+    SCOPED_TRACE(c.name);
+    const Result v = reeve("validate " + scene(c.name, "gauss-seidel", c.substeps, c.body, c.anchor));
+    EXPECT_EQ(v.code, 0) << v.err;
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(v.err, m, warning)) << v.err;
+    EXPECT_EQ(std::stoi(m[1]), c.substeps);
+    EXPECT_NEAR(std::stod(m[2]), c.w * frame / c.substeps, 0.05 * c.w * frame / c.substeps);
+    const int enough = std::stoi(m[3]);
+    EXPECT_EQ(enough, static_cast<int>(std::ceil(c.w * frame)));
+    // At the substeps it names, and under the direct solver, none.
+    const Result fine = reeve("validate " + scene(c.name + "_fine", "gauss-seidel", enough, c.body, c.anchor));
+    EXPECT_EQ(fine.err.find("trapezoidal"), std::string::npos) << fine.err;
+    const Result direct = reeve("validate " + scene(c.name + "_direct", "direct", c.substeps, c.body, c.anchor));
+    EXPECT_EQ(direct.err.find("trapezoidal"), std::string::npos) << direct.err;
+  }
+  // The run judges the settings it runs: the shipped bow (300 substeps,
+  // direct) warns of nothing; under Gauss-Seidel at the paper's 10 it does.
+  const std::string bow = std::string(REEVE_SCENES_DIR) + "/bow.json";
+  const Result own = reeve("run " + bow + " --frames 1 --solver gauss-seidel");
+  EXPECT_EQ(own.err.find("trapezoidal"), std::string::npos) << own.err;
+  const Result paper = reeve("run " + bow + " --frames 1 --solver gauss-seidel --substeps 10 --iterations 10");
+  EXPECT_NE(paper.err.find("6 trapezoidal springs at 10 substeps a frame"), std::string::npos) << paper.err;
 }
 
 TEST_F(Cli, AThousandJointsOnTwoBodiesRunWithoutACostWarning) {

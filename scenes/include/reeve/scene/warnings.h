@@ -26,6 +26,10 @@ inline constexpr double kStartStretchWarningMin_m = 0.01;
 /// solver settings get a warning: a run that will take hours says so first.
 inline constexpr double kSlowSceneWarning_s = 60.0;
 
+/// Above this omega h a trapezoidal spring under Gauss-Seidel gets a
+/// warning (hinge_joint.h: its first-order turns need it below about 1).
+inline constexpr double kTrapezoidalOmegaH = 1.0;
+
 /// The computing time (s, one core of a 2020s x86 machine) that stepping
 /// `scene` with its current settings takes per simulated second, at most:
 /// frame_rate_hz x substeps x (fixed work per substep + iterations x work
@@ -47,6 +51,10 @@ double predictedSecondsPerSimulatedSecond(const Scene& scene);
 ///   otherwise than given (their sum kept; issue 28, item 10).
 /// - solver settings (at "/solver") that predict more than
 ///   kSlowSceneWarning_s per simulated second, with the prediction.
+/// - Gauss-Seidel (at "/solver") with a trapezoidal spring whose omega h
+///   passes kTrapezoidalOmegaH, omega^2 = k (1 / I_a + 1 / I_b) with each
+///   body's inertia about the hinge's axle (k (1 / m_a + 1 / m_b) for a
+///   slider's), and the substeps that bring it below.
 std::vector<SceneWarning> sceneWarnings(const Scene& scene);
 
 }  // namespace reeve

@@ -282,6 +282,18 @@ class DirectSolver {
     Vec3 toward;     // minus its gradient (a span's: the unit span away from it)
   };
   std::vector<FixedEnd> fixed_ends_;  // the last evaluate()'s (evaluateSpan, evaluateRun)
+  struct FixedSpan {  // a span between two fixed points, as evaluated (stiffenMoves)
+    int body0, body1;  // indices into bodies_, -1 for a body the solve does not move
+    Vec3 arm0, arm1;   // world, from each body's centre of mass
+    Vec3 d;            // p_1 - p_0 (m)
+  };
+  std::vector<FixedSpan> fixed_spans_;  // the last evaluate()'s (evaluateSpan)
+  struct StiffenedMove {  // a body whose translation stiffenMoves() scaled, and its W before
+    int body;
+    double inv_mass;
+    Mat3 inv_mass_x;
+  };
+  std::vector<StiffenedMove> stiffened_moves_;
   struct Stiffened {  // a body whose turn stiffenTurns() scaled, and its W before
     int body;
     Mat3 inv_inertia;
@@ -309,6 +321,16 @@ class DirectSolver {
   bool stiffenTurns(double omega);
   void scaleTurn(int body, double scale);
   void restoreTurns();
+  /// Stiffens the translation of the body that the step (dx_ + shift_x_,
+  /// times `omega`) moves the more of a span's two fixed ends, where it
+  /// moves them past their closest approach, by the share of the step
+  /// that reaches it; returns whether any changed. restoreMoves() puts W
+  /// back.
+  bool stiffenMoves(double omega);
+  void restoreMoves();
+  /// The step's motion (m) of the point at world arm `arm` on body slot
+  /// `body` (none for -1), its turn to first order.
+  Vec3 pointStep(int body, const Vec3& arm, double omega) const;
   /// The share (0, 1] of the step that turns no fixed end past its line-up.
   double lineUpShare(double omega) const;
   std::vector<Entry> start_;      // entries_ at the substep's start (linearizeAtStart); empty: Projection::End

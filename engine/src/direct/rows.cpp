@@ -157,6 +157,7 @@ void DirectSolver::evaluateSpan(const World& world, int r, const PathPoint& p0, 
   if (s0 != s1) {
     if (s0 >= 0 && e0.axis.isZero()) fixed_ends_.push_back({s0, r, row.first_entry, a0, u});
     if (s1 >= 0 && e1.axis.isZero()) fixed_ends_.push_back({s1, r, row.first_entry + (s0 >= 0 ? 1 : 0), a1, -u});
+    if (e0.axis.isZero() && e1.axis.isZero()) fixed_spans_.push_back({s0, s1, a0, a1, d});
   }
   int e = row.first_entry;
   const double bend = s0 != s1 && l >= 1e-12 ? 1.0 / l : 0.0;
@@ -500,6 +501,7 @@ void DirectSolver::driveAgainstLimit(int first_clamped, const JointRowSet& set) 
 void DirectSolver::evaluate(World& world, double h) {
   damped_ = false;
   fixed_ends_.clear();
+  fixed_spans_.clear();
   evaluateBodies();
   const int n = static_cast<int>(rows_.size());
   for (int r = 0; r < n;) {

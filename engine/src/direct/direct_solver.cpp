@@ -1051,8 +1051,9 @@ bool DirectSolver::iterate(World& world, double h) {
   // shortened, lambda with the motion (a damped Newton step), to whatever
   // still turns one past: a row that nothing else can move meets the rest
   // later.
-  // So is one that moves a span's fixed ends past their closest approach,
-  // with the lighter end's translation stiffened (stiffenMoves).
+  // So is a first solve that moves a span's fixed ends past their closest
+  // approach, with the translation of the end that moved the more
+  // stiffened (stiffenMoves).
   stiffened_turns_.clear();
   stiffened_moves_.clear();
   for (int round = 0; round < kLineUpRounds && (stiffenTurns(omega) | stiffenMoves(omega)); ++round) {
@@ -1234,12 +1235,12 @@ bool DirectSolver::stiffenMoves(double omega) {
   // more of the two takes s* of its W: solved again, the rest of the
   // correction goes to the others (the load lifted), as stiffenTurns does
   // for a turn past its line-up.
+  if (!first_solve_) return false;  // later solves: Newton's, with the spans' sideways stiffness (bend_)
   const auto moved = [&](int body) {
     if (body < 0 || hub_of_[body] >= 0 || !(frames_[body].inv_mass > 0.0)) return -1.0;
     return (omega * (dx_[body] + shift_x_[body])).norm();
   };
   bool changed = false;
-  if (!first_solve_) return false;  // later solves: Newton's, with the spans' sideways stiffness (bend_)
   for (const FixedSpan& f : fixed_spans_) {
     const Vec3 D = pointStep(f.body1, f.arm1, omega) - pointStep(f.body0, f.arm0, omega);
     const double along = f.d.dot(D), D2 = D.squaredNorm();

@@ -89,6 +89,14 @@ constexpr double kStalled = 1e-3;
 // Rounds of stiffenTurns() and a solve in an iteration: a body in other
 // rows (a spool hinged to a cart) may turn past again after the first.
 constexpr int kLineUpRounds = 3;
+// stiffenMoves: a span whose fixed ends the step carries past their
+// closest approach at a share s* below this gained almost nothing from the
+// step (s* ~ its shortening over the sideways motion's second-order
+// lengthening): the step is another row's, and stiffening by s* made a 5 g
+// bead 1e13 times heavier (its load's span right below it, the other span
+// swinging it sideways; 4.7e13 N, 3.9e11 J booked against a lowering
+// anchor).
+constexpr double kLeastMoveShare = 0.01;
 // A turn whose secant is within this of its model is taken as the model.
 constexpr double kSecantSlack = 1e-3;
 
@@ -1255,6 +1263,7 @@ bool DirectSolver::stiffenMoves(double omega) {
                      [&](const StiffenedMove& m) { return m.body == body; }))
       stiffened_moves_.push_back({body, b.inv_mass, b.inv_mass_x});
     const double s = -along / D2;
+    if (s < kLeastMoveShare) continue;
     b.inv_mass *= s;
     b.inv_mass_x *= s;
     changed = true;

@@ -16,16 +16,20 @@ namespace reeve::bench {
 /// `wheel_ratio` times it; with `load_N` > 0 the light side weighs that
 /// (N) instead and wheels stay 1 kg. A jerk (slack_m > 0) runs without
 /// gravity: the heavy box starts at `speed_m_per_s` down with `slack_m` of
-/// slack on its side.
+/// slack on its side. The bead is a body `bead_ratio` times the 1 kg load
+/// it carries on a second rigid cable from a first one to a ceiling
+/// anchor `offset_m` to the side of the vertical through it: it starts
+/// bent, the load falls until the two cables line up and swings.
 struct Condition {
-  std::string machine;  ///< "atwood" or "simple"
+  std::string machine;  ///< "atwood", "simple" or "bead"
   std::string name;     ///< e.g. "wheel_ratio=1e-6"
   double load_ratio = 2.0, wheel_ratio = 1.0, compliance_m_per_N = 0.0;
   double load_N = 0.0, slack_m = 0.0, speed_m_per_s = 0.0;
+  double bead_ratio = 1.0, offset_m = 0.0;
 };
 
-/// The conditions of `machine` ("atwood": 18, "simple": 14); throws
-/// std::invalid_argument for another machine.
+/// The conditions of `machine` ("atwood": 18, "simple": 14, "bead": 6);
+/// throws std::invalid_argument for another machine.
 std::vector<Condition> conditions(const std::string& machine);
 
 /// Solver settings of a cell.
@@ -40,7 +44,7 @@ struct CellBudget {
 struct CellResult {
   bool finished = false;  ///< ran every frame without an exception
   bool finite = false;    ///< no non-finite body state
-  double peak_stretch = 0.0;   ///< largest span strain (length - rest) / rest
+  double peak_stretch = 0.0;   ///< largest span strain (length - rest) / rest, any cable
   double stretch_limit = 0.0;  ///< 1 % + twice the static strain compliance predicts
   double energy_growth = 0.0;  ///< (max E - E(0)) / (max kinetic + sum m g x 1 cm)
   double tension_error = std::numeric_limits<double>::quiet_NaN();  ///< last frame, worst span
@@ -51,7 +55,7 @@ struct CellResult {
   bool stable() const { return cause.empty(); }
 };
 
-/// Runs `c` at `b` for 1 s (Atwood), 0.5 s (Simple) or, for a jerk, until
+/// Runs `c` at `b` for 1 s (Atwood, the bead), 0.5 s (Simple) or, for a jerk, until
 /// 0.2 s after the slack is taken up. Stable: finished, finite, the cable
 /// bookkeeping's invariants kept after every substep, peak stretch at most
 /// the limit, energy growth at most 1 %.

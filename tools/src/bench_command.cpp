@@ -108,11 +108,11 @@ std::function<int()> addBenchCommand(CLI::App& app, CLI::App*& bench_cmd) {
 
   auto ex = std::make_shared<bench::ExtremesOptions>();
   CLI::App* exc = bench_cmd->add_subcommand(
-      "extremes", "A stability map over masses, compliance, frame rate, substeps, iterations, jerks and loads.");
+      "extremes", "A stability map over masses, compliance, frame rate, substeps, iterations, jerks, loads and a light bead.");
   addOutput(exc, ex->output, true);
-  exc->add_option("--machines", ex->machines, "atwood, simple (default both)")
+  exc->add_option("--machines", ex->machines, "atwood, simple, bead (default all three)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"atwood", "simple"}));
+      ->check(CLI::IsMember({"atwood", "simple", "bead"}));
   exc->add_option("--conditions", ex->conditions, "Conditions to run, e.g. wheel_ratio=1e-6 (default all)")
       ->delimiter(',');
   exc->add_option("--rates", ex->rates_hz, "Frame rates, Hz (default 30,60,240,2000)")

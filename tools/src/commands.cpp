@@ -30,7 +30,7 @@ void printEnergyCreated(const RunResult& r) {
     std::fprintf(stderr, "reeve: warning: energy created in %d frames in all\n", r.energy_created_frames);
   if (r.energy_created_frames > 0)
     std::fprintf(stderr,
-                 "reeve: warning: more substeps may remove it; the CSV's energy.* columns hold the ledger, and "
+                 "reeve: warning: more substeps or iterations may remove it; the CSV's energy.* columns hold the ledger, and "
                  "--strict makes this an error\n");
 }
 

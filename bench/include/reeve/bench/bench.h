@@ -41,10 +41,11 @@ struct TradeOptions {
 int trade(const TradeOptions& options);
 
 /// `reeve bench extremes`: a stability map over masses, compliance,
-/// frame rate, substeps, iterations, jerks and loads.
+/// frame rate, substeps, iterations, jerks, loads and a light bead
+/// between two cables.
 struct ExtremesOptions {
   Output output;
-  std::vector<std::string> machines = {"atwood", "simple"};
+  std::vector<std::string> machines = {"atwood", "simple", "bead"};
   std::vector<std::string> conditions;  ///< names to run; empty: all
   std::vector<double> rates_hz = {30, 60, 240, 2000};
   std::vector<int> substeps = {1, 10, 100};

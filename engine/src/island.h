@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "direct/direct_solver.h"
+#include "direct/light_bodies.h"
 #include "gauss_seidel/span_ends.h"
 #include "reeve/engine/body.h"
 #include "reeve/engine/energy.h"
@@ -33,6 +34,9 @@ struct Island {
   std::vector<int> hinges, prismatics, sphericals, fixeds, distances, paths;
   std::vector<int> manifolds;  // this substep's contact manifolds on them (World::contactManifolds)
   DirectSolver direct;
+  // The direct solve's massless bodies this substep, and their scratch
+  // (direct/light_bodies.h).
+  std::vector<direct::LightBody> light_bodies, light_ends;
   std::vector<int> swept_hinges;      // Gauss-Seidel's: the hinges with a row (hingeSolvesNothing), for one solve
   std::vector<SpanEnds> span_ends;  // Gauss-Seidel's, by paths' order, for one solve (World::sweepGaussSeidel)
   int iterations = 0;        // the last solve's

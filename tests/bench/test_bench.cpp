@@ -261,33 +261,32 @@ TEST(BenchExtremes, ListsTheCellsWhoseErrorGrowsWithIterations) {
   EXPECT_NE(r.out.find("atwood/wheel_ratio=0.001/30Hz/1x10/gauss-seidel: error"), std::string::npos) << r.out;
 }
 
-TEST(BenchExtremes, ALightBeadBetweenTwoCablesIsStableWithItsIterationsAndCaughtMakingEnergyWithout) {
-  // The bead (1e-6 and 1e-3 of its 1 kg load, the chain starting bent
-  // 0.3 m): at ten iterations the direct solver keeps every span within
-  // 1e-7 of its rest length and makes no energy. At 10 x 2 the 1e-6 bead's
-  // Newton steps do not settle the tightrope as the chain lines up; the
-  // spans stretch a few mm, and taking that back in one substep throws
-  // the load up with the stretch over h: the map must list the cell, for
-  // its energy (DESIGN, "Forty-first session").
+TEST(BenchExtremes, ALightBeadBetweenTwoCablesIsStableAtTwoIterationsAndAtTen) {
+  // The bead 1e-6 and 1e-3 of its 1 kg load, the chain starting bent 0.3
+  // m. At 10 x 2 the 1e-6 bead's Newton steps did not settle the tightrope
+  // as the chain lined up: its spans ended millimetres long, and taking
+  // that back in one substep threw the load up (energy grew 107 % of the
+  // map's scale). Taken as massless and placed on its spans
+  // (direct/light_bodies.h), it hangs within 1e-7 of its cables' lengths
+  // at 2 iterations as at 10; the 1e-3 bead, not placed, is stable too.
   test::TempDir dir;
   const fs::path csv = dir.path() / "bead.csv";
   const Result r = reeve(dir,
                          "bench extremes --machines bead --conditions bead_ratio=1e-6_offset=0.3,bead_ratio=0.001_offset=0.3 "
                          "--rates 60 --substeps 1,10 --iterations 2,10 --solver direct --csv " + csv.string());
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_NE(r.out.find("direct: 7 of 8 cells stable"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("reeve bench extremes --cell 'bead/bead_ratio=1e-6_offset=0.3/60Hz/10x2/direct'   # energy grew"),
-            std::string::npos)
-      << r.out;
+  EXPECT_NE(r.out.find("direct: 8 of 8 cells stable"), std::string::npos) << r.out;
   const auto rows = readCsv(csv);
   ASSERT_EQ(rows.size(), 8u);
   for (const auto& row : rows) {
     SCOPED_TRACE(row.at("condition") + " " + row.at("substeps") + "x" + row.at("iterations"));
     EXPECT_EQ(row.at("tension_error"), "");  // no closed form for the swing
-    if (row.at("iterations") != "10") continue;
     EXPECT_EQ(row.at("stable"), "1");
-    EXPECT_LT(std::stod(row.at("peak_stretch")), 1e-7);
     EXPECT_LE(std::stod(row.at("energy_growth")), 1e-9);
+    // Strain: the placed bead's spans within 1e-7 at 2 iterations too (2.4e-3
+    // for the 1e-3 bead at 1 x 2, within the map's 1 %).
+    const bool placed = row.at("condition") == "bead_ratio=1e-6_offset=0.3";
+    EXPECT_LT(std::stod(row.at("peak_stretch")), placed || row.at("iterations") == "10" ? 1e-7 : 1e-2);
   }
 }
 

@@ -1,0 +1,68 @@
+// Bodies so light beside the loads their cables carry that the direct
+// solver takes them as massless: placed on their two spans between its
+// iterations (World::solveDirect; DESIGN, "Forty-first session").
+//
+// A bead a million times lighter than its load, tied into a rigid chain
+// that starts bent, is whipped across as the chain lines up, and its
+// cables pull it sideways with their tension times their small angle (a
+// tightrope). Newton's steps on bead and load together start from a
+// tension the first solve found by moving the cheap bead, 200 times short
+// at the catch, and needed 3 to 8 iterations a substep to settle; with
+// fewer, the spans ended stretched and the next substep threw the load up
+// at the stretch over h (15 kJ in a frame under a 4 t load). A massless
+// bead has no dynamics of its own: wherever both spans are taut it lies
+// on them (on the straight line between its neighbours once they are
+// their lengths apart), so it is placed there and each solve linearizes
+// the chain where it really bends.
+#pragma once
+
+#include <vector>
+
+#include "reeve/engine/body.h"
+
+namespace reeve {
+
+class World;
+struct Island;
+
+namespace direct {
+
+/// At most this share of the lightest moving body at its spans' far ends,
+/// a body is taken as massless. Measured on `reeve bench extremes`' bead
+/// (its 44 budgets, the chain bent 5 or 30 cm): placed, beads of 1e-8 to
+/// 1e-4 of their load are stable in every cell (3 to 22 cells each failed
+/// before); one of 1e-3 placed kinematically failed in 35 of 44 (its own
+/// inertia matters there), unplaced in 2.
+inline constexpr double kMasslessShare = 1e-4;
+
+/// A light body and its two spans: path ids, and which of each path's two
+/// points is on the body.
+struct LightBody {
+  BodyId body = 0;
+  int path[2] = {0, 0};
+  int end[2] = {0, 0};
+};
+
+/// The island's light bodies now, into `out` (cleared; its storage kept):
+/// a dynamic body, not a rotor, held by exactly two enabled rigid spans
+/// (two-point paths, unweighted, compliance 0, both ends fixed points, tied
+/// at one point of the body) and by nothing else (no joint, distance
+/// constraint, other path or contact), with at most kMasslessShare of the
+/// lightest dynamic body at the spans' far ends (one at least).
+/// `ends` is scratch (each plain span end, by body).
+void findLightBodies(const World& world, const Island& island, std::vector<LightBody>& ends,
+                     std::vector<LightBody>& out);
+
+/// Each body placed where a massless one would lie: left where it is while
+/// both spans are within their rest lengths; moved the least onto the one
+/// it overstretches, or onto their circle where it overstretches both;
+/// and, where its neighbours' tie points are more than the two rest
+/// lengths apart, on the straight line between them, the excess shared
+/// evenly (the solve takes that back through the neighbours). The move is
+/// a correction of where the body is, not of how it moves: its start pose
+/// x_prev moves with it, so that v = (x - x_prev) / h keeps only what the
+/// solves did.
+void placeLightBodies(World& world, const std::vector<LightBody>& bodies);
+
+}  // namespace direct
+}  // namespace reeve

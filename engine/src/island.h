@@ -34,9 +34,10 @@ struct Island {
   std::vector<int> hinges, prismatics, sphericals, fixeds, distances, paths;
   std::vector<int> manifolds;  // this substep's contact manifolds on them (World::contactManifolds)
   DirectSolver direct;
-  // The direct solve's massless bodies this substep, and their scratch
-  // (direct/light_bodies.h).
-  std::vector<direct::LightBody> light_bodies, light_ends;
+  // The direct solve's runs of massless bodies this substep, and their
+  // scratch (direct/light_bodies.h).
+  std::vector<direct::LightBody> light_bodies, light_scratch;
+  std::vector<direct::LightRun> light_runs;
   std::vector<int> swept_hinges;      // Gauss-Seidel's: the hinges with a row (hingeSolvesNothing), for one solve
   std::vector<SpanEnds> span_ends;  // Gauss-Seidel's, by paths' order, for one solve (World::sweepGaussSeidel)
   int iterations = 0;        // the last solve's

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
 
 #include "../island.h"
 #include "reeve/engine/world.h"
@@ -62,9 +63,10 @@ Vec3 ontoSphere(const Vec3& p, const Vec3& c, double r) {
 
 }  // namespace
 
-void findLightBodies(const World& world, const Island& island, std::vector<LightBody>& ends,
-                     std::vector<LightBody>& out) {
-  out.clear();
+void findLightBodies(const World& world, const Island& island, std::vector<LightBody>& scratch,
+                     std::vector<LightBody>& bodies, std::vector<LightRun>& runs) {
+  bodies.clear();
+  runs.clear();
   // None where no body is that much lighter than another (most islands):
   // a light body's far ends are in its island.
   double least_w = std::numeric_limits<double>::infinity(), most_w = 0.0;  // inverse masses
@@ -76,6 +78,7 @@ void findLightBodies(const World& world, const Island& island, std::vector<Light
   }
   if (!(least_w <= kMasslessShare * most_w)) return;
   // Each plain span's two ends, one entry each (path[0], end[0]).
+  std::vector<LightBody>& ends = scratch;
   ends.clear();
   int spans = 0;
   for (const int i : island.paths) {
@@ -86,68 +89,157 @@ void findLightBodies(const World& world, const Island& island, std::vector<Light
       if (p.points[end].body != kWorldBody) ends.push_back({p.points[end].body, {i, 0}, {end, 0}});
   }
   if (spans < 2) return;
-  // Bodies at exactly two ends: their spans, in path order.
+  // The members a run may have: dynamic bodies at exactly two ends, tied
+  // at one point, held by nothing else; into the back of `ends`, by body.
   std::sort(ends.begin(), ends.end(), [](const LightBody& x, const LightBody& y) {  // in place: no allocation
     return x.body != y.body ? x.body < y.body : x.path[0] != y.path[0] ? x.path[0] < y.path[0] : x.end[0] < y.end[0];
   });
-  for (std::size_t k = 0; k < ends.size();) {
+  const std::size_t first_member = ends.size();
+  for (std::size_t k = 0; k < first_member;) {
     std::size_t next = k + 1;
-    while (next < ends.size() && ends[next].body == ends[k].body) ++next;
-    if (next - k == 2) out.push_back({ends[k].body, {ends[k].path[0], ends[k + 1].path[0]}, {ends[k].end[0], ends[k + 1].end[0]}});
+    while (next < first_member && ends[next].body == ends[k].body) ++next;
+    const BodyId id = ends[k].body;
+    if (next - k == 2 && dynamic(world, id) &&
+        world.path(ends[k].path[0]).points[ends[k].end[0]].local ==
+            world.path(ends[k + 1].path[0]).points[ends[k + 1].end[0]].local &&
+        !heldOtherwise(world, island, id))
+      ends.push_back({id, {ends[k].path[0], ends[k + 1].path[0]}, {ends[k].end[0], ends[k + 1].end[0]}});
     k = next;
   }
-  const auto heavy = [&](const LightBody& light) {
-    if (!dynamic(world, light.body)) return true;
-    double lightest = std::numeric_limits<double>::infinity();
-    for (int k = 0; k < 2; ++k) {
-      const BodyId far = world.path(light.path[k]).points[1 - light.end[k]].body;
-      if (dynamic(world, far)) lightest = std::min(lightest, 1.0 / world.body(far).inv_mass);
-    }
-    const PathPoint& a = world.path(light.path[0]).points[light.end[0]];
-    const PathPoint& b = world.path(light.path[1]).points[light.end[1]];
-    return std::isinf(lightest) || !(1.0 / world.body(light.body).inv_mass <= kMasslessShare * lightest) ||
-           a.local != b.local || heldOtherwise(world, island, light.body);
+  const auto members = std::span<LightBody>(ends).subspan(first_member);
+  const auto member = [&](BodyId id) -> LightBody* {  // by body: members are sorted
+    const auto it = std::lower_bound(members.begin(), members.end(), id,
+                                     [](const LightBody& m, BodyId b) { return m.body < b; });
+    return it != members.end() && it->body == id ? &*it : nullptr;
   };
-  out.erase(std::remove_if(out.begin(), out.end(), heavy), out.end());
+  const auto farEnd = [&](int path, int end) { return world.path(path).points[1 - end]; };
+  // Runs: members joined span to span, from one end body that is not a
+  // member to another. A member's end[0] + 2 marks it taken.
+  for (LightBody& start : members) {
+    if (start.end[0] >= 2) continue;
+    // Back along its first span to the run's first member.
+    LightBody* first = &start;
+    int span = 0;  // the side of `first` that leads back
+    bool loop = false;
+    for (LightBody* m = &start;;) {
+      const PathPoint far = farEnd(m->path[span], m->end[span]);
+      LightBody* back = far.body == kWorldBody ? nullptr : member(far.body);
+      if (back == nullptr) break;
+      if (back == &start) {
+        loop = true;  // a closed ring of light bodies: no end to place it from
+        break;
+      }
+      span = back->path[0] == m->path[span] ? 1 : 0;  // its other span leads further back
+      first = m = back;
+    }
+    // Forward: each member oriented, path[0] towards the run's first end.
+    const std::size_t run_first = bodies.size();
+    for (LightBody* m = first;;) {
+      LightBody oriented = *m;
+      if (span == 1) {
+        std::swap(oriented.path[0], oriented.path[1]);
+        std::swap(oriented.end[0], oriented.end[1]);
+      }
+      m->end[0] += 2;  // taken
+      bodies.push_back(oriented);
+      const PathPoint far = farEnd(oriented.path[1], oriented.end[1]);
+      LightBody* next = far.body == kWorldBody ? nullptr : member(far.body);
+      if (next == nullptr || next->end[0] >= 2) break;
+      span = next->path[0] == oriented.path[1] ? 0 : 1;  // the side it is entered by
+      m = next;
+    }
+    // Light against the lightest dynamic body at the run's two ends (one
+    // at least), every member; else no run.
+    const int count = static_cast<int>(bodies.size() - run_first);
+    double lightest = std::numeric_limits<double>::infinity();
+    for (const PathPoint& end : {farEnd(bodies[run_first].path[0], bodies[run_first].end[0]),
+                                 farEnd(bodies.back().path[1], bodies.back().end[1])})
+      if (dynamic(world, end.body)) lightest = std::min(lightest, 1.0 / world.body(end.body).inv_mass);
+    bool light = !loop && std::isfinite(lightest);
+    for (std::size_t k = run_first; k < bodies.size() && light; ++k)
+      light = 1.0 / world.body(bodies[k].body).inv_mass <= kMasslessShare * lightest;
+    if (light) runs.push_back({static_cast<int>(run_first), count});
+    else bodies.resize(run_first);
+  }
 }
 
-void placeLightBodies(World& world, const std::vector<LightBody>& bodies) {
-  for (const LightBody& light : bodies) {
-    BodyState& body = world.body(light.body);
-    const PathConstraint &span0 = world.path(light.path[0]), &span1 = world.path(light.path[1]);
-    const Vec3 arm = body.q * span0.points[light.end[0]].local;
-    const PathPoint &far0 = span0.points[1 - light.end[0]], &far1 = span1.points[1 - light.end[1]];
-    const Vec3 a = world.body(far0.body).toWorld(far0.local), b = world.body(far1.body).toWorld(far1.local);
-    const double l0 = span0.rest_length, l1 = span1.rest_length;
-    const Vec3 now = body.x + arm;
+namespace {
+
+// Where a massless body tied between the points a and b by spans of rest
+// lengths l0 and l1 lies, from where it is now: in place while both spans
+// are within their lengths; onto the sphere of the one it overstretches,
+// or onto their circle; on the line between a and b, the excess shared
+// evenly, once they are further apart than l0 + l1.
+Vec3 massless(const Vec3& now, const Vec3& a, const Vec3& b, double l0, double l1) {
+  const double d = (b - a).norm();
+  if (!(d > 0.0)) return now;
+  const Vec3 u = (b - a) / d;
+  if (d >= l0 + l1) return a + u * (l0 + 0.5 * (d - l0 - l1));  // taut and straight
+  const bool in0 = (now - a).norm() <= l0, in1 = (now - b).norm() <= l1;
+  if (in0 && in1) return now;  // slack or just taut: where the solve left it
+  const Vec3 p0 = ontoSphere(now, a, l0), p1 = ontoSphere(now, b, l1);
+  if (!in0 && (p0 - b).norm() <= l1) return p0;
+  if (!in1 && (p1 - a).norm() <= l0) return p1;
+  if (d <= std::abs(l0 - l1)) return l0 < l1 ? p0 : p1;  // one ball inside the other: onto the smaller
+  // Both taut and bent: on the circle where the spheres meet, at its
+  // centre c = a + u s, radius rho, nearest the body.
+  const double s = (d * d + l0 * l0 - l1 * l1) / (2.0 * d);
+  const double rho = std::sqrt(std::max(0.0, l0 * l0 - s * s));
+  const Vec3 c = a + u * s;
+  Vec3 w = (now - c) - (now - c).dot(u) * u;
+  if (!(w.norm() > 0.0)) w = u.unitOrthogonal();
+  return c + rho * w.normalized();
+}
+
+// Moves `body` so that its tie point `arm` (world, from its centre) is at
+// p; its start pose with it (light_bodies.h).
+void moveTo(BodyState& body, const Vec3& arm, const Vec3& p) {
+  const Vec3 moved = p - (body.x + arm);
+  body.x += moved;
+  body.x_prev += moved;
+}
+
+}  // namespace
+
+void placeLightBodies(World& world, const std::vector<LightBody>& bodies, const std::vector<LightRun>& runs) {
+  const auto point = [&](const PathPoint& p) { return world.body(p.body).toWorld(p.local); };
+  for (const LightRun& run : runs) {
+    const LightBody* m = bodies.data() + run.first;
+    const PathConstraint& first_span = world.path(m[0].path[0]);
+    const PathConstraint& last_span = world.path(m[run.count - 1].path[1]);
+    const Vec3 a = point(first_span.points[1 - m[0].end[0]]);
+    const Vec3 b = point(last_span.points[1 - m[run.count - 1].end[1]]);
+    const auto tie = [&](const LightBody& light) {
+      const BodyState& body = world.body(light.body);
+      return Vec3(body.q * world.path(light.path[0]).points[light.end[0]].local);
+    };
+    // Taut from end to end: every member on the straight line, each span
+    // long by an even share of the excess.
+    double total = first_span.rest_length;
+    for (int k = 0; k < run.count; ++k) total += world.path(m[k].path[1]).rest_length;
     const double d = (b - a).norm();
-    if (!(d > 0.0)) continue;
-    const Vec3 u = (b - a) / d;
-    const bool in0 = (now - a).norm() <= l0, in1 = (now - b).norm() <= l1;
-    Vec3 p = now;
-    if (d >= l0 + l1) {
-      p = a + u * (l0 + 0.5 * (d - l0 - l1));  // taut and straight, each span long by half the excess
-    } else if (in0 && in1) {
-      continue;  // slack or just taut: where the solve left it
-    } else if (const Vec3 p0 = ontoSphere(now, a, l0); !in0 && (p0 - b).norm() <= l1) {
-      p = p0;
-    } else if (const Vec3 p1 = ontoSphere(now, b, l1); !in1 && (p1 - a).norm() <= l0) {
-      p = p1;
-    } else if (d <= std::abs(l0 - l1)) {  // one ball inside the other: onto the smaller
-      p = l0 < l1 ? p0 : p1;
-    } else {
-      // Both taut and bent: on the circle where the spheres meet, at its
-      // centre c = a + u s, radius rho, nearest the body.
-      const double s = (d * d + l0 * l0 - l1 * l1) / (2.0 * d);
-      const double rho = std::sqrt(std::max(0.0, l0 * l0 - s * s));
-      const Vec3 c = a + u * s;
-      Vec3 w = (now - c) - (now - c).dot(u) * u;
-      if (!(w.norm() > 0.0)) w = u.unitOrthogonal();
-      p = c + rho * w.normalized();
+    if (run.count > 1 && d > 0.0 && d >= total) {
+      const Vec3 u = (b - a) / d;
+      const double share = (d - total) / (run.count + 1);
+      double along = 0.0;
+      for (int k = 0; k < run.count; ++k) {
+        along += world.path(m[k].path[0]).rest_length + share;
+        moveTo(world.body(m[k].body), tie(m[k]), a + u * along);
+      }
+      continue;
     }
-    const Vec3 moved = p - now;
-    body.x += moved;
-    body.x_prev += moved;
+    // Else each member from its neighbours as they are, the run swept as
+    // often as it has members (one sweep passes a move one member on).
+    for (int sweep = 0; sweep < run.count; ++sweep)
+      for (int k = 0; k < run.count; ++k) {
+        const LightBody& light = m[k];
+        const PathConstraint &span0 = world.path(light.path[0]), &span1 = world.path(light.path[1]);
+        const BodyState& body = world.body(light.body);
+        const Vec3 arm = tie(light);
+        moveTo(world.body(light.body), arm,
+               massless(body.x + arm, point(span0.points[1 - light.end[0]]), point(span1.points[1 - light.end[1]]),
+                        span0.rest_length, span1.rest_length));
+      }
   }
 }
 

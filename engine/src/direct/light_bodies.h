@@ -1,5 +1,5 @@
 // Bodies so light beside the loads their cables carry that the direct
-// solver takes them as massless: placed on their two spans between its
+// solver takes them as massless: placed on their spans between its
 // iterations (World::solveDirect; DESIGN, "Forty-first session").
 //
 // A bead a million times lighter than its load, tied into a rigid chain
@@ -27,42 +27,55 @@ struct Island;
 
 namespace direct {
 
-/// At most this share of the lightest moving body at its spans' far ends,
-/// a body is taken as massless. Measured on `reeve bench extremes`' bead
-/// (its 44 budgets, the chain bent 5 or 30 cm): placed, beads of 1e-8 to
-/// 1e-4 of their load are stable in every cell (3 to 22 cells each failed
-/// before); one of 1e-3 placed kinematically failed in 35 of 44 (its own
-/// inertia matters there), unplaced in 2.
+/// At most this share of the lighter dynamic body at its run's two ends
+/// (the bodies its spans lead to, through other light ones), a body is
+/// taken as massless. Measured on `reeve bench extremes`' bead (its 44
+/// budgets, the chain bent 5 or 30 cm): placed, beads of 1e-8 to 1e-4 of
+/// their load are stable in every cell (3 to 22 cells each failed before);
+/// one of 1e-3 placed kinematically failed in 35 of 44 (its own inertia
+/// matters there), unplaced in 2.
 inline constexpr double kMasslessShare = 1e-4;
 
 /// A light body and its two spans: path ids, and which of each path's two
-/// points is on the body.
+/// points is on the body; in a run, path[0] is the span towards the run's
+/// first end.
 struct LightBody {
   BodyId body = 0;
   int path[2] = {0, 0};
   int end[2] = {0, 0};
 };
 
-/// The island's light bodies now, into `out` (cleared; its storage kept):
-/// a dynamic body, not a rotor, held by exactly two enabled rigid spans
-/// (two-point paths, unweighted, compliance 0, both ends fixed points, tied
-/// at one point of the body) and by nothing else (no joint, distance
-/// constraint, other path or contact), with at most kMasslessShare of the
-/// lightest dynamic body at the spans' far ends (one at least).
-/// `ends` is scratch (each plain span end, by body).
-void findLightBodies(const World& world, const Island& island, std::vector<LightBody>& ends,
-                     std::vector<LightBody>& out);
+/// Light bodies joined span to span (a cable with several light knots):
+/// members [first, first + count) of the bodies' list, in order from one
+/// end body to the other.
+struct LightRun {
+  int first = 0, count = 0;
+};
 
-/// Each body placed where a massless one would lie: left where it is while
-/// both spans are within their rest lengths; moved the least onto the one
-/// it overstretches, or onto their circle where it overstretches both;
-/// and, where its neighbours' tie points are more than the two rest
-/// lengths apart, on the straight line between them, the excess shared
-/// evenly (the solve takes that back through the neighbours). The move is
-/// a correction of where the body is, not of how it moves: its start pose
+/// The island's runs of light bodies now, into `bodies` and `runs`
+/// (cleared; their storage kept). A member: a dynamic body, not a rotor,
+/// held by exactly two enabled rigid spans (two-point paths, unweighted,
+/// compliance 0, both ends fixed points, tied at one point of the body)
+/// and by nothing else (no joint, distance constraint, contact or other
+/// path). A run: members joined by their spans, between two end bodies
+/// that are not members (a closed ring of members is none), each member
+/// at most kMasslessShare of the lighter dynamic end body (one at least).
+/// `scratch` holds the spans' ends and the members.
+void findLightBodies(const World& world, const Island& island, std::vector<LightBody>& scratch,
+                     std::vector<LightBody>& bodies, std::vector<LightRun>& runs);
+
+/// Each run placed where massless bodies would lie. Once its end bodies'
+/// tie points are further apart than its rest lengths' sum, every member
+/// on the straight line between them, each span long by an even share of
+/// the excess (the solve takes that back through the ends). Else each
+/// member from its neighbours as they are, the run swept as many times as
+/// it has members: left where it is while both its spans are within
+/// their rest lengths; moved the least onto the one it overstretches, or
+/// onto their circle where it overstretches both. The move is a
+/// correction of where a body is, not of how it moves: its start pose
 /// x_prev moves with it, so that v = (x - x_prev) / h keeps only what the
 /// solves did.
-void placeLightBodies(World& world, const std::vector<LightBody>& bodies);
+void placeLightBodies(World& world, const std::vector<LightBody>& bodies, const std::vector<LightRun>& runs);
 
 }  // namespace direct
 }  // namespace reeve

@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "reeve/cable/cable.h"
 #include "reeve/scene/energy.h"
@@ -117,9 +119,10 @@ TEST(LightBead, LoweredByAMovingCeilingAndStoppedItMakesNothing) {
 TEST(LightBead, AMillionTimesLighterThanItsLoadAndStartingBentItMakesNothingAtAnyBudget) {
   const double g = 9.81, load = 4000.0, mass = 0.005;
   const double upper_rest = std::hypot(0.3, 1.0), lower_rest = 1.0;
-  const test::Budget budgets[] = {{SolverKind::Direct, 1, 1},  {SolverKind::Direct, 1, 2},
-                                  {SolverKind::Direct, 1, 10}, {SolverKind::Direct, 10, 2},
-                                  {SolverKind::Direct, 32, 32}, {SolverKind::Direct, 100, 1}};
+  std::vector<test::Budget> budgets;
+  for (const SolverKind solver : {SolverKind::Direct, SolverKind::GaussSeidel})
+    for (const auto& [substeps, iterations] : {std::pair{1, 1}, {1, 2}, {1, 10}, {10, 2}, {32, 32}, {100, 1}})
+      budgets.push_back({solver, substeps, iterations});
   for (const test::Budget& b : budgets) {
     SCOPED_TRACE(test::name(b));
     Scene s = bead(b, mass, R"("static": true)", load, 0.3);
@@ -158,7 +161,8 @@ TEST(LightBead, AMillionTimesLighterThanItsLoadAndStartingBentItMakesNothingAtAn
 // scale: 1 mg under 1 kg and 4 g under 4 t (masses 4000 times, the same
 // ratio) trace the same chain.
 TEST(LightBead, AMasslessBeadsMotionIsTheSameAtAnyMassScale) {
-  for (const test::Budget& b : {test::Budget{SolverKind::Direct, 1, 1}, test::Budget{SolverKind::Direct, 10, 2}}) {
+  for (const test::Budget& b : {test::Budget{SolverKind::Direct, 1, 1}, test::Budget{SolverKind::Direct, 10, 2},
+                                test::Budget{SolverKind::GaussSeidel, 10, 2}}) {
     SCOPED_TRACE(test::name(b));
     Scene small = bead(b, 1e-6, R"("static": true)", 1.0, 0.3);
     Scene large = bead(b, 4e-3, R"("static": true)", 4000.0, 0.3);
@@ -202,10 +206,10 @@ TEST(LightBead, AChainOfLightKnotsIsPlacedAsOneAndMakesNothing) {
   bodies += R"(, {"name": "load", "shape": {"type": "box", "half_extents_m": [0.1, 0.1, 0.1]}, "mass_kg": 1000.0,
     "position_m": [0, -1.1, 0]})";
   cables += R"({"name": "c3", "links": [)" + tie(last, 0.0) + ", " + tie("load", 0.1) + "]}";
-  const test::Budget budgets[] = {{SolverKind::Direct, 1, 1},
-                                  {SolverKind::Direct, 1, 10},
-                                  {SolverKind::Direct, 10, 2},
-                                  {SolverKind::Direct, 100, 1}};
+  std::vector<test::Budget> budgets;
+  for (const SolverKind solver : {SolverKind::Direct, SolverKind::GaussSeidel})
+    for (const auto& [substeps, iterations] : {std::pair{1, 1}, {1, 10}, {10, 2}, {100, 1}})
+      budgets.push_back({solver, substeps, iterations});
   for (const test::Budget& b : budgets) {
     SCOPED_TRACE(test::name(b));
     Scene s = parseScene(R"({"name": "knots", )" + test::solverJson(b) + R"(, "duration_s": 2.0, "bodies": [)" + bodies +
@@ -231,8 +235,12 @@ TEST(LightBead, AChainOfLightKnotsIsPlacedAsOneAndMakesNothing) {
       EXPECT_GT(t_load, 0.5 * load * g) << "frame " << f;
       for (int c = 0; c < 3; ++c) EXPECT_NEAR(s.cables->tension(c, 0), t_load, 1e-3 * t_load) << "frame " << f;
     }
-    EXPECT_LT(most_stretch, 1e-5);  // m
-    EXPECT_LT(most_off_line, 1e-4);
+    // m. Gauss-Seidel's one visit of the run's row a sweep turns the load
+    // about its tie point only to first order: at one iteration the catch
+    // leaves the cable up to 0.84 mm long (1 x 1).
+    const bool direct = b.solver == SolverKind::Direct;
+    EXPECT_LT(most_stretch, direct ? 1e-5 : 2e-3);
+    EXPECT_LT(most_off_line, direct ? 1e-4 : 1e-3);
   }
 }
 

@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "direct/direct_solver.h"
-#include "direct/light_bodies.h"
 #include "gauss_seidel/span_ends.h"
+#include "light_bodies.h"
 #include "reeve/engine/body.h"
 #include "reeve/engine/energy.h"
 #include "reeve/engine/world.h"
@@ -34,10 +34,14 @@ struct Island {
   std::vector<int> hinges, prismatics, sphericals, fixeds, distances, paths;
   std::vector<int> manifolds;  // this substep's contact manifolds on them (World::contactManifolds)
   DirectSolver direct;
-  // The direct solve's runs of massless bodies this substep, and their
-  // scratch (direct/light_bodies.h).
-  std::vector<direct::LightBody> light_bodies, light_scratch;
-  std::vector<direct::LightRun> light_runs;
+  // Runs of massless bodies this substep, and their scratch
+  // (light_bodies.h); under Gauss-Seidel each run's one row between its
+  // ends, and which of the paths are its spans.
+  std::vector<LightBody> light_bodies, light_scratch;
+  std::vector<LightRun> light_runs;
+  std::vector<DistanceConstraint> light_rows;
+  std::vector<char> light_span;  // by island.paths' order
+  bool light_possible = false;   // a body of it at most kMasslessShare of another's mass (World::buildIslands)
   std::vector<int> swept_hinges;      // Gauss-Seidel's: the hinges with a row (hingeSolvesNothing), for one solve
   std::vector<SpanEnds> span_ends;  // Gauss-Seidel's, by paths' order, for one solve (World::sweepGaussSeidel)
   int iterations = 0;        // the last solve's

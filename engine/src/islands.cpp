@@ -5,6 +5,7 @@
 // moving to the next link).
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -179,6 +180,15 @@ void World::buildIslands() {
     island->cut = progress / 2 % 2 == 1;
     island->started = progress % 2 == 1;
     island->substep_iterations.assign(substep_iterations_.size(), 0);
+    // Whether one of its bodies may be massless beside another
+    // (light_bodies.h): looked for each substep only where one may be.
+    double lightest = std::numeric_limits<double>::infinity(), heaviest = 0.0;
+    for (const BodyId id : island->bodies)
+      if (mass_[id] > 0.0 && !bodies_[id].kinematic) {
+        lightest = std::min(lightest, mass_[id]);
+        heaviest = std::max(heaviest, mass_[id]);
+      }
+    island->light_possible = lightest <= kMasslessShare * heaviest;
   }
   island_cost_.assign(count, 0.0);  // an island's bodies may be others now
   island_manifolds_ = true;         // sortManifolds clears the lists

@@ -269,7 +269,9 @@ void World::setMass(BodyId id, double mass) {
   b.inv_mass = 1.0 / mass;
   b.inv_inertia = b.inertia.inverse();
   b.rotor_axis.setZero();
-  rotors_dirty_ = true;  // a rotor is made again at the next step
+  // A rotor is made again at the next step, and the islands, which know
+  // whether a body of theirs may be massless beside another (island.h).
+  rotors_dirty_ = islands_dirty_ = true;
 }
 
 bool World::hingeRigidityChanged() const {

@@ -4,11 +4,42 @@
 // then distance constraints and cable paths, then contacts. A correction
 // travels one constraint per visit: right while the bodies in a chain
 // are about as heavy as each other (README, "Substeps and iterations").
+#include <algorithm>
+
 #include "../island.h"
 #include "span_ends.h"
 #include "reeve/engine/world.h"
 
 namespace reeve {
+
+namespace {
+
+// A run's row (light_bodies.h): from the tie point on its first end body
+// to the one on its last, rigid and pull-only, its rest length its spans'
+// sum; and its spans marked, by island.paths' order.
+void prepareLightRows(const World& world, Island& island) {
+  island.light_rows.clear();
+  island.light_span.assign(island.paths.size(), 0);
+  for (const LightRun& run : island.light_runs) {
+    const LightBody* m = island.light_bodies.data() + run.first;
+    const LightBody& last = m[run.count - 1];
+    const PathPoint& a = world.path(m[0].path[0]).points[1 - m[0].end[0]];
+    const PathPoint& b = world.path(last.path[1]).points[1 - last.end[1]];
+    DistanceConstraint row;
+    row.a = a.body;
+    row.b = b.body;
+    row.local_a = a.local;
+    row.local_b = b.local;
+    row.rest_length = world.path(m[0].path[0]).rest_length;
+    for (int k = 0; k < run.count; ++k) row.rest_length += world.path(m[k].path[1]).rest_length;
+    island.light_rows.push_back(row);
+    for (int k = 0; k < run.count; ++k)
+      for (const int path : m[k].path)
+        island.light_span[std::lower_bound(island.paths.begin(), island.paths.end(), path) - island.paths.begin()] = 1;
+  }
+}
+
+}  // namespace
 
 void World::sweepGaussSeidel(Island& island, double h) {
   const double inv_h2 = 1.0 / (h * h);
@@ -23,6 +54,14 @@ void World::sweepGaussSeidel(Island& island, double h) {
   island.swept_hinges.clear();
   for (const int i : island.hinges)
     if (!hingeSolvesNothing(hinges_[i], body(hinges_[i].a), body(hinges_[i].b))) island.swept_hinges.push_back(i);
+  // Massless bodies (light_bodies.h): a visit of one of their spans moves
+  // the light body, not the load it carries, and the sweeps stall. A run's
+  // spans pull alike, and taut their ends lie the sum of their lengths
+  // apart: one row between its ends stands for them, and the run is placed
+  // on its spans after each sweep.
+  findLightBodies(*this, island, island.light_scratch, island.light_bodies, island.light_runs);
+  const bool light = !island.light_runs.empty();
+  if (light) prepareLightRows(*this, island);
   for (int it = 0; it < settings_.iterations; ++it) {
     ++island.iterations;
     // Joints first (all types), then distances and paths (cables).
@@ -35,8 +74,13 @@ void World::sweepGaussSeidel(Island& island, double h) {
       solveDistanceConstraint(c, body(c.a), body(c.b), c.compliance * inv_h2, h);
     }
     for (std::size_t k = 0; k < island.paths.size(); ++k) {
+      if (light && island.light_span[k]) continue;  // its run's row, below
       PathConstraint& p = paths_[island.paths[k]];
       solvePathConstraint(p, table, p.compliance * inv_h2, h, island.span_ends[k]);
+    }
+    if (light) {
+      for (DistanceConstraint& row : island.light_rows) solveDistanceConstraint(row, body(row.a), body(row.b), 0.0, h);
+      placeLightBodies(*this, island.light_bodies, island.light_runs);
     }
     for (const int i : island.manifolds) {
       ContactManifold& m = manifolds_[i];
@@ -47,6 +91,12 @@ void World::sweepGaussSeidel(Island& island, double h) {
       island.interrupted = true;
       break;
     }
+  }
+  // Each of a run's spans pulls with its row's tension.
+  for (std::size_t r = 0; r < island.light_runs.size() && light; ++r) {
+    const LightRun& run = island.light_runs[r];
+    for (int k = 0; k < run.count; ++k)
+      for (const int path : island.light_bodies[run.first + k].path) paths_[path].lambda = island.light_rows[r].lambda;
   }
 }
 

@@ -6,10 +6,10 @@
 #include <limits>
 #include <span>
 
-#include "../island.h"
+#include "island.h"
 #include "reeve/engine/world.h"
 
-namespace reeve::direct {
+namespace reeve {
 namespace {
 
 // A span the placement can take: a rigid two-point path between two
@@ -69,14 +69,7 @@ void findLightBodies(const World& world, const Island& island, std::vector<Light
   runs.clear();
   // None where no body is that much lighter than another (most islands):
   // a light body's far ends are in its island.
-  double least_w = std::numeric_limits<double>::infinity(), most_w = 0.0;  // inverse masses
-  for (const BodyId id : island.bodies) {
-    const BodyState& b = world.body(id);
-    if (!(b.inv_mass > 0.0) || b.kinematic) continue;
-    least_w = std::min(least_w, b.inv_mass);
-    most_w = std::max(most_w, b.inv_mass);
-  }
-  if (!(least_w <= kMasslessShare * most_w)) return;
+  if (!island.light_possible) return;
   // Each plain span's two ends, one entry each (path[0], end[0]).
   std::vector<LightBody>& ends = scratch;
   ends.clear();
@@ -243,4 +236,4 @@ void placeLightBodies(World& world, const std::vector<LightBody>& bodies, const 
   }
 }
 
-}  // namespace reeve::direct
+}  // namespace reeve

@@ -111,11 +111,13 @@ TEST(LightBead, LoweredByAMovingCeilingAndStoppedItMakesNothing) {
 // A bead a million times lighter than its load (5 g under 4 t), the chain
 // bent 30 cm: the load falls 2.2 cm until the cables line up and swings.
 // The bead has no motion of its own against such a load, and is placed on
-// its spans as a massless one (direct/light_bodies.h). Before, Newton's
-// steps on the tightrope needed 3 to 8 iterations a substep as the chain
-// lined up; with fewer the cables ended each substep millimetres long,
-// and the next threw the load up at the stretch over h: 2.7e4, 7.8e4 and
-// 1.3e5 J made in a frame at 1 x 1, 10 x 2 and 100 x 1.
+// its spans as a massless one (engine/src/light_bodies.h). Before, the
+// direct solver's Newton steps on the tightrope needed 3 to 8 iterations
+// a substep as the chain lined up; with fewer the cables ended each
+// substep millimetres long, and the next threw the load up at the stretch
+// over h: 2.7e4, 7.8e4 and 1.3e5 J made in a frame at 1 x 1, 10 x 2 and
+// 100 x 1. Gauss-Seidel's visits moved the bead, not the load: 9.4e2 and
+// 1.4e3 J at 32 x 32 and 100 x 1; its run is now one row.
 TEST(LightBead, AMillionTimesLighterThanItsLoadAndStartingBentItMakesNothingAtAnyBudget) {
   const double g = 9.81, load = 4000.0, mass = 0.005;
   const double upper_rest = std::hypot(0.3, 1.0), lower_rest = 1.0;
@@ -181,9 +183,10 @@ TEST(LightBead, AMasslessBeadsMotionIsTheSameAtAnyMassScale) {
 
 // Three 1 g knots tied into a rigid cable to a 1 t load, the cable bent 30
 // cm at the middle one: a run of light bodies, placed together
-// (direct/light_bodies.h; each knot's neighbours are knots, so none is
+// (engine/src/light_bodies.h; each knot's neighbours are knots, so none is
 // light against them alone). Before, 8.1e5, 9.5e3, 2.1e8 and 1.9e11 J
-// were made in a frame at 1 x 1, 1 x 10, 10 x 2 and 100 x 1.
+// were made in a frame at 1 x 1, 1 x 10, 10 x 2 and 100 x 1 (direct), 3.6e2
+// and 6.2e2 J at 32 x 32 and 100 x 1 (Gauss-Seidel).
 TEST(LightBead, AChainOfLightKnotsIsPlacedAsOneAndMakesNothing) {
   const double g = 9.81, load = 1000.0;
   std::string bodies = R"({"name": "ceiling", "static": true, "shape": {"type": "box", "half_extents_m": [0.1, 0.02, 0.1]},

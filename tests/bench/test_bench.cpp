@@ -268,7 +268,7 @@ TEST(BenchExtremes, ALightBeadBetweenTwoCablesIsStableAtTwoIterationsAndAtTen) {
   // long, and taking that back in one substep threw the load up (energy
   // grew 107 % of the map's scale); Gauss-Seidel's sweeps moved the bead,
   // not the load, and its spans stretched past 1 %. Taken as massless
-  // (light_bodies.h), it hangs within 1e-7 of its cables' lengths under
+  // (engine/src/light_bodies.h), it hangs within 1e-7 of its cables' lengths under
   // both. The 1e-3 bead, not taken so, is stable under the direct solver
   // and still stretches under Gauss-Seidel.
   test::TempDir dir;

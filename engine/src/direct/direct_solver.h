@@ -2,11 +2,11 @@
 // of this folder: direct_solver.cpp (the row layout, the substep, the
 // iteration), rows.cpp (each row's value and gradient at the current
 // poses), active_set.cpp (the bounded rows' solve), hubs.cpp (bodies with
-// many rows), sparse_ldlt (the factorization) and light_bodies (massless
-// bodies placed on their spans between iterations, World::solveDirect).
-// Each iteration takes every joint row and every cable path at the
-// current poses, linearized, and solves them together instead of one
-// after another:
+// many rows) and sparse_ldlt (the factorization); between its iterations
+// World::solveDirect places massless bodies on their spans
+// (../light_bodies.h). Each iteration takes every joint row and every
+// cable path at the current poses, linearized, and solves them together
+// instead of one after another:
 //   (J W J^T + alpha~) dlambda = -C - alpha~ lambda,   dx = W J^T dlambda,
 // J the rows' gradients (one 6-vector [linear; angular] per row and moving
 // body), W each body's inverse mass and world inverse inertia, alpha~ =

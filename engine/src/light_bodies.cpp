@@ -142,13 +142,16 @@ void findLightBodies(const World& world, const Island& island, std::vector<Light
       m = next;
     }
     // Light against the lightest dynamic body at the run's two ends (one
-    // at least), every member; else no run.
+    // at least), every member; else no run. Both ends on one body (a loop
+    // of cable from a box back to it) is none either: Gauss-Seidel's row
+    // between them would hold one body to itself.
     const int count = static_cast<int>(bodies.size() - run_first);
+    const PathPoint first_end = farEnd(bodies[run_first].path[0], bodies[run_first].end[0]);
+    const PathPoint last_end = farEnd(bodies.back().path[1], bodies.back().end[1]);
     double lightest = std::numeric_limits<double>::infinity();
-    for (const PathPoint& end : {farEnd(bodies[run_first].path[0], bodies[run_first].end[0]),
-                                 farEnd(bodies.back().path[1], bodies.back().end[1])})
+    for (const PathPoint& end : {first_end, last_end})
       if (dynamic(world, end.body)) lightest = std::min(lightest, 1.0 / world.body(end.body).inv_mass);
-    bool light = !loop && std::isfinite(lightest);
+    bool light = !loop && std::isfinite(lightest) && first_end.body != last_end.body;
     for (std::size_t k = run_first; k < bodies.size() && light; ++k)
       light = 1.0 / world.body(bodies[k].body).inv_mass <= kMasslessShare * lightest;
     if (light) runs.push_back({static_cast<int>(run_first), count});

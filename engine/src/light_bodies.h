@@ -63,8 +63,9 @@ struct LightRun {
 /// compliance 0, both ends fixed points, tied at one point of the body)
 /// and by nothing else (no joint, distance constraint, contact or other
 /// path). A run: members joined by their spans, between two end bodies
-/// that are not members (a closed ring of members is none), each member
-/// at most kMasslessShare of the lighter dynamic end body (one at least).
+/// that are not members and not one body (a closed ring of members is no
+/// run), each member at most kMasslessShare of the lighter dynamic end
+/// body (one at least).
 /// `scratch` holds the spans' ends and the members.
 void findLightBodies(const World& world, const Island& island, std::vector<LightBody>& scratch,
                      std::vector<LightBody>& bodies, std::vector<LightRun>& runs);

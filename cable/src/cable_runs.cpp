@@ -20,8 +20,12 @@ namespace {
 // circle it is a rolling end, held on the circle while a solve turns the
 // wheel (path_constraint.h: SolvePoint); elsewhere a point fixed on the
 // body (a tie point, a pinhole, a polygon's vertex). Set in place, so that
-// a run set again every substep copies no more than it changes.
-void setRunEnd(PathPoint& point, const Link& link, const Vec3& anchor) {
+// a run set again every substep copies no more than it changes. A spool's
+// end (a hybrid link still rolling) pays out its stored cable, as wound on
+// the rim, and no more: a turn of o (the link's orientation) about the
+// plane's normal pays out where the span leaves it (`leaving`), -o where
+// it arrives (CableSystem::updateJoint's arcs).
+void setRunEnd(PathPoint& point, const Link& link, const Vec3& anchor, bool leaving) {
   point.body = link.body;
   point.local = anchor;
   if (link.rolls() && !link.slides() && link.section.kind == Section::Kind::Circle) {
@@ -31,11 +35,14 @@ void setRunEnd(PathPoint& point, const Link& link, const Vec3& anchor) {
     point.roll_axis.setZero();
     point.roll_centre.setZero();
   }
+  const bool store = link.type == LinkType::Hybrid && !link.attached && point.roll_axis.z() != 0.0;
+  point.roll_store = store ? std::max(0.0, link.arc()) : 0.0;
+  point.store_sense = store ? (leaving ? link.orientation : -link.orientation) : 0;
 }
 
-PathPoint runEnd(const Link& link, const Vec3& anchor) {
+PathPoint runEnd(const Link& link, const Vec3& anchor, bool leaving) {
   PathPoint point;
-  setRunEnd(point, link, anchor);
+  setRunEnd(point, link, anchor, leaving);
   return point;
 }
 
@@ -264,14 +271,14 @@ void CableSystem::buildRuns(Cable& cable) {
       span.run = j;
       span.weight = 1.0;
       path.points.resize(2);
-      setRunEnd(path.points[0], cable.links[j], span.local_a);
-      setRunEnd(path.points[1], cable.links[span.to], span.local_b);
+      setRunEnd(path.points[0], cable.links[j], span.local_a, true);
+      setRunEnd(path.points[1], cable.links[span.to], span.local_b, false);
       path.weights.clear();
       rest = stretch = span.rest_length;
     } else {
       path.points.clear();
       path.weights.clear();
-      path.points.push_back(runEnd(cable.links[j], cable.joints[j].local_a));
+      path.points.push_back(runEnd(cable.links[j], cable.joints[j].local_a, true));
       double w = 1.0, heaviest = 1.0;
       walkRun(cable, j, loop, [&](int k) {
         CableJoint& span = cable.joints[k];
@@ -285,7 +292,7 @@ void CableSystem::buildRuns(Cable& cable) {
         if (to.type == LinkType::Pinhole && !last) {
           path.points.push_back({to.body, to.point});
         } else {
-          path.points.push_back(last && !loop ? runEnd(to, span.local_b) : PathPoint{to.body, span.local_b});
+          path.points.push_back(last && !loop ? runEnd(to, span.local_b, false) : PathPoint{to.body, span.local_b});
           if (to.rolls() && (!last || loop)) {  // the chord to the departure tangent point
             const Vec3& departure = cable.joints[span.to].local_a;
             chords += (departure - span.local_b).norm();

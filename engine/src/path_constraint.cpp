@@ -60,7 +60,7 @@ void sinCos(double a, double& s, double& c) {
 
 // solvePoint in the solve, with R the body's rotation matrix (three
 // products with it cost less than three with its quaternion).
-SolvePoint solvePointRotated(const BodyState& body, const Mat3& R, const PathPoint& point) {
+SolvePoint solvePointRotated(const BodyState& body, const Mat3& R, const PathPoint& point, bool stores = false) {
   SolvePoint p;
   if (point.roll_axis.isZero()) {
     p.arm = R * point.local;
@@ -72,27 +72,45 @@ SolvePoint solvePointRotated(const BodyState& body, const Mat3& R, const PathPoi
   // A wheel's circle is most often centred on its centre of mass.
   const bool centred = point.roll_centre.isZero();
   const Vec3 lever = R * (centred ? point.local : Vec3(point.local - point.roll_centre));
-  if (p.turn == 0.0) {
+  double back = p.turn;  // the lever held back by the turn
+  bool tied = false;
+  if (stores && point.store_sense != 0 && p.turn * point.store_sense > 0.0) {
+    // A store run out within the solve: its end, the point that reached
+    // the tangent point after a turn of `back` (r back = the store), has
+    // turned on with the body since.
+    const double r = (lever - p.axis.dot(lever) * p.axis).norm();
+    if (r > 0.0 && p.turn * point.store_sense * r > point.roll_store) {
+      back = point.store_sense * point.roll_store / r;
+      tied = true;
+    }
+  }
+  if (back == 0.0) {
     p.lever = lever;
   } else {
     double s, c;
-    sinCos(p.turn, s, c);
+    sinCos(back, s, c);
     const double along = p.axis.dot(lever);
     p.lever = c * lever - s * p.axis.cross(lever) + (1.0 - c) * along * p.axis;
   }
   p.arm = centred ? p.lever : Vec3(R * point.roll_centre + p.lever);
+  if (tied) {
+    p.axis.setZero();
+    p.lever.setZero();
+    p.turn = 0.0;
+    p.paid = -point.roll_store;
+  }
   return p;
 }
 
 }  // namespace
 
-SolvePoint solvePoint(const BodyState& body, const PathPoint& point, bool in_solve) {
+SolvePoint solvePoint(const BodyState& body, const PathPoint& point, bool in_solve, bool stores) {
   if (!in_solve || point.roll_axis.isZero()) {
     SolvePoint p;
     p.arm = body.q * point.local;
     return p;
   }
-  return solvePointRotated(body, body.q.toRotationMatrix(), point);
+  return solvePointRotated(body, body.q.toRotationMatrix(), point, stores);
 }
 
 TangentSlide tangentSlide(const SolvePoint& near, const SolvePoint& far, const Vec3& w) {

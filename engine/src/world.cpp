@@ -466,16 +466,18 @@ double World::pathLength(PathId id) const {
   const PathConstraint& path = paths_[id];
   const std::vector<PathPoint>& points = path.points;
   const std::size_t n = points.size();
-  const SolvePoint first = solvePoint(body(points[0].body), points[0], poses_solved_);
-  const SolvePoint last = solvePoint(body(points[n - 1].body), points[n - 1], poses_solved_);
+  const bool stores = settings_.solver == SolverKind::Direct;
+  const SolvePoint first = solvePoint(body(points[0].body), points[0], poses_solved_, stores);
+  const SolvePoint last = solvePoint(body(points[n - 1].body), points[n - 1], poses_solved_, stores);
   const auto position = [&](std::size_t i) {
     const BodyState& b = body(points[i].body);
     return Vec3(b.x + (i == 0 ? first.arm : i + 1 == n ? last.arm : Vec3(b.q * points[i].local)));
   };
   double length = 0.0;
   for (size_t i = 0; i + 1 < n; ++i) length += segmentScale(path, i) * (position(i + 1) - position(i)).norm();
-  if (first.turn != 0.0) length += segmentScale(path, 0) * first.payOut(-(position(1) - position(0)).normalized());
-  if (last.turn != 0.0)
+  if (first.turn != 0.0 || first.paid != 0.0)
+    length += segmentScale(path, 0) * first.payOut(-(position(1) - position(0)).normalized());
+  if (last.turn != 0.0 || last.paid != 0.0)
     length += segmentScale(path, n - 2) * last.payOut((position(n - 1) - position(n - 2)).normalized());
   return length;
 }

@@ -127,7 +127,7 @@ SolvePoint DirectSolver::endPoint(const World& world, const PathPoint& point, in
     p.lever = R * (point.local - point.roll_centre);
     return p;
   }
-  return solvePoint(world.body(point.body), point, true);
+  return solvePoint(world.body(point.body), point, true, true);
 }
 
 void DirectSolver::evaluateSpan(const World& world, int r, const PathPoint& p0, const PathPoint& p1) {
@@ -188,6 +188,7 @@ void DirectSolver::evaluateSpan(const World& world, int r, const PathPoint& p0, 
 bool DirectSolver::linearEnd(const PathPoint& point) const {
   const int slot = slotOf(point.body);
   if (slot < 0) return true;
+  if (point.store_sense != 0) return false;  // its store may run out in the solve
   const BodyFrame& f = frames_[slot];
   const Vec3& centre = point.roll_centre;
   if (f.axial_inv0 == 0.0 || centre.x() != 0.0 || centre.y() != 0.0 || centre.z() != 0.0)
@@ -368,8 +369,9 @@ void DirectSolver::evaluateRun(const World& world, int r, const PathPoint* point
   }
   for (int e = row.first_entry; e < row.first_entry + row.entry_count; ++e) entries_[e].weighed = false;
   C_[r] = length;  // minus the rest length, by the caller
-  if (ends[0].turn != 0.0) C_[r] += s_first * ends[0].payOut(-(pos[1] - pos[0]).normalized());
-  if (ends[1].turn != 0.0) C_[r] += s_last * ends[1].payOut((pos[count - 1] - pos[count - 2]).normalized());
+  if (ends[0].turn != 0.0 || ends[0].paid != 0.0) C_[r] += s_first * ends[0].payOut(-(pos[1] - pos[0]).normalized());
+  if (ends[1].turn != 0.0 || ends[1].paid != 0.0)
+    C_[r] += s_last * ends[1].payOut((pos[count - 1] - pos[count - 2]).normalized());
 }
 
 int DirectSolver::evaluateJoint(World& world, int r, double h) {

@@ -24,6 +24,14 @@ struct PathPoint {
   Vec3 local = Vec3::Zero();
   Vec3 roll_axis = Vec3::Zero();
   Vec3 roll_centre = Vec3::Zero();
+  /// A rolling end's store (a spool's stored cable, paper Alg. 2): the
+  /// cable (m) it can pay out while the solve turns its body in
+  /// `store_sense` (+1 or -1 about roll_axis); 0 there: no store, it only
+  /// rolls. Once a solve has turned it past, the cable has run out: the
+  /// end is tied where the cable ends and turns with its body
+  /// (SolvePoint).
+  double roll_store = 0.0;
+  int store_sense = 0;
 };
 
 /// A path point where a solve has put it (issue 29, item 3). A point fixed
@@ -40,6 +48,10 @@ struct SolvePoint {
   Vec3 lever = Vec3::Zero();  ///< a rolling end's, from the circle's centre, world (m)
   Vec3 axis = Vec3::Zero();   ///< a rolling end's world unit axle; zero for a fixed point
   double turn = 0.0;          ///< the solve's turn about `axis` (rad)
+  /// A rolling end tied in this solve (PathPoint::roll_store run out): a
+  /// point fixed on its body (axis zero), and the store it paid out before,
+  /// -roll_store (m), in the path's length.
+  double paid = 0.0;
   /// The cable a rolling end pays out per radian turned about its axle
   /// (m), for the length's gradient `grad` at this point (dC/dp): the
   /// lever's moment axis . (lever x grad) over grad's share in the cable
@@ -58,7 +70,7 @@ struct SolvePoint {
     return in_plane > 1e-9 * grad.norm() ? moment * grad.norm() / in_plane : moment;
   }
   /// The path's length (m) that the turn wound off, for `grad`.
-  double payOut(const Vec3& grad) const { return turn == 0.0 ? 0.0 : turn * perRadian(grad); }
+  double payOut(const Vec3& grad) const { return turn == 0.0 ? paid : turn * perRadian(grad); }
   /// dC/d(rotation) of the body (m) for `grad` at this point: arm x grad,
   /// at a rolling end with its part along the axle perRadian(grad).
   Vec3 moment(const Vec3& grad) const {
@@ -72,6 +84,7 @@ struct SolvePoint {
     double per_radian = 0.0;
     const Vec3 m = spanMomentPerRadian(g, per_radian);
     if (!axis.isZero()) length += turn * per_radian;
+    else if (paid != 0.0) length += paid;
     return m;
   }
   /// spanMoment(g) without the pay-out: `per_radian` (m/rad) is set to
@@ -126,8 +139,12 @@ void addSpanSlides(const SolvePoint& first, const SolvePoint& last, const Vec3& 
 
 /// `point` on `body`. `in_solve`: the body's solve_turn is this solve's
 /// (from the start of a position solve until the next substep's
-/// integration); otherwise every point is fixed on its body.
-SolvePoint solvePoint(const BodyState& body, const PathPoint& point, bool in_solve);
+/// integration); otherwise every point is fixed on its body. `stores`: a
+/// rolling end pays out no more than its store (PathPoint::roll_store) and
+/// is tied past it, as the direct solver's rows have it; Gauss-Seidel's
+/// visits leave the overdraft to the cable update (DESIGN, "Forty-second
+/// session").
+SolvePoint solvePoint(const BodyState& body, const PathPoint& point, bool in_solve, bool stores = false);
 
 /// At least two points; `rest_length` (m), `compliance` (m/N) and
 /// `damping` (N s/m: a force -damping dL/dt on the path's length L, only

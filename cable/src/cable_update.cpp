@@ -436,7 +436,15 @@ void CableSystem::switchHybrids(Cable& cable, int c, double time_s) {
       // reached, so its end has turned that far past it, on towards the
       // span; tying it at the tangent point instead would leave the span
       // too long by |stored| and the solver would yank the spool round.
-      const double end = boundaryPosition(link.section, planePoint(anchor)) - link.orientation * link.stored;
+      // The wrap runs from its end to the tangent point in the sense o
+      // where the span leaves the link, from the tangent point to its end
+      // where it arrives: past the tangent point is +o |stored| there, -o
+      // here. (Taken as +o at an arriving end too, a spool at a cable's far
+      // end was tied a quarter turn the wrong way round, at its line-up's
+      // far side: the span 2 r too long, its 100 kg load thrown up at 2.4
+      // m/s.)
+      const double past = (leaving ? -1.0 : 1.0) * link.orientation * link.stored;
+      const double end = boundaryPosition(link.section, planePoint(anchor)) + past;
       link.attached = true;
       link.point = fromPlane(link, boundaryPoint(link.section, end));
       anchor = link.point;

@@ -4,6 +4,7 @@
 #include "direct_solver.h"
 
 #include <algorithm>
+#include <numbers>
 #include <cassert>
 #include <cmath>
 #include <limits>
@@ -99,6 +100,9 @@ constexpr int kLineUpRounds = 3;
 constexpr double kLeastMoveShare = 0.01;
 // A turn whose secant is within this of its model is taken as the model.
 constexpr double kSecantSlack = 1e-3;
+// A store's end, tied once it runs out, lines up with its span a quarter
+// turn on from the tangent point it left by (stiffenStores).
+constexpr double kQuarterTurn = std::numbers::pi / 2.0;
 
 using joint_rows::kInf;
 using joint_rows::Vec6;
@@ -1064,7 +1068,8 @@ bool DirectSolver::iterate(World& world, double h) {
   // stiffened (stiffenMoves).
   stiffened_turns_.clear();
   stiffened_moves_.clear();
-  for (int round = 0; round < kLineUpRounds && (stiffenTurns(omega) | stiffenMoves(omega)); ++round) {
+  for (int round = 0; round < kLineUpRounds && (stiffenTurns(omega) | stiffenMoves(omega) | stiffenStores(omega));
+       ++round) {
     warmStartCaps();
     solveActiveSet(solve_tolerance);
     omega = 1.0;
@@ -1169,25 +1174,57 @@ bool DirectSolver::stiffenTurns(double omega) {
     own.ang = secants_[secant_of_[f.entry]].ang + (secant - 1.0) * f.toward.cross(f.arm);
     weigh(own);
     changed = true;
-    if (angle <= most) continue;
-    // The end's row alone, as Gauss-Seidel's visit: dl = target / (rest +
-    // s a) turns it |dl| s per, a = j W j^T its own share of the row's w.
-    // Where that says nothing (nothing else in the row moves, or the row's
-    // other rows hold the rest), the turn asked shrinks in proportion.
-    const Row& row = rows_[f.row];
-    double w_all = alpha_[f.row];
-    for (int k = row.first_entry; k < row.first_entry + row.entry_count; ++k)
-      w_all += entries_[k].lin.dot(entries_[k].wlin) + entries_[k].ang.dot(entries_[k].wang);
-    const double a = own.ang.dot(own.wang), per = own.wang.norm(), rest = w_all - a;
-    const double target = std::abs(C_[f.row] + alpha_[f.row] * lambda_[f.row]);
-    double s = most / angle;
-    if (rest > 1e-12 * w_all && target * per > most * a) s = std::min(s, most * rest / (target * per - most * a));
-    if (std::none_of(stiffened_turns_.begin(), stiffened_turns_.end(),
-                     [&](const Stiffened& t) { return t.body == f.body; })) {
-      const BodyFrame& b = frames_[f.body];
-      stiffened_turns_.push_back({f.body, b.inv_inertia, b.inv_axial});
+    if (angle > most) stopTurn(f.body, f.row, own, most, angle);
+  }
+  if (changed)
+    for (Entry& e : entries_)
+      for (const Stiffened& t : stiffened_turns_)
+        if (e.body == t.body) weigh(e);
+  return changed;
+}
+
+void DirectSolver::stopTurn(int body, int r, const Entry& own, double most, double angle) {
+  // The end's row alone, as Gauss-Seidel's visit: dl = target / (rest +
+  // s a) turns it |dl| s per, a = j W j^T its own share of the row's w.
+  // Where that says nothing (nothing else in the row moves, or the row's
+  // other rows hold the rest), the turn asked shrinks in proportion.
+  const Row& row = rows_[r];
+  double w_all = alpha_[r];
+  for (int k = row.first_entry; k < row.first_entry + row.entry_count; ++k)
+    w_all += entries_[k].lin.dot(entries_[k].wlin) + entries_[k].ang.dot(entries_[k].wang);
+  const double a = own.ang.dot(own.wang), per = own.wang.norm(), rest = w_all - a;
+  const double target = std::abs(C_[r] + alpha_[r] * lambda_[r]);
+  double s = most / angle;
+  if (rest > 1e-12 * w_all && target * per > most * a) s = std::min(s, most * rest / (target * per - most * a));
+  if (std::none_of(stiffened_turns_.begin(), stiffened_turns_.end(),
+                   [&](const Stiffened& t) { return t.body == body; })) {
+    const BodyFrame& b = frames_[body];
+    stiffened_turns_.push_back({body, b.inv_inertia, b.inv_axial});
+  }
+  scaleTurn(body, s);  // on top of the last round's, and of another end's on it
+}
+
+bool DirectSolver::stiffenStores(double omega) {
+  bool changed = false;
+  for (const StoredEnd& f : stored_ends_) {
+    const double angle = storeTurn(f, omega), left = std::max(0.0, f.left);
+    if (!(angle > left)) continue;  // within its store, or winding on
+    // Of the model's r a radian, the turn gains r for the store's turn and
+    // r sin(past) after it: the cable's end leaves the tangent point along
+    // the span and turns on towards it.
+    const double most = left + kQuarterTurn, turn = std::min(angle, most);
+    const double secant = (left + std::sin(turn - left)) / turn;
+    Entry& own = entries_[f.entry];
+    if (secant_of_[f.entry] < 0) {
+      if (angle <= most && secant > 1.0 - kSecantSlack) continue;
+      secant_of_[f.entry] = static_cast<int>(secants_.size());
+      secants_.push_back({f.entry, own.ang});
     }
-    scaleTurn(f.body, s);  // on top of the last round's, and of another end's on it
+    const Vec3& model = secants_[secant_of_[f.entry]].ang;
+    own.ang = model + (secant - 1.0) * f.pays.dot(model) * f.pays;
+    weigh(own);
+    changed = true;
+    if (angle > most) stopTurn(f.body, f.row, own, most, angle);
   }
   if (changed)
     for (Entry& e : entries_)
@@ -1292,6 +1329,10 @@ double DirectSolver::lineUpShare(double omega) const {
   for (const FixedEnd& f : fixed_ends_) {
     double most;
     const double angle = turnPast(f, omega, most);
+    if (angle > most) share = std::min(share, most / angle);
+  }
+  for (const StoredEnd& f : stored_ends_) {
+    const double angle = storeTurn(f, omega), most = std::max(0.0, f.left) + kQuarterTurn;
     if (angle > most) share = std::min(share, most / angle);
   }
   return share;

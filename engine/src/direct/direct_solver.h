@@ -290,6 +290,13 @@ class DirectSolver {
     Vec3 d;            // p_1 - p_0 (m)
   };
   std::vector<FixedSpan> fixed_spans_;  // the last evaluate()'s (evaluateSpan)
+  struct StoredEnd {  // a span's rolling end with a store (PathPoint::roll_store), as evaluated
+    int body;          // index into bodies_
+    int row, entry;    // its row and its body's entry in that row
+    Vec3 pays;         // world unit axle, in the sense a turn pays out
+    double left;       // the turn (rad) in that sense that pays out the rest of its store
+  };
+  std::vector<StoredEnd> stored_ends_;  // the last evaluate()'s (evaluateSpan)
   struct StiffenedMove {  // a body whose translation stiffenMoves() scaled, and its W before
     int body;
     double inv_mass;
@@ -312,6 +319,25 @@ class DirectSolver {
   /// fixed end `f`'s body, and in `most` the most it may be (line_up.h;
   /// the turn itself below kTrustedStepTurn).
   double turnPast(const FixedEnd& f, double omega, double& most) const;
+  /// The turn (rad) the step gives stored end `f`'s body in the sense that
+  /// pays out (negative: winds on).
+  double storeTurn(const StoredEnd& f, double omega) const {
+    return f.pays.dot(omega * (dphi_[f.body] + shift_phi_[f.body]));
+  }
+  /// Where the step turns a stored end past its store, gives the end's
+  /// gradient in its row the turn's secant share: r a radian for the
+  /// store's turn, then r sin(past) as the point where the cable ends
+  /// turns on with the body (solvePoint's tie), most at its line-up a
+  /// quarter turn on; past that, its body's turn is scaled to stop there
+  /// (stiffenTurns' rule). With one iteration a substep the step itself
+  /// is what the bodies keep: modelled as all rolling, a 2 kg spool paid
+  /// 4.5 cm out past its store under 100 kg and the next substep yanked
+  /// it back (174 J at 1 x 1).
+  bool stiffenStores(double omega);
+  /// Scales the turn of `body`, whose end's entry `own` in row `r` the step
+  /// turns by `angle` (rad), so that the row alone turns it at most `most`
+  /// (stiffenTurns, stiffenStores).
+  void stopTurn(int body, int r, const Entry& own, double most, double angle);
   /// Where the step turns a fixed end's body by more than kTrustedStepTurn,
   /// gives the end's gradient in its row the turn's secant share
   /// (turnSecant: what the turn gains of its length, not what the tangent

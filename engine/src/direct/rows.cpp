@@ -158,6 +158,15 @@ void DirectSolver::evaluateSpan(const World& world, int r, const PathPoint& p0, 
     if (s0 >= 0 && e0.axis.isZero()) fixed_ends_.push_back({s0, r, row.first_entry, a0, u});
     if (s1 >= 0 && e1.axis.isZero()) fixed_ends_.push_back({s1, r, row.first_entry + (s0 >= 0 ? 1 : 0), a1, -u});
     if (e0.axis.isZero() && e1.axis.isZero()) fixed_spans_.push_back({s0, s1, a0, a1, d});
+    // Rolling ends with a store still to pay out (stiffenStores).
+    const auto stored = [&](int slot, const PathPoint& p, const SolvePoint& e, int entry) {
+      const double radius = e.lever.norm();
+      if (slot < 0 || p.store_sense == 0 || e.axis.isZero() || !(radius > 0.0)) return;
+      const double left = p.roll_store / radius - p.store_sense * e.turn;
+      stored_ends_.push_back({slot, r, entry, p.store_sense * e.axis, left});
+    };
+    stored(s0, p0, e0, row.first_entry);
+    stored(s1, p1, e1, row.first_entry + (s0 >= 0 ? 1 : 0));
   }
   int e = row.first_entry;
   const double bend = s0 != s1 && l >= 1e-12 ? 1.0 / l : 0.0;
@@ -504,6 +513,7 @@ void DirectSolver::evaluate(World& world, double h) {
   damped_ = false;
   fixed_ends_.clear();
   fixed_spans_.clear();
+  stored_ends_.clear();
   evaluateBodies();
   const int n = static_cast<int>(rows_.size());
   for (int r = 0; r < n;) {

@@ -4,10 +4,10 @@
 #include "direct_solver.h"
 
 #include <algorithm>
-#include <numbers>
 #include <cassert>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/OrderingMethods>

@@ -160,7 +160,7 @@ void DirectSolver::evaluateSpan(const World& world, int r, const PathPoint& p0, 
     if (e0.axis.isZero() && e1.axis.isZero()) fixed_spans_.push_back({s0, s1, a0, a1, d});
     // Rolling ends with a store still to pay out (stiffenStores).
     const auto stored = [&](int slot, const PathPoint& p, const SolvePoint& e, int entry) {
-      const double radius = e.lever.norm();
+      const double radius = (e.lever - e.axis.dot(e.lever) * e.axis).norm();
       if (slot < 0 || p.store_sense == 0 || e.axis.isZero() || !(radius > 0.0)) return;
       const double left = p.roll_store / radius - p.store_sense * e.turn;
       stored_ends_.push_back({slot, r, entry, p.store_sense * e.axis, left});
@@ -378,7 +378,8 @@ void DirectSolver::evaluateRun(const World& world, int r, const PathPoint* point
   }
   for (int e = row.first_entry; e < row.first_entry + row.entry_count; ++e) entries_[e].weighed = false;
   C_[r] = length;  // minus the rest length, by the caller
-  if (ends[0].turn != 0.0 || ends[0].paid != 0.0) C_[r] += s_first * ends[0].payOut(-(pos[1] - pos[0]).normalized());
+  if (ends[0].turn != 0.0 || ends[0].paid != 0.0)
+    C_[r] += s_first * ends[0].payOut(-(pos[1] - pos[0]).normalized());
   if (ends[1].turn != 0.0 || ends[1].paid != 0.0)
     C_[r] += s_last * ends[1].payOut((pos[count - 1] - pos[count - 2]).normalized());
 }

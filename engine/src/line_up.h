@@ -45,15 +45,18 @@ inline double turnToLineUp(const Vec3& arm, const Vec3& e, double sign, const Ve
 /// span's length (its far end along `toward` from the point) by
 /// l1 sin(angle) + l2 (1 - cos(angle)), l1 = -toward . (e x arm) and l2 =
 /// toward . arm_perp, where the model says l1 angle. Toward the line-up
-/// the turn gains less than the model (a half at the line-up itself). In
-/// [0, 1]; 1 where the model says nothing. A far end's own curvature
+/// the turn gains less than the model (a half at the line-up itself);
+/// from near the other line-up, where the model says little, more (a tie
+/// point carried nearly to its span's far side, turned back to where its
+/// length is least: 2 r where the model said r sin(0.1) a radian). At
+/// least 0; 1 where the model says nothing. A far end's own curvature
 /// (|dp|^2 / length) is left out.
 inline double turnSecant(const Vec3& arm, const Vec3& e, const Vec3& toward, double angle) {
   const double l1 = -toward.dot(e.cross(arm)), l2 = toward.dot(arm - e * e.dot(arm));
   const double linear = l1 * angle;
   if (!(std::abs(linear) > 0.0)) return 1.0;
   const double ratio = (l1 * std::sin(angle) + l2 * (1.0 - std::cos(angle))) / linear;
-  return std::clamp(ratio, 0.0, 1.0);
+  return std::max(ratio, 0.0);
 }
 
 // The scale s <= 1 of a body's response to a row that turns it at most

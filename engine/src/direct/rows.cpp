@@ -160,13 +160,16 @@ void DirectSolver::evaluateSpan(const World& world, int r, const PathPoint& p0, 
     if (e0.axis.isZero() && e1.axis.isZero()) fixed_spans_.push_back({s0, s1, a0, a1, d});
     // Rolling ends with a store still to pay out (stiffenStores).
     const auto stored = [&](int slot, const PathPoint& p, const SolvePoint& e, int entry) {
+      if (slot < 0 || p.store_sense == 0 || e.axis.isZero()) return;
       const double radius = (e.lever - e.axis.dot(e.lever) * e.axis).norm();
-      if (slot < 0 || p.store_sense == 0 || e.axis.isZero() || !(radius > 0.0)) return;
+      if (!(radius > 0.0)) return;
       const double left = p.roll_store / radius - p.store_sense * e.turn;
       stored_ends_.push_back({slot, r, entry, p.store_sense * e.axis, left});
     };
-    stored(s0, p0, e0, row.first_entry);
-    stored(s1, p1, e1, row.first_entry + (s0 >= 0 ? 1 : 0));
+    if (p0.store_sense != 0 || p1.store_sense != 0) {
+      stored(s0, p0, e0, row.first_entry);
+      stored(s1, p1, e1, row.first_entry + (s0 >= 0 ? 1 : 0));
+    }
   }
   int e = row.first_entry;
   const double bend = s0 != s1 && l >= 1e-12 ? 1.0 / l : 0.0;

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/OrderingMethods>
@@ -1165,12 +1166,8 @@ bool DirectSolver::stiffenTurns(double omega) {
     const double turn = std::min(angle, most);
     const Vec3 e = omega * (dphi_[f.body] + shift_phi_[f.body]) / angle;
     const double secant = turnSecant(f.arm, e, f.toward, turn);
-    Entry& own = entries_[f.entry];
-    if (secant_of_[f.entry] < 0) {
-      if (angle <= most && secant > 1.0 - kSecantSlack) continue;
-      secant_of_[f.entry] = static_cast<int>(secants_.size());
-      secants_.push_back({f.entry, own.ang});
-    }
+    const std::optional<Vec3> model = modelGradient(f.entry, secant, angle > most);
+    if (!model) continue;
     // Above 1 only the moment about the turn's axis grows (the others are
     // the model's, and may be r where that one is nearly 0). Clamped at 1,
     // a 2 g spool whose tie point its spin had carried near the far side
@@ -1178,16 +1175,29 @@ bool DirectSolver::stiffenTurns(double omega) {
     // its 100 kg load was thrown up at 2.4 m/s instead (307 J at 2 x 2).
     const Vec3 moment = f.toward.cross(f.arm);
     const Vec3 change = secant <= 1.0 ? Vec3((secant - 1.0) * moment) : Vec3((secant - 1.0) * e.dot(moment) * e);
-    own.ang = secants_[secant_of_[f.entry]].ang + change;
+    Entry& own = entries_[f.entry];
+    own.ang = *model + change;
     weigh(own);
     changed = true;
     if (angle > most) stopTurn(f.body, f.row, own, most, angle);
   }
-  if (changed)
-    for (Entry& e : entries_)
-      for (const Stiffened& t : stiffened_turns_)
-        if (e.body == t.body) weigh(e);
+  if (changed) reweighStiffened();
   return changed;
+}
+
+std::optional<Vec3> DirectSolver::modelGradient(int entry, double secant, bool past) {
+  if (secant_of_[entry] < 0) {
+    if (!past && secant > 1.0 - kSecantSlack) return std::nullopt;
+    secant_of_[entry] = static_cast<int>(secants_.size());
+    secants_.push_back({entry, entries_[entry].ang});
+  }
+  return secants_[secant_of_[entry]].ang;
+}
+
+void DirectSolver::reweighStiffened() {
+  for (Entry& e : entries_)
+    for (const Stiffened& t : stiffened_turns_)
+      if (e.body == t.body) weigh(e);
 }
 
 void DirectSolver::stopTurn(int body, int r, const Entry& own, double most, double angle) {
@@ -1221,22 +1231,15 @@ bool DirectSolver::stiffenStores(double omega) {
     // the span and turns on towards it.
     const double most = left + kQuarterTurn, turn = std::min(angle, most);
     const double secant = (left + std::sin(turn - left)) / turn;
+    const std::optional<Vec3> model = modelGradient(f.entry, secant, angle > most);
+    if (!model) continue;
     Entry& own = entries_[f.entry];
-    if (secant_of_[f.entry] < 0) {
-      if (angle <= most && secant > 1.0 - kSecantSlack) continue;
-      secant_of_[f.entry] = static_cast<int>(secants_.size());
-      secants_.push_back({f.entry, own.ang});
-    }
-    const Vec3& model = secants_[secant_of_[f.entry]].ang;
-    own.ang = model + (secant - 1.0) * f.pays.dot(model) * f.pays;
+    own.ang = *model + (secant - 1.0) * f.pays.dot(*model) * f.pays;
     weigh(own);
     changed = true;
     if (angle > most) stopTurn(f.body, f.row, own, most, angle);
   }
-  if (changed)
-    for (Entry& e : entries_)
-      for (const Stiffened& t : stiffened_turns_)
-        if (e.body == t.body) weigh(e);
+  if (changed) reweighStiffened();
   return changed;
 }
 
@@ -1261,9 +1264,7 @@ void DirectSolver::restoreTurns() {
     b.inv_axial = t.inv_axial;
     b.turn_scale = 1.0;
   }
-  for (Entry& e : entries_)
-    for (const Stiffened& t : stiffened_turns_)
-      if (e.body == t.body) weigh(e);
+  reweighStiffened();
   stiffened_turns_.clear();
 }
 

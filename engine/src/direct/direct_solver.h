@@ -56,6 +56,7 @@
 
 #include <algorithm>
 #include <array>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -338,6 +339,13 @@ class DirectSolver {
   /// turns by `angle` (rad), so that the row alone turns it at most `most`
   /// (stiffenTurns, stiffenStores).
   void stopTurn(int body, int r, const Entry& own, double most, double angle);
+  /// Entry `entry`'s gradient as its row's model had it, kept the first
+  /// time a round gives it a secant (restoreTurns puts it back); none where
+  /// the turn keeps to its model: not `past` its line-up and its secant
+  /// within kSecantSlack of 1 (stiffenTurns, stiffenStores).
+  std::optional<Vec3> modelGradient(int entry, double secant, bool past);
+  /// weigh()s every entry of a body whose turn a round scaled.
+  void reweighStiffened();
   /// Where the step turns a fixed end's body by more than kTrustedStepTurn,
   /// gives the end's gradient in its row the turn's secant share
   /// (turnSecant: what the turn gains of its length, not what the tangent

@@ -13,14 +13,15 @@ namespace reeve {
 namespace {
 
 // A span the placement can take: a rigid two-point path between two
-// bodies, both of its ends fixed points (a rolling end winds cable as its
-// body turns, which a place on the span does not say).
-inline bool plainSpan(const PathConstraint& p) {
+// bodies. A rolling end (`rolling`: the direct solver's) only on a run's
+// end body, where the solve holds its tangent point and counts the cable
+// its turn pays out (placeLightBodies); a member is tied at a fixed point.
+inline bool plainSpan(const PathConstraint& p, bool rolling) {
   // The rolling ends first (a fixed point's axis is exactly zero): most
   // spans of most machines have one, and most islands no plain span.
-  return p.points.size() == 2 && p.points[0].roll_axis.squaredNorm() == 0.0 &&
-         p.points[1].roll_axis.squaredNorm() == 0.0 && p.enabled && p.weights.empty() && p.compliance == 0.0 &&
-         p.points[0].body != p.points[1].body;
+  return p.points.size() == 2 &&
+         (rolling || (p.points[0].roll_axis.squaredNorm() == 0.0 && p.points[1].roll_axis.squaredNorm() == 0.0)) &&
+         p.enabled && p.weights.empty() && p.compliance == 0.0 && p.points[0].body != p.points[1].body;
 }
 
 bool dynamic(const World& world, BodyId id) {
@@ -31,7 +32,7 @@ bool dynamic(const World& world, BodyId id) {
 
 // Whether anything but plain spans acts on `id`: a joint, a distance
 // constraint, a contact or another path.
-bool heldOtherwise(const World& world, const Island& island, BodyId id) {
+bool heldOtherwise(const World& world, const Island& island, BodyId id, bool rolling) {
   const auto on = [&](BodyId a, BodyId b) { return a == id || b == id; };
   for (const int i : island.hinges)
     if (on(world.hinges()[i].a, world.hinges()[i].b)) return true;
@@ -47,7 +48,7 @@ bool heldOtherwise(const World& world, const Island& island, BodyId id) {
     if (on(world.contactManifolds()[i].a, world.contactManifolds()[i].b)) return true;
   for (const int i : island.paths) {
     const PathConstraint& p = world.path(i);
-    if (!p.enabled || plainSpan(p)) continue;
+    if (!p.enabled || plainSpan(p, rolling)) continue;
     for (const PathPoint& point : p.points)
       if (point.body == id) return true;
   }
@@ -63,7 +64,7 @@ Vec3 ontoSphere(const Vec3& p, const Vec3& c, double r) {
 
 }  // namespace
 
-void findLightBodies(const World& world, const Island& island, std::vector<LightBody>& scratch,
+void findLightBodies(const World& world, const Island& island, bool rolling_ends, std::vector<LightBody>& scratch,
                      std::vector<LightBody>& bodies, std::vector<LightRun>& runs) {
   bodies.clear();
   runs.clear();
@@ -76,7 +77,7 @@ void findLightBodies(const World& world, const Island& island, std::vector<Light
   int spans = 0;
   for (const int i : island.paths) {
     const PathConstraint& p = world.path(i);
-    if (!plainSpan(p)) continue;
+    if (!plainSpan(p, rolling_ends)) continue;
     ++spans;
     for (int end = 0; end < 2; ++end)
       if (p.points[end].body != kWorldBody) ends.push_back({p.points[end].body, {i, 0}, {end, 0}});
@@ -92,10 +93,9 @@ void findLightBodies(const World& world, const Island& island, std::vector<Light
     std::size_t next = k + 1;
     while (next < first_member && ends[next].body == ends[k].body) ++next;
     const BodyId id = ends[k].body;
-    if (next - k == 2 && dynamic(world, id) &&
-        world.path(ends[k].path[0]).points[ends[k].end[0]].local ==
-            world.path(ends[k + 1].path[0]).points[ends[k + 1].end[0]].local &&
-        !heldOtherwise(world, island, id))
+    const auto tie = [&](std::size_t e) -> const PathPoint& { return world.path(ends[e].path[0]).points[ends[e].end[0]]; };
+    if (next - k == 2 && dynamic(world, id) && tie(k).local == tie(k + 1).local && tie(k).roll_axis.isZero() &&
+        tie(k + 1).roll_axis.isZero() && !heldOtherwise(world, island, id, rolling_ends))
       ends.push_back({id, {ends[k].path[0], ends[k + 1].path[0]}, {ends[k].end[0], ends[k + 1].end[0]}});
     k = next;
   }
@@ -195,32 +195,54 @@ void moveTo(BodyState& body, const Vec3& arm, const Vec3& p) {
   body.x_prev += moved;
 }
 
+// A run's end (light_bodies.h): where the solve holds the point on its
+// end body, and the cable (m) its turn has paid into the span that leads
+// to `near` (0 at a fixed point). A rolling end's tangent point is held
+// where it was, turned back with its wheel, and the span is longer by
+// what the turn wound off (path_constraint.h, SolvePoint): to second
+// order the span's end is a fixed point there, an involute's centre of
+// curvature being its tangent point.
+struct RunEnd {
+  Vec3 at = Vec3::Zero();
+  double paid = 0.0;
+};
+RunEnd runEnd(const World& world, const PathPoint& end, const Vec3& near, bool stores) {
+  const BodyState& body = world.body(end.body);
+  if (end.roll_axis.isZero()) return {body.toWorld(end.local), 0.0};
+  const SolvePoint solved = solvePoint(body, end, true, stores);
+  const Vec3 at = body.x + solved.arm, g = at - near;  // the span's length grows with g
+  const double n = g.norm();
+  return {at, n > 0.0 ? -solved.payOut(g / n) : 0.0};
+}
+
 }  // namespace
 
-void placeLightBodies(World& world, const std::vector<LightBody>& bodies, const std::vector<LightRun>& runs) {
+void placeLightBodies(World& world, const std::vector<LightBody>& bodies, const std::vector<LightRun>& runs,
+                      bool stores) {
   const auto point = [&](const PathPoint& p) { return world.body(p.body).toWorld(p.local); };
   for (const LightRun& run : runs) {
     const LightBody* m = bodies.data() + run.first;
+    const LightBody& last = m[run.count - 1];
     const PathConstraint& first_span = world.path(m[0].path[0]);
-    const PathConstraint& last_span = world.path(m[run.count - 1].path[1]);
-    const Vec3 a = point(first_span.points[1 - m[0].end[0]]);
-    const Vec3 b = point(last_span.points[1 - m[run.count - 1].end[1]]);
+    const PathConstraint& last_span = world.path(last.path[1]);
     const auto tie = [&](const LightBody& light) {
       const BodyState& body = world.body(light.body);
       return Vec3(body.q * world.path(light.path[0]).points[light.end[0]].local);
     };
+    const RunEnd a = runEnd(world, first_span.points[1 - m[0].end[0]], world.body(m[0].body).x + tie(m[0]), stores);
+    const RunEnd b = runEnd(world, last_span.points[1 - last.end[1]], world.body(last.body).x + tie(last), stores);
     // Taut from end to end: every member on the straight line, each span
     // long by an even share of the excess.
-    double total = first_span.rest_length;
+    double total = first_span.rest_length + a.paid + b.paid;
     for (int k = 0; k < run.count; ++k) total += world.path(m[k].path[1]).rest_length;
-    const double d = (b - a).norm();
+    const double d = (b.at - a.at).norm();
     if (run.count > 1 && d > 0.0 && d >= total) {
-      const Vec3 u = (b - a) / d;
+      const Vec3 u = (b.at - a.at) / d;
       const double share = (d - total) / (run.count + 1);
-      double along = 0.0;
+      double along = a.paid;
       for (int k = 0; k < run.count; ++k) {
         along += world.path(m[k].path[0]).rest_length + share;
-        moveTo(world.body(m[k].body), tie(m[k]), a + u * along);
+        moveTo(world.body(m[k].body), tie(m[k]), a.at + u * along);
       }
       continue;
     }
@@ -232,9 +254,11 @@ void placeLightBodies(World& world, const std::vector<LightBody>& bodies, const 
         const PathConstraint &span0 = world.path(light.path[0]), &span1 = world.path(light.path[1]);
         const BodyState& body = world.body(light.body);
         const Vec3 arm = tie(light);
+        const bool first = k == 0, final = k + 1 == run.count;
         moveTo(world.body(light.body), arm,
-               massless(body.x + arm, point(span0.points[1 - light.end[0]]), point(span1.points[1 - light.end[1]]),
-                        span0.rest_length, span1.rest_length));
+               massless(body.x + arm, first ? a.at : point(span0.points[1 - light.end[0]]),
+                        final ? b.at : point(span1.points[1 - light.end[1]]), span0.rest_length + (first ? a.paid : 0.0),
+                        span1.rest_length + (final ? b.paid : 0.0)));
       }
   }
 }

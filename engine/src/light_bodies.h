@@ -60,20 +60,27 @@ struct LightRun {
 /// The island's runs of light bodies now, into `bodies` and `runs`
 /// (cleared; their storage kept). A member: a dynamic body, not a rotor,
 /// held by exactly two enabled rigid spans (two-point paths, unweighted,
-/// compliance 0, both ends fixed points, tied at one point of the body)
-/// and by nothing else (no joint, distance constraint, contact or other
-/// path). A run: members joined by their spans, between two end bodies
-/// that are not members and not one body (a closed ring of members is no
-/// run), each member at most kMasslessShare of the lighter dynamic end
-/// body (one at least).
+/// compliance 0, tied at one fixed point of the body) and by nothing else
+/// (no joint, distance constraint, contact or other path). A run: members
+/// joined by their spans, between two end bodies that are not members and
+/// not one body (a closed ring of members is no run), each member at most
+/// kMasslessShare of the lighter dynamic end body (one at least). The
+/// spans' ends on the end bodies are fixed points, or with `rolling_ends`
+/// (the direct solver's) may roll: a knot tied in a cable that comes off a
+/// wheel. Gauss-Seidel's one row a run is between fixed points (measured
+/// with a rolling row: a 1 g knot off a 2 kg wheel under 120 kg made 92 J
+/// in a frame at 1 x 1, none without).
 /// `scratch` holds the spans' ends and the members.
-void findLightBodies(const World& world, const Island& island, std::vector<LightBody>& scratch,
+void findLightBodies(const World& world, const Island& island, bool rolling_ends, std::vector<LightBody>& scratch,
                      std::vector<LightBody>& bodies, std::vector<LightRun>& runs);
 
 /// Each run placed where massless bodies would lie. Once its end bodies'
 /// tie points are further apart than its rest lengths' sum, every member
 /// on the straight line between them, each span long by an even share of
-/// the excess (the solve takes that back through the ends). Else each
+/// the excess (the solve takes that back through the ends). A rolling end
+/// counts from where the solve holds its tangent point, its span longer by
+/// the cable its wheel's turn paid out (SolvePoint; `stores`: as the
+/// direct solver's rows, no more than a spool holds). Else each
 /// member from its neighbours as they are, the run swept as many times as
 /// it has members: left where it is while both its spans are within
 /// their rest lengths; moved the least onto the one it overstretches, or
@@ -81,6 +88,7 @@ void findLightBodies(const World& world, const Island& island, std::vector<Light
 /// correction of where a body is, not of how it moves: its start pose
 /// x_prev moves with it, so that v = (x - x_prev) / h keeps only what the
 /// solves did.
-void placeLightBodies(World& world, const std::vector<LightBody>& bodies, const std::vector<LightRun>& runs);
+void placeLightBodies(World& world, const std::vector<LightBody>& bodies, const std::vector<LightRun>& runs,
+                      bool stores);
 
 }  // namespace reeve

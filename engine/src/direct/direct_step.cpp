@@ -23,7 +23,7 @@ void World::solveDirect(Island& island, double h, bool again) {
   // Bodies too light to carry their own motion against their cables'
   // loads, placed where massless ones would lie before each iteration
   // linearizes the rows and after the last (light_bodies.h).
-  findLightBodies(*this, island, island.light_scratch, island.light_bodies, island.light_runs);
+  findLightBodies(*this, island, true, island.light_scratch, island.light_bodies, island.light_runs);
   // A row that nothing moves (a cable from a kinematic body to a static
   // one) is not in the direct system, but a compliant one still pulls: with
   // w = 0 one visit sets its tension to stretch / compliance (issue 28,
@@ -40,7 +40,7 @@ void World::solveDirect(Island& island, double h, bool again) {
       solveDistanceConstraint(c, body(c.a), body(c.b), c.compliance * inv_h2, h);
   }
   for (int it = 0; it < settings_.iterations; ++it) {
-    if (!island.light_runs.empty()) placeLightBodies(*this, island.light_bodies, island.light_runs);
+    if (!island.light_runs.empty()) placeLightBodies(*this, island.light_bodies, island.light_runs, true);
     const bool moved = island.direct.iterate(*this, h);
     if (!moved && island.manifolds.empty() && !weighted) break;  // converged: the rest would do nothing
     ++island.iterations;
@@ -61,7 +61,7 @@ void World::solveDirect(Island& island, double h, bool again) {
       break;
     }
   }
-  if (!island.light_runs.empty()) placeLightBodies(*this, island.light_bodies, island.light_runs);
+  if (!island.light_runs.empty()) placeLightBodies(*this, island.light_bodies, island.light_runs, true);
 }
 
 }  // namespace reeve

@@ -59,7 +59,7 @@ void World::sweepGaussSeidel(Island& island, double h) {
   // spans pull alike, and taut their ends lie the sum of their lengths
   // apart: one row between its ends stands for them, and the run is placed
   // on its spans after each sweep.
-  findLightBodies(*this, island, island.light_scratch, island.light_bodies, island.light_runs);
+  findLightBodies(*this, island, false, island.light_scratch, island.light_bodies, island.light_runs);
   const bool light = !island.light_runs.empty();
   if (light) prepareLightRows(*this, island);
   for (int it = 0; it < settings_.iterations; ++it) {
@@ -80,7 +80,7 @@ void World::sweepGaussSeidel(Island& island, double h) {
     }
     if (light) {
       for (DistanceConstraint& row : island.light_rows) solveDistanceConstraint(row, body(row.a), body(row.b), 0.0, h);
-      placeLightBodies(*this, island.light_bodies, island.light_runs);
+      placeLightBodies(*this, island.light_bodies, island.light_runs, false);
     }
     for (const int i : island.manifolds) {
       ContactManifold& m = manifolds_[i];

@@ -30,6 +30,29 @@ bool dynamic(const World& world, BodyId id) {
   return b.inv_mass > 0.0 && !b.isRotor() && !b.kinematic;
 }
 
+// The mass (kg) a hinged wheel (a rotor) at a run's end sets against the
+// pull of its span `path` at the tie point `end`: its rim's, I / r^2 at
+// the point's distance r from its axle, and the dynamic bodies its other
+// spans lead to, which its turn moves (a knot's cable over a 2 kg wheel
+// to 100 kg on its other side pulls against 1 + 100 kg). Infinite for any
+// other body that does not move.
+double rotorMass(const World& world, const Island& island, const PathPoint& end, int path) {
+  const BodyState& b = world.body(end.body);
+  if (end.body == kWorldBody || !b.isRotor()) return std::numeric_limits<double>::infinity();
+  const Vec3& axle = b.rotor_axis;
+  const double r2 = (end.local - axle.dot(end.local) * axle).squaredNorm();
+  if (!(r2 > 0.0)) return std::numeric_limits<double>::infinity();
+  double mass = axle.dot(b.inertia * axle) / r2;
+  for (const int i : island.paths) {
+    const PathConstraint& other = world.path(i);
+    if (i == path || !other.enabled || other.points.size() != 2) continue;
+    for (int k = 0; k < 2; ++k)
+      if (other.points[k].body == end.body && dynamic(world, other.points[1 - k].body))
+        mass += 1.0 / world.body(other.points[1 - k].body).inv_mass;
+  }
+  return mass;
+}
+
 // Whether anything but plain spans acts on `id`: a joint, a distance
 // constraint, a contact or another path.
 bool heldOtherwise(const World& world, const Island& island, BodyId id, bool rolling) {
@@ -93,7 +116,9 @@ void findLightBodies(const World& world, const Island& island, bool rolling_ends
     std::size_t next = k + 1;
     while (next < first_member && ends[next].body == ends[k].body) ++next;
     const BodyId id = ends[k].body;
-    const auto tie = [&](std::size_t e) -> const PathPoint& { return world.path(ends[e].path[0]).points[ends[e].end[0]]; };
+    const auto tie = [&](std::size_t e) -> const PathPoint& {
+      return world.path(ends[e].path[0]).points[ends[e].end[0]];
+    };
     if (next - k == 2 && dynamic(world, id) && tie(k).local == tie(k + 1).local && tie(k).roll_axis.isZero() &&
         tie(k + 1).roll_axis.isZero() && !heldOtherwise(world, island, id, rolling_ends))
       ends.push_back({id, {ends[k].path[0], ends[k + 1].path[0]}, {ends[k].end[0], ends[k + 1].end[0]}});
@@ -141,16 +166,20 @@ void findLightBodies(const World& world, const Island& island, bool rolling_ends
       span = next->path[0] == oriented.path[1] ? 0 : 1;  // the side it is entered by
       m = next;
     }
-    // Light against the lightest dynamic body at the run's two ends (one
-    // at least), every member; else no run. Both ends on one body (a loop
-    // of cable from a box back to it) is none either: Gauss-Seidel's row
-    // between them would hold one body to itself.
+    // Light against the lightest dynamic body at the run's two ends, or
+    // with none, the lighter hinged wheel there (rotorMass), every member;
+    // else no run. Both ends on one body (a loop of cable from a box back
+    // to it) is none either: Gauss-Seidel's row between them would hold
+    // one body to itself.
     const int count = static_cast<int>(bodies.size() - run_first);
     const PathPoint first_end = farEnd(bodies[run_first].path[0], bodies[run_first].end[0]);
     const PathPoint last_end = farEnd(bodies.back().path[1], bodies.back().end[1]);
     double lightest = std::numeric_limits<double>::infinity();
     for (const PathPoint& end : {first_end, last_end})
       if (dynamic(world, end.body)) lightest = std::min(lightest, 1.0 / world.body(end.body).inv_mass);
+    if (!std::isfinite(lightest))  // between wheels, or a wheel and an anchor
+      lightest = std::min(rotorMass(world, island, first_end, bodies[run_first].path[0]),
+                          rotorMass(world, island, last_end, bodies.back().path[1]));
     bool light = !loop && std::isfinite(lightest) && first_end.body != last_end.body;
     for (std::size_t k = run_first; k < bodies.size() && light; ++k)
       light = 1.0 / world.body(bodies[k].body).inv_mass <= kMasslessShare * lightest;
@@ -195,6 +224,11 @@ void moveTo(BodyState& body, const Vec3& arm, const Vec3& p) {
   body.x_prev += moved;
 }
 
+// A member's tie point, from its centre (world, m).
+Vec3 tieArm(const World& world, const LightBody& light) {
+  return world.body(light.body).q * world.path(light.path[0]).points[light.end[0]].local;
+}
+
 // A run's end (light_bodies.h): where the solve holds the point on its
 // end body, and the cable (m) its turn has paid into the span that leads
 // to `near` (0 at a fixed point). A rolling end's tangent point is held
@@ -225,12 +259,9 @@ void placeLightBodies(World& world, const std::vector<LightBody>& bodies, const 
     const LightBody& last = m[run.count - 1];
     const PathConstraint& first_span = world.path(m[0].path[0]);
     const PathConstraint& last_span = world.path(last.path[1]);
-    const auto tie = [&](const LightBody& light) {
-      const BodyState& body = world.body(light.body);
-      return Vec3(body.q * world.path(light.path[0]).points[light.end[0]].local);
-    };
-    const RunEnd a = runEnd(world, first_span.points[1 - m[0].end[0]], world.body(m[0].body).x + tie(m[0]), stores);
-    const RunEnd b = runEnd(world, last_span.points[1 - last.end[1]], world.body(last.body).x + tie(last), stores);
+    const auto tiePoint = [&](const LightBody& light) { return Vec3(world.body(light.body).x + tieArm(world, light)); };
+    const RunEnd a = runEnd(world, first_span.points[1 - m[0].end[0]], tiePoint(m[0]), stores);
+    const RunEnd b = runEnd(world, last_span.points[1 - last.end[1]], tiePoint(last), stores);
     // Taut from end to end: every member on the straight line, each span
     // long by an even share of the excess.
     double total = first_span.rest_length + a.paid + b.paid;
@@ -242,7 +273,7 @@ void placeLightBodies(World& world, const std::vector<LightBody>& bodies, const 
       double along = a.paid;
       for (int k = 0; k < run.count; ++k) {
         along += world.path(m[k].path[0]).rest_length + share;
-        moveTo(world.body(m[k].body), tie(m[k]), a.at + u * along);
+        moveTo(world.body(m[k].body), tieArm(world, m[k]), a.at + u * along);
       }
       continue;
     }
@@ -253,13 +284,50 @@ void placeLightBodies(World& world, const std::vector<LightBody>& bodies, const 
         const LightBody& light = m[k];
         const PathConstraint &span0 = world.path(light.path[0]), &span1 = world.path(light.path[1]);
         const BodyState& body = world.body(light.body);
-        const Vec3 arm = tie(light);
+        const Vec3 arm = tieArm(world, light);
         const bool first = k == 0, final = k + 1 == run.count;
         moveTo(world.body(light.body), arm,
                massless(body.x + arm, first ? a.at : point(span0.points[1 - light.end[0]]),
-                        final ? b.at : point(span1.points[1 - light.end[1]]), span0.rest_length + (first ? a.paid : 0.0),
-                        span1.rest_length + (final ? b.paid : 0.0)));
+                        final ? b.at : point(span1.points[1 - light.end[1]]),
+                        span0.rest_length + (first ? a.paid : 0.0), span1.rest_length + (final ? b.paid : 0.0)));
       }
+  }
+}
+
+void setLightVelocities(World& world, const std::vector<LightBody>& bodies, const std::vector<LightRun>& runs,
+                        bool stores) {
+  for (const LightRun& run : runs) {
+    const LightBody* m = bodies.data() + run.first;
+    const LightBody& last = m[run.count - 1];
+    const PathPoint& end_a = world.path(m[0].path[0]).points[1 - m[0].end[0]];
+    const PathPoint& end_b = world.path(last.path[1]).points[1 - last.end[1]];
+    const auto tiePoint = [&](const LightBody& light) { return Vec3(world.body(light.body).x + tieArm(world, light)); };
+    // What the cable at each end moved this substep: a fixed end's point;
+    // at a rolling end (its tangent point set on the integrated pose
+    // q_pred) the cable leaves along the tangent by the arc the body
+    // turned (a rim point's chord would pull the run towards the wheel's
+    // centre, 2.5 % of the cable's speed at 0.15 rad a substep).
+    const auto moved = [&](const PathPoint& end) {
+      const BodyState& body = world.body(end.body);
+      if (end.body == kWorldBody || (!body.moves() && !body.kinematic)) return Vec3(Vec3::Zero());
+      if (end.roll_axis.isZero()) return Vec3(body.toWorld(end.local) - (body.x_prev + body.q_prev * end.local));
+      Quat turn = body.q * body.q_prev.conjugate();
+      if (turn.w() < 0.0) turn.coeffs() *= -1.0;  // the shorter way round
+      const Eigen::AngleAxisd angle_axis(turn);
+      return Vec3(body.x - body.x_prev + (angle_axis.angle() * angle_axis.axis()).cross(body.q_pred * end.local));
+    };
+    const Vec3 moved_a = moved(end_a), moved_b = moved(end_b);
+    const Vec3 a = runEnd(world, end_a, tiePoint(m[0]), stores).at;
+    const Vec3 b = runEnd(world, end_b, tiePoint(last), stores).at;
+    double total = (b - tiePoint(last)).norm();
+    for (int k = 0; k < run.count; ++k) total += (tiePoint(m[k]) - (k == 0 ? a : tiePoint(m[k - 1]))).norm();
+    double along = 0.0;
+    for (int k = 0; k < run.count; ++k) {
+      along += (tiePoint(m[k]) - (k == 0 ? a : tiePoint(m[k - 1]))).norm();
+      const double s = total > 0.0 ? along / total : 0.5;
+      BodyState& body = world.body(m[k].body);
+      body.x_prev = body.x - ((1.0 - s) * moved_a + s * moved_b);
+    }
   }
 }
 

@@ -33,7 +33,8 @@ class World;
 struct Island;
 
 /// At most this share of the lighter dynamic body at its run's two ends
-/// (the bodies its spans lead to, through other light ones), a body is
+/// (the bodies its spans lead to, through other light ones; a wheel where
+/// there is none: findLightBodies), a body is
 /// taken as massless. Measured on `reeve bench extremes`' bead (its 44
 /// budgets, the chain bent 5 or 30 cm): placed, beads of 1e-8 to 1e-4 of
 /// their load are stable in every cell (3 to 22 cells each failed before);
@@ -64,7 +65,9 @@ struct LightRun {
 /// (no joint, distance constraint, contact or other path). A run: members
 /// joined by their spans, between two end bodies that are not members and
 /// not one body (a closed ring of members is no run), each member at most
-/// kMasslessShare of the lighter dynamic end body (one at least). The
+/// kMasslessShare of the lighter dynamic end body, or where neither is
+/// one, of the lighter hinged wheel (a rotor) there, counted with its
+/// rim's mass I / r^2 and the dynamic bodies its other spans lead to. The
 /// spans' ends on the end bodies are fixed points, or with `rolling_ends`
 /// (the direct solver's) may roll: a knot tied in a cable that comes off a
 /// wheel. Gauss-Seidel's one row a run is between fixed points (measured
@@ -87,8 +90,20 @@ void findLightBodies(const World& world, const Island& island, bool rolling_ends
 /// onto their circle where it overstretches both. The move is a
 /// correction of where a body is, not of how it moves: its start pose
 /// x_prev moves with it, so that v = (x - x_prev) / h keeps only what the
-/// solves did.
+/// solves did, until setLightVelocities sets it after the last.
 void placeLightBodies(World& world, const std::vector<LightBody>& bodies, const std::vector<LightRun>& runs,
                       bool stores);
+
+/// Each run's members given the motion a massless body has, after the
+/// substep's last placement: what the cable at the run's ends moved this
+/// substep (a fixed end's tie point; at a rolling end, along the tangent
+/// by the arc its wheel turned), shared by where along the run the member
+/// lies, as start pose x_prev = x - that, so v = (x - x_prev) / h. Placed
+/// without it, a member kept the velocity its integration gave it, which
+/// nothing took back: a 1 g bead hanging still under 40 kg read -49 m/s
+/// after 10 s (half of gravity's g h a substep).
+/// `stores`: as placeLightBodies.
+void setLightVelocities(World& world, const std::vector<LightBody>& bodies, const std::vector<LightRun>& runs,
+                        bool stores);
 
 }  // namespace reeve

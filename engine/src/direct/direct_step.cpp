@@ -61,7 +61,10 @@ void World::solveDirect(Island& island, double h, bool again) {
       break;
     }
   }
-  if (!island.light_runs.empty()) placeLightBodies(*this, island.light_bodies, island.light_runs, true);
+  if (!island.light_runs.empty()) {
+    placeLightBodies(*this, island.light_bodies, island.light_runs, true);
+    setLightVelocities(*this, island.light_bodies, island.light_runs, true);
+  }
 }
 
 }  // namespace reeve

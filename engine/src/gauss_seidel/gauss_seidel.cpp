@@ -92,6 +92,7 @@ void World::sweepGaussSeidel(Island& island, double h) {
       break;
     }
   }
+  if (light) setLightVelocities(*this, island.light_bodies, island.light_runs, false);
   // Each of a run's spans pulls with its row's tension.
   for (std::size_t r = 0; r < island.light_runs.size() && light; ++r) {
     const LightRun& run = island.light_runs[r];

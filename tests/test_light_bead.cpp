@@ -294,10 +294,15 @@ TEST(LightBead, AKnotInACableComingOffAWheelIsPlacedAndTheMachineRunsAsAnAtwoodM
   };
   const std::string wheel_cw = R"({"body": "wheel", "type": "rolling", "orientation": "cw"})";
   const std::string wheel_ccw = R"({"body": "wheel", "type": "rolling", "orientation": "ccw"})";
+  // Gauss-Seidel from 32 x 32 (below, one visit of the run's row a sweep
+  // leaves the spans up to 4 mm long at 10 x 2 and 1.7 m at 1 x 1).
+  const test::Budget budgets[] = {{SolverKind::Direct, 1, 1},       {SolverKind::Direct, 1, 10},
+                                  {SolverKind::Direct, 10, 2},      {SolverKind::Direct, 100, 1},
+                                  {SolverKind::GaussSeidel, 32, 32}, {SolverKind::GaussSeidel, 100, 1}};
   for (const bool reversed : {false, true})
     for (const double knot : {1e-6, 1e-3})
-      for (const auto& [substeps, iterations] : {std::pair{1, 1}, {1, 10}, {10, 2}, {100, 1}}) {
-        const test::Budget b{SolverKind::Direct, substeps, iterations};
+      for (const test::Budget& b : budgets) {
+        const int substeps = b.substeps, iterations = b.iterations;
         SCOPED_TRACE(test::name(b) + ", knot " + std::to_string(knot) + " kg" + (reversed ? ", reversed" : ""));
         const std::string rope = reversed ? tie("knot", 0.0) + ", " + wheel_ccw + ", " + tie("a", 0.05)
                                           : tie("a", 0.05) + ", " + wheel_cw + ", " + tie("knot", 0.0);
@@ -328,7 +333,7 @@ TEST(LightBead, AKnotInACableComingOffAWheelIsPlacedAndTheMachineRunsAsAnAtwoodM
           most_stretch =
               std::max({most_stretch, s.cables->length(rope_id, wheel_span) - s.cables->restLength(rope_id, wheel_span),
                         s.cables->length(tail_id, 0) - s.cables->restLength(tail_id, 0)});
-          if (f < 12) continue;  // lined up and accelerating
+          if (f < 20) continue;  // lined up and accelerating (Gauss-Seidel at 100 x 1 rings till 0.3 s)
           // On the line from the wheel's right rim (its tangent point) to
           // b's hook, one tension either side of it: that of the closed form.
           const Vec3 rim(r, 0.0, 0.0), hook = s.world->body(b_id).toWorld(Vec3(0.0, 0.05, 0.0));

@@ -39,7 +39,7 @@ struct Island {
   // ends, and which of the paths are its spans.
   std::vector<LightBody> light_bodies, light_scratch;
   std::vector<LightRun> light_runs;
-  std::vector<DistanceConstraint> light_rows;
+  std::vector<PathConstraint> light_rows;
   std::vector<char> light_span;  // by island.paths' order
   bool light_possible = false;   // a body of it at most kMasslessShare of another's mass (World::buildIslands)
   std::vector<int> swept_hinges;      // Gauss-Seidel's: the hinges with a row (hingeSolvesNothing), for one solve

@@ -13,15 +13,12 @@ namespace reeve {
 namespace {
 
 // A span the placement can take: a rigid two-point path between two
-// bodies. A rolling end (`rolling`: the direct solver's) only on a run's
-// end body, where the solve holds its tangent point and counts the cable
-// its turn pays out (placeLightBodies); a member is tied at a fixed point.
-inline bool plainSpan(const PathConstraint& p, bool rolling) {
-  // The rolling ends first (a fixed point's axis is exactly zero): most
-  // spans of most machines have one, and most islands no plain span.
-  return p.points.size() == 2 &&
-         (rolling || (p.points[0].roll_axis.squaredNorm() == 0.0 && p.points[1].roll_axis.squaredNorm() == 0.0)) &&
-         p.enabled && p.weights.empty() && p.compliance == 0.0 && p.points[0].body != p.points[1].body;
+// bodies. Its end on a run's end body may roll (the solve holds its
+// tangent point and counts the cable its turn pays out: placeLightBodies);
+// a member is tied at a fixed point (findLightBodies).
+inline bool plainSpan(const PathConstraint& p) {
+  return p.points.size() == 2 && p.enabled && p.weights.empty() && p.compliance == 0.0 &&
+         p.points[0].body != p.points[1].body;
 }
 
 bool dynamic(const World& world, BodyId id) {
@@ -55,7 +52,7 @@ double rotorMass(const World& world, const Island& island, const PathPoint& end,
 
 // Whether anything but plain spans acts on `id`: a joint, a distance
 // constraint, a contact or another path.
-bool heldOtherwise(const World& world, const Island& island, BodyId id, bool rolling) {
+bool heldOtherwise(const World& world, const Island& island, BodyId id) {
   const auto on = [&](BodyId a, BodyId b) { return a == id || b == id; };
   for (const int i : island.hinges)
     if (on(world.hinges()[i].a, world.hinges()[i].b)) return true;
@@ -71,7 +68,7 @@ bool heldOtherwise(const World& world, const Island& island, BodyId id, bool rol
     if (on(world.contactManifolds()[i].a, world.contactManifolds()[i].b)) return true;
   for (const int i : island.paths) {
     const PathConstraint& p = world.path(i);
-    if (!p.enabled || plainSpan(p, rolling)) continue;
+    if (!p.enabled || plainSpan(p)) continue;
     for (const PathPoint& point : p.points)
       if (point.body == id) return true;
   }
@@ -87,7 +84,7 @@ Vec3 ontoSphere(const Vec3& p, const Vec3& c, double r) {
 
 }  // namespace
 
-void findLightBodies(const World& world, const Island& island, bool rolling_ends, std::vector<LightBody>& scratch,
+void findLightBodies(const World& world, const Island& island, std::vector<LightBody>& scratch,
                      std::vector<LightBody>& bodies, std::vector<LightRun>& runs) {
   bodies.clear();
   runs.clear();
@@ -100,7 +97,7 @@ void findLightBodies(const World& world, const Island& island, bool rolling_ends
   int spans = 0;
   for (const int i : island.paths) {
     const PathConstraint& p = world.path(i);
-    if (!plainSpan(p, rolling_ends)) continue;
+    if (!plainSpan(p)) continue;
     ++spans;
     for (int end = 0; end < 2; ++end)
       if (p.points[end].body != kWorldBody) ends.push_back({p.points[end].body, {i, 0}, {end, 0}});
@@ -120,7 +117,7 @@ void findLightBodies(const World& world, const Island& island, bool rolling_ends
       return world.path(ends[e].path[0]).points[ends[e].end[0]];
     };
     if (next - k == 2 && dynamic(world, id) && tie(k).local == tie(k + 1).local && tie(k).roll_axis.isZero() &&
-        tie(k + 1).roll_axis.isZero() && !heldOtherwise(world, island, id, rolling_ends))
+        tie(k + 1).roll_axis.isZero() && !heldOtherwise(world, island, id))
       ends.push_back({id, {ends[k].path[0], ends[k + 1].path[0]}, {ends[k].end[0], ends[k + 1].end[0]}});
     k = next;
   }

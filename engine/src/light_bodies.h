@@ -68,13 +68,10 @@ struct LightRun {
 /// kMasslessShare of the lighter dynamic end body, or where neither is
 /// one, of the lighter hinged wheel (a rotor) there, counted with its
 /// rim's mass I / r^2 and the dynamic bodies its other spans lead to. The
-/// spans' ends on the end bodies are fixed points, or with `rolling_ends`
-/// (the direct solver's) may roll: a knot tied in a cable that comes off a
-/// wheel. Gauss-Seidel's one row a run is between fixed points (measured
-/// with a rolling row: a 1 g knot off a 2 kg wheel under 120 kg made 92 J
-/// in a frame at 1 x 1, none without).
+/// spans' ends on the end bodies may roll: a knot tied in a cable that
+/// comes off a wheel.
 /// `scratch` holds the spans' ends and the members.
-void findLightBodies(const World& world, const Island& island, bool rolling_ends, std::vector<LightBody>& scratch,
+void findLightBodies(const World& world, const Island& island, std::vector<LightBody>& scratch,
                      std::vector<LightBody>& bodies, std::vector<LightRun>& runs);
 
 /// Each run placed where massless bodies would lie. Once its end bodies'

@@ -23,7 +23,7 @@ void World::solveDirect(Island& island, double h, bool again) {
   // Bodies too light to carry their own motion against their cables'
   // loads, placed where massless ones would lie before each iteration
   // linearizes the rows and after the last (light_bodies.h).
-  findLightBodies(*this, island, true, island.light_scratch, island.light_bodies, island.light_runs);
+  findLightBodies(*this, island, island.light_scratch, island.light_bodies, island.light_runs);
   // A row that nothing moves (a cable from a kinematic body to a static
   // one) is not in the direct system, but a compliant one still pulls: with
   // w = 0 one visit sets its tension to stretch / compliance (issue 28,

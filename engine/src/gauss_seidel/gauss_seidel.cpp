@@ -14,25 +14,23 @@ namespace reeve {
 
 namespace {
 
-// A run's row (light_bodies.h): from the tie point on its first end body
-// to the one on its last, rigid and pull-only, its rest length its spans'
-// sum; and its spans marked, by island.paths' order.
+// A run's row (light_bodies.h): a rigid cable from the run's end on its
+// first end body to the one on its last, each end as its span has it (a
+// rolling end rolls), its rest length its spans' sum; and its spans
+// marked, by island.paths' order. The rows' storage is kept.
 void prepareLightRows(const World& world, Island& island) {
-  island.light_rows.clear();
+  island.light_rows.resize(island.light_runs.size());
   island.light_span.assign(island.paths.size(), 0);
-  for (const LightRun& run : island.light_runs) {
+  for (std::size_t r = 0; r < island.light_runs.size(); ++r) {
+    const LightRun& run = island.light_runs[r];
     const LightBody* m = island.light_bodies.data() + run.first;
     const LightBody& last = m[run.count - 1];
-    const PathPoint& a = world.path(m[0].path[0]).points[1 - m[0].end[0]];
-    const PathPoint& b = world.path(last.path[1]).points[1 - last.end[1]];
-    DistanceConstraint row;
-    row.a = a.body;
-    row.b = b.body;
-    row.local_a = a.local;
-    row.local_b = b.local;
+    PathConstraint& row = island.light_rows[r];
+    row.points.assign(
+        {world.path(m[0].path[0]).points[1 - m[0].end[0]], world.path(last.path[1]).points[1 - last.end[1]]});
     row.rest_length = world.path(m[0].path[0]).rest_length;
     for (int k = 0; k < run.count; ++k) row.rest_length += world.path(m[k].path[1]).rest_length;
-    island.light_rows.push_back(row);
+    row.lambda = 0.0;
     for (int k = 0; k < run.count; ++k)
       for (const int path : m[k].path)
         island.light_span[std::lower_bound(island.paths.begin(), island.paths.end(), path) - island.paths.begin()] = 1;
@@ -59,7 +57,7 @@ void World::sweepGaussSeidel(Island& island, double h) {
   // spans pull alike, and taut their ends lie the sum of their lengths
   // apart: one row between its ends stands for them, and the run is placed
   // on its spans after each sweep.
-  findLightBodies(*this, island, false, island.light_scratch, island.light_bodies, island.light_runs);
+  findLightBodies(*this, island, island.light_scratch, island.light_bodies, island.light_runs);
   const bool light = !island.light_runs.empty();
   if (light) prepareLightRows(*this, island);
   for (int it = 0; it < settings_.iterations; ++it) {
@@ -79,7 +77,7 @@ void World::sweepGaussSeidel(Island& island, double h) {
       solvePathConstraint(p, table, p.compliance * inv_h2, h, island.span_ends[k]);
     }
     if (light) {
-      for (DistanceConstraint& row : island.light_rows) solveDistanceConstraint(row, body(row.a), body(row.b), 0.0, h);
+      for (PathConstraint& row : island.light_rows) solvePathConstraint(row, table, 0.0, h);
       placeLightBodies(*this, island.light_bodies, island.light_runs, false);
     }
     for (const int i : island.manifolds) {

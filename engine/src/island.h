@@ -36,7 +36,8 @@ struct Island {
   DirectSolver direct;
   // Runs of massless bodies this substep, and their scratch
   // (light_bodies.h); under Gauss-Seidel each run's one row between its
-  // ends, and which of the paths are its spans.
+  // ends (the first light_runs.size() rows), and which of the paths are
+  // its spans.
   std::vector<LightBody> light_bodies, light_scratch;
   std::vector<LightRun> light_runs;
   std::vector<PathConstraint> light_rows;

@@ -221,10 +221,11 @@ void moveTo(BodyState& body, const Vec3& arm, const Vec3& p) {
   body.x_prev += moved;
 }
 
-// A member's tie point, from its centre (world, m).
+// A member's tie point, from its centre (world, m), and where it is.
 Vec3 tieArm(const World& world, const LightBody& light) {
   return world.body(light.body).q * world.path(light.path[0]).points[light.end[0]].local;
 }
+Vec3 tiePoint(const World& world, const LightBody& light) { return world.body(light.body).x + tieArm(world, light); }
 
 // A run's end (light_bodies.h): where the solve holds the point on its
 // end body, and the cable (m) its turn has paid into the span that leads
@@ -256,9 +257,8 @@ void placeLightBodies(World& world, const std::vector<LightBody>& bodies, const 
     const LightBody& last = m[run.count - 1];
     const PathConstraint& first_span = world.path(m[0].path[0]);
     const PathConstraint& last_span = world.path(last.path[1]);
-    const auto tiePoint = [&](const LightBody& light) { return Vec3(world.body(light.body).x + tieArm(world, light)); };
-    const RunEnd a = runEnd(world, first_span.points[1 - m[0].end[0]], tiePoint(m[0]), stores);
-    const RunEnd b = runEnd(world, last_span.points[1 - last.end[1]], tiePoint(last), stores);
+    const RunEnd a = runEnd(world, first_span.points[1 - m[0].end[0]], tiePoint(world, m[0]), stores);
+    const RunEnd b = runEnd(world, last_span.points[1 - last.end[1]], tiePoint(world, last), stores);
     // Taut from end to end: every member on the straight line, each span
     // long by an even share of the excess.
     double total = first_span.rest_length + a.paid + b.paid;
@@ -298,7 +298,6 @@ void setLightVelocities(World& world, const std::vector<LightBody>& bodies, cons
     const LightBody& last = m[run.count - 1];
     const PathPoint& end_a = world.path(m[0].path[0]).points[1 - m[0].end[0]];
     const PathPoint& end_b = world.path(last.path[1]).points[1 - last.end[1]];
-    const auto tiePoint = [&](const LightBody& light) { return Vec3(world.body(light.body).x + tieArm(world, light)); };
     // What the cable at each end moved this substep: a fixed end's point;
     // at a rolling end (its tangent point set on the integrated pose
     // q_pred) the cable leaves along the tangent by the arc the body
@@ -314,13 +313,15 @@ void setLightVelocities(World& world, const std::vector<LightBody>& bodies, cons
       return Vec3(body.x - body.x_prev + (angle_axis.angle() * angle_axis.axis()).cross(body.q_pred * end.local));
     };
     const Vec3 moved_a = moved(end_a), moved_b = moved(end_b);
-    const Vec3 a = runEnd(world, end_a, tiePoint(m[0]), stores).at;
-    const Vec3 b = runEnd(world, end_b, tiePoint(last), stores).at;
-    double total = (b - tiePoint(last)).norm();
-    for (int k = 0; k < run.count; ++k) total += (tiePoint(m[k]) - (k == 0 ? a : tiePoint(m[k - 1]))).norm();
+    const Vec3 a = runEnd(world, end_a, tiePoint(world, m[0]), stores).at;
+    const Vec3 b = runEnd(world, end_b, tiePoint(world, last), stores).at;
+    // The span before member k.
+    const auto gap = [&](int k) { return (tiePoint(world, m[k]) - (k == 0 ? a : tiePoint(world, m[k - 1]))).norm(); };
+    double total = (b - tiePoint(world, last)).norm();
+    for (int k = 0; k < run.count; ++k) total += gap(k);
     double along = 0.0;
     for (int k = 0; k < run.count; ++k) {
-      along += (tiePoint(m[k]) - (k == 0 ? a : tiePoint(m[k - 1]))).norm();
+      along += gap(k);
       const double s = total > 0.0 ? along / total : 0.5;
       BodyState& body = world.body(m[k].body);
       body.x_prev = body.x - ((1.0 - s) * moved_a + s * moved_b);

@@ -17,9 +17,11 @@ namespace {
 // A run's row (light_bodies.h): a rigid cable from the run's end on its
 // first end body to the one on its last, each end as its span has it (a
 // rolling end rolls), its rest length its spans' sum; and its spans
-// marked, by island.paths' order. The rows' storage is kept.
+// marked, by island.paths' order. Rows are kept when runs come and go
+// (never shrunk: a row's points are its own storage), so that the
+// substeps allocate nothing once the most runs have been seen.
 void prepareLightRows(const World& world, Island& island) {
-  island.light_rows.resize(island.light_runs.size());
+  if (island.light_rows.size() < island.light_runs.size()) island.light_rows.resize(island.light_runs.size());
   island.light_span.assign(island.paths.size(), 0);
   for (std::size_t r = 0; r < island.light_runs.size(); ++r) {
     const LightRun& run = island.light_runs[r];
@@ -77,7 +79,8 @@ void World::sweepGaussSeidel(Island& island, double h) {
       solvePathConstraint(p, table, p.compliance * inv_h2, h, island.span_ends[k]);
     }
     if (light) {
-      for (PathConstraint& row : island.light_rows) solvePathConstraint(row, table, 0.0, h);
+      for (std::size_t r = 0; r < island.light_runs.size(); ++r)
+        solvePathConstraint(island.light_rows[r], table, 0.0, h);
       placeLightBodies(*this, island.light_bodies, island.light_runs, false);
     }
     for (const int i : island.manifolds) {

@@ -90,6 +90,22 @@ bool CableSystem::jam(Cable& cable, int c, int j) {
   return true;
 }
 
+void CableSystem::rejamSplit(Cable& cable, int c, int j, int mid) {
+  // The jammed span merged away once the wheel carried its tie point past
+  // the tangent point (mergeEmptyLinks); carried back, the cable from it
+  // wraps the wheel again. The new span from a point the ball holds on
+  // the rim to the same rim is of no length, its direction undefined: as a
+  // row it threw a 1 kg knot 9e6 m in a substep (DESIGN, "Forty-fourth
+  // session"). It is the jammed span again.
+  const BodyId wheel = cable.links[mid].body;
+  const auto held = [&](int k) {
+    const Link& tie = cable.links[k];
+    return !tie.rolls() && std::find(jams_.begin(), jams_.end(), std::pair{wheel, tie.body}) != jams_.end();
+  };
+  if (held(j)) jam(cable, c, j);
+  if (held(cable.joints[mid].to)) jam(cable, c, mid);
+}
+
 void CableSystem::addJamJoints(double time_s) {
   for (int c = 0; c < static_cast<int>(cables_.size()); ++c) {
     if (updates_[c].news_at > time_s) continue;  // a later substep's (endUpdate)

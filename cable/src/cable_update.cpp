@@ -616,6 +616,7 @@ void CableSystem::splitAtCrossedLinks(Cable& cable, int c, double time_s) {
       // substep's event allows the heap) for the next slice tested.
       if (met_at->sliced) update.slice.vertices.reserve(2 * sectionRoom(shape));
       update.events.push_back({CableEvent::Kind::Split, time_s, c, k, mid.orientation});
+      rejamSplit(cable, c, j, k);
       break;  // the new spans are checked again next substep
     }
   }

@@ -541,6 +541,10 @@ class CableSystem {
   /// there (cable_jam.cpp). Returns whether it jammed; its ball joint is
   /// added after the cables' updates (addJamJoints).
   bool jam(Cable& cable, int c, int j);
+  /// A split put a tie point that a jam's ball holds on wheel `mid`'s rim
+  /// (carried past its tangent point and back) at either end of the new
+  /// spans: the span between them jams again (cable_jam.cpp).
+  void rejamSplit(Cable& cable, int c, int j, int mid);
   /// Span j of cable c joins a tie point and a pinhole: where the tie
   /// point has reached the hole (or passed it within the substep), it
   /// jams there likewise, and the pinhole holds the cable from then on.

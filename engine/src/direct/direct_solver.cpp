@@ -1069,7 +1069,7 @@ bool DirectSolver::iterate(World& world, double h) {
   // stiffened (stiffenMoves).
   stiffened_turns_.clear();
   stiffened_moves_.clear();
-  for (int round = 0; round < kLineUpRounds && (stiffenTurns(omega) | stiffenMoves(omega) | stiffenStores(omega));
+  for (int round = 0; round < kLineUpRounds && (stiffenTurns(omega, h) | stiffenMoves(omega) | stiffenStores(omega));
        ++round) {
     warmStartCaps();
     solveActiveSet(solve_tolerance);
@@ -1078,7 +1078,7 @@ bool DirectSolver::iterate(World& world, double h) {
   }
   restoreTurns();
   restoreMoves();
-  const double share = lineUpShare(omega);
+  const double share = lineUpShare(omega, h);
   if (share < 1.0) {
     omega *= share;
     for (double& dl : dlambda_) dl *= share;
@@ -1143,20 +1143,20 @@ bool DirectSolver::iterate(World& world, double h) {
   return true;
 }
 
-double DirectSolver::turnPast(const FixedEnd& f, double omega, double& most) const {
+double DirectSolver::turnPast(const FixedEnd& f, double omega, double h, double& most) const {
   const Vec3 dphi = omega * (dphi_[f.body] + shift_phi_[f.body]);
   const double angle = dphi.norm();
   most = angle;
-  if (angle > kTrustedStepTurn) most = turnToLineUp(f.arm, dphi / angle, 1.0, f.toward);
+  if (angle > trustedStepTurn(f.arm.norm(), h)) most = turnToLineUp(f.arm, dphi / angle, 1.0, f.toward);
   return angle;
 }
 
-bool DirectSolver::stiffenTurns(double omega) {
+bool DirectSolver::stiffenTurns(double omega, double h) {
   bool changed = false;
   for (const FixedEnd& f : fixed_ends_) {
     double most;
-    const double angle = turnPast(f, omega, most);
-    if (!(angle > kTrustedStepTurn)) continue;
+    const double angle = turnPast(f, omega, h, most);
+    if (!(angle > trustedStepTurn(f.arm.norm(), h))) continue;
     // The row's model promises l1 x turn of length from the end's turn; the
     // turn gives the secant's share of it (turnSecant), a half at the
     // line-up: the end's gradient is that share of its own for this solve,
@@ -1166,7 +1166,12 @@ bool DirectSolver::stiffenTurns(double omega) {
     const double turn = std::min(angle, most);
     const Vec3 e = omega * (dphi_[f.body] + shift_phi_[f.body]) / angle;
     const double secant = turnSecant(f.arm, e, f.toward, turn);
-    const std::optional<Vec3> model = modelGradient(f.entry, secant, angle > most);
+    // Within kSecantSlack of its model, or of less length than the step may
+    // leave unmet at kTrustedStepSpeed, the turn keeps its model.
+    const double modelled = std::abs(f.toward.dot(e.cross(f.arm))) * turn;  // l1 turn, m
+    const double slack =
+        modelled > kTrustedStepSpeed * h / kSecantSlack ? kTrustedStepSpeed * h / modelled : kSecantSlack;
+    const std::optional<Vec3> model = modelGradient(f.entry, secant, angle > most, slack);
     if (!model) continue;
     // Above 1 only the moment about the turn's axis grows (the others are
     // the model's, and may be r where that one is nearly 0). Clamped at 1,
@@ -1185,9 +1190,9 @@ bool DirectSolver::stiffenTurns(double omega) {
   return changed;
 }
 
-std::optional<Vec3> DirectSolver::modelGradient(int entry, double secant, bool past) {
+std::optional<Vec3> DirectSolver::modelGradient(int entry, double secant, bool past, double slack) {
   if (secant_of_[entry] < 0) {
-    if (!past && secant > 1.0 - kSecantSlack) return std::nullopt;
+    if (!past && secant > 1.0 - slack) return std::nullopt;
     secant_of_[entry] = static_cast<int>(secants_.size());
     secants_.push_back({entry, entries_[entry].ang});
   }
@@ -1231,7 +1236,7 @@ bool DirectSolver::stiffenStores(double omega) {
     // the span and turns on towards it.
     const double most = left + kQuarterTurn, turn = std::min(angle, most);
     const double secant = (left + std::sin(turn - left)) / turn;
-    const std::optional<Vec3> model = modelGradient(f.entry, secant, angle > most);
+    const std::optional<Vec3> model = modelGradient(f.entry, secant, angle > most, kSecantSlack);
     if (!model) continue;
     Entry& own = entries_[f.entry];
     own.ang = *model + (secant - 1.0) * f.pays.dot(*model) * f.pays;
@@ -1332,11 +1337,11 @@ void DirectSolver::restoreMoves() {
   stiffened_moves_.clear();
 }
 
-double DirectSolver::lineUpShare(double omega) const {
+double DirectSolver::lineUpShare(double omega, double h) const {
   double share = 1.0;
   for (const FixedEnd& f : fixed_ends_) {
     double most;
-    const double angle = turnPast(f, omega, most);
+    const double angle = turnPast(f, omega, h, most);
     if (angle > most) share = std::min(share, most / angle);
   }
   for (const StoredEnd& f : stored_ends_) {

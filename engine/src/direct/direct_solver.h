@@ -318,8 +318,8 @@ class DirectSolver {
   std::vector<int> secant_of_;  // per entry: its index in secants_, or -1
   /// The turn (rad) the step (dphi_ + shift_phi_, times `omega`) gives
   /// fixed end `f`'s body, and in `most` the most it may be (line_up.h;
-  /// the turn itself below kTrustedStepTurn).
-  double turnPast(const FixedEnd& f, double omega, double& most) const;
+  /// the turn itself below trustedStepTurn() in a substep of `h` s).
+  double turnPast(const FixedEnd& f, double omega, double h, double& most) const;
   /// The turn (rad) the step gives stored end `f`'s body in the sense that
   /// pays out (negative: winds on).
   double storeTurn(const StoredEnd& f, double omega) const {
@@ -342,19 +342,20 @@ class DirectSolver {
   /// Entry `entry`'s gradient as its row's model had it, kept the first
   /// time a round gives it a secant (restoreTurns puts it back); none where
   /// the turn keeps to its model: not `past` its line-up and its secant
-  /// within kSecantSlack of 1 (stiffenTurns, stiffenStores).
-  std::optional<Vec3> modelGradient(int entry, double secant, bool past);
+  /// within `slack` of 1 (stiffenTurns, stiffenStores).
+  std::optional<Vec3> modelGradient(int entry, double secant, bool past, double slack);
   /// weigh()s every entry of a body whose turn a round scaled.
   void reweighStiffened();
-  /// Where the step turns a fixed end's body by more than kTrustedStepTurn,
-  /// gives the end's gradient in its row the turn's secant share
+  /// Where the step turns a fixed end's body by more than trustedStepTurn()
+  /// in a substep of `h` (s), gives the end's gradient in its row the
+  /// turn's secant share
   /// (turnSecant: what the turn gains of its length, not what the tangent
   /// promised), and scales the angular W of a body whose step turns the end
   /// past its line-up, as Gauss-Seidel's visit does (path_constraint.cpp):
   /// the end's row then turns it at most to there, the rest of its
   /// correction going to the row's other bodies. Returns whether any
   /// changed; restoreTurns() puts the gradients and W back.
-  bool stiffenTurns(double omega);
+  bool stiffenTurns(double omega, double h);
   void scaleTurn(int body, double scale);
   void restoreTurns();
   /// Stiffens the translation of the body that the step (dx_ + shift_x_,
@@ -367,8 +368,9 @@ class DirectSolver {
   /// The step's motion (m) of the point at world arm `arm` on body slot
   /// `body` (none for -1), its turn to first order.
   Vec3 pointStep(int body, const Vec3& arm, double omega) const;
-  /// The share (0, 1] of the step that turns no fixed end past its line-up.
-  double lineUpShare(double omega) const;
+  /// The share (0, 1] of the step that turns no fixed end past its line-up
+  /// (turnPast, in a substep of `h` s).
+  double lineUpShare(double omega, double h) const;
   std::vector<Entry> start_;      // entries_ at the substep's start (linearizeAtStart); empty: Projection::End
   std::vector<Mat3> start_curvature_;  // ... and their curvature_
   bool at_start_ = false;         // evaluating at the start poses

@@ -348,9 +348,8 @@ class DirectSolver {
   void reweighStiffened();
   /// Where the step turns a fixed end's body by more than trustedStepTurn()
   /// in a substep of `h` (s), gives the end's gradient in its row the
-  /// turn's secant share
-  /// (turnSecant: what the turn gains of its length, not what the tangent
-  /// promised), and scales the angular W of a body whose step turns the end
+  /// turn's secant share (turnSecant: what the turn gains of its length,
+  /// not what the tangent promised), and scales the angular W of a body whose step turns the end
   /// past its line-up, as Gauss-Seidel's visit does (path_constraint.cpp):
   /// the end's row then turns it at most to there, the rest of its
   /// correction going to the row's other bodies. Returns whether any

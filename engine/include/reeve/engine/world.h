@@ -582,6 +582,9 @@ class World {
   /// Broad phase (sort and sweep of bounding spheres along x over the
   /// colliding bodies) and narrow phase (collide.h) into contacts_.
   void findContacts();
+  /// Before the first step: overlaps between bodies as the scene placed
+  /// them pushed out as poses, not speeds (initial_overlaps.cpp).
+  void settleInitialOverlaps();
 
   SolverSettings settings_;
   std::vector<BodyState> bodies_;
@@ -696,6 +699,7 @@ class World {
   // scratch is the World's).
   std::vector<double> hinge_braking_, prismatic_braking_;
   bool rotors_dirty_ = true;  // bodies or joints added since refreshRotors()
+  bool overlaps_settled_ = false;  // settleInitialOverlaps() has run (before the first step)
   std::vector<char> hinge_rigid_;  // per hinge: its compliance was 0 at refreshRotors()
   // Per body, its joints' other bodies and edge numbers (hinges, then
   // prismatics, sphericals, fixed joints, each in order); world excluded.

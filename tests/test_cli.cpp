@@ -510,6 +510,38 @@ TEST_F(Cli, AStoneFlungFasterThanADoubleCanSquareIsRefusedAtLoad) {
   EXPECT_FALSE(std::filesystem::exists(path("out.csv")));
 }
 
+TEST_F(Cli, BodiesPlacedOverlappingArePushedApartAndTheRunSaysSo) {
+  // A box 2 mm into the ground and a cube 0.5 mm into the box: pushed
+  // apart before the first substep (World::settleInitialOverlaps), the
+  // pairs named deepest first, with their depths; the run goes on (exit 0),
+  // its ledger reading the lift as energy made (0.064 J, m g times the
+  // push), not the 0.1 mm / h launch it was. The same scene placed
+  // touching says nothing.
+  const auto scene = [&](const std::string& file, double box_y, double cube_y) {
+    return write(file, R"({"name": "overlaps", "solver": {"substeps": 100, "iterations": 1}, "ground": {},
+      "bodies": [
+        {"name": "box", "shape": {"type": "box", "half_extents_m": [0.2, 0.1, 0.2]}, "mass_kg": 2,
+         "position_m": [0, )" + std::to_string(box_y) + R"(, 0], "collides": true},
+        {"name": "cube", "shape": {"type": "box", "half_extents_m": [0.1, 0.1, 0.1]}, "mass_kg": 1,
+         "position_m": [0, )" + std::to_string(cube_y) + R"(, 0], "collides": true}]})");
+  };
+  const Result r = reeve("run " + scene("overlaps.json", 0.098, 0.2975) + " --frames 10");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string ground = "reeve: note: the ground and 'box' overlapped by 0.002 m as placed; pushed apart before "
+                             "the first step";
+  const std::string cube = "reeve: note: 'box' and 'cube' overlapped by 0.0005 m as placed";
+  ASSERT_NE(r.err.find(ground), std::string::npos) << r.err;
+  ASSERT_NE(r.err.find(cube), std::string::npos) << r.err;
+  EXPECT_LT(r.err.find(ground), r.err.find(cube)) << r.err;
+  std::smatch made;
+  ASSERT_TRUE(std::regex_search(r.err, made, std::regex(R"(energy created at t = [0-9.e+-]+ s: \+([0-9.e+-]+) J)")))
+      << r.err;
+  EXPECT_NEAR(std::stod(made[1]), 9.81 * (2.0 * 0.002 + 1.0 * 0.0025), 1e-4) << r.err;
+  const Result touching = reeve("run " + scene("touching.json", 0.1, 0.3) + " --frames 10");
+  ASSERT_EQ(touching.code, 0) << touching.err;
+  EXPECT_EQ(touching.err.find("overlapped"), std::string::npos) << touching.err;
+}
+
 TEST_F(Cli, SegmentWritesAValidSegmentedRopeSceneAndRefusesToOverwrite) {
   const std::string atwood = std::string(REEVE_SCENES_DIR) + "/atwood.json";
   const Result r = reeve("segment " + atwood + " --cable rope --segments 12 -o " + path("rope.json"));

@@ -499,10 +499,7 @@ double World::tension(DistanceId id) const {
 
 void World::step(double dt) {
   assert(settings_.substeps > 0 && settings_.iterations > 0);
-  if (!overlaps_settled_) {
-    overlaps_settled_ = true;
-    if (hasContacts()) settleInitialOverlaps();
-  }
+  settleInitialOverlaps();
   if (rotors_dirty_ || hingeRigidityChanged()) refreshRotors();
   refreshIslands();
   if (pool_ && islands_.size() > 1) balanceIslandRuns();

@@ -42,6 +42,22 @@ void printSpansRunOut(const RunResult& r) {
   if (r.spans_run_out > kShown) std::fprintf(stderr, "reeve: warning: spans ran out %d times in all\n", r.spans_run_out);
 }
 
+// Bodies placed overlapping, pushed apart before the first step: the
+// deepest few, and how many pairs in all.
+void printPlacedOverlaps(const Scene& scene, const RunResult& r) {
+  constexpr int kShown = 3;
+  const auto name = [&](BodyId id) {
+    return id == kWorldBody ? std::string("the ground") : "'" + scene.world->bodyDef(id).name + "'";
+  };
+  for (int i = 0; i < std::min<int>(kShown, static_cast<int>(r.placed_overlaps.size())); ++i) {
+    const World::PlacedOverlap& o = r.placed_overlaps[i];
+    std::fprintf(stderr, "reeve: note: %s and %s overlapped by %.3g m as placed; pushed apart before the first step\n",
+                 name(o.a).c_str(), name(o.b).c_str(), o.depth_m);
+  }
+  if (static_cast<int>(r.placed_overlaps.size()) > kShown)
+    std::fprintf(stderr, "reeve: note: %zu pairs of bodies overlapped as placed\n", r.placed_overlaps.size());
+}
+
 int simulate(const RunOptions& o) {
   Scene scene = o.scene.empty() ? parseScene(std::string(defaultSceneJson()), "<built-in simple.json>")
                                 : loadScene(o.scene);
@@ -69,6 +85,7 @@ int simulate(const RunOptions& o) {
     std::fprintf(stderr, "reeve: %s: stopped after %d of %d frames%s; the outputs hold those %d frames\n",
                  r.signal == SIGINT ? "interrupted (SIGINT)" : "terminated (SIGTERM)", done, frames, inside, done);
   }
+  printPlacedOverlaps(scene, r);
   printEnergyCreated(r);
   printSpansRunOut(r);
   std::printf("reeve: simulated %d frames of '%s' (%.3f s, %d substeps x %d iterations, %s%s) in %.3f ms/frame of physics\n",

@@ -228,6 +228,7 @@ RunResult runScene(Scene& scene, int frames, const RunOutputs& o) {
     scene.world->step(dt);
     result.physics_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (const auto why = stopReason(scene)) throw std::runtime_error(*why);
+    if (f == 0) result.placed_overlaps = scene.world->placedOverlaps();
     if (scene.world->stepInterrupted()) {
       result.part_frame_s = scene.world->time();
       break;

@@ -57,6 +57,9 @@ struct RunResult {
   /// kMaxEnergyFindings of them, and how many there were.
   std::vector<std::string> span_run_out;
   int spans_run_out = 0;
+  /// Bodies that overlapped as the scene placed them, pushed apart before
+  /// the first step (World::placedOverlaps).
+  std::vector<World::PlacedOverlap> placed_overlaps;
 };
 
 /// Findings of energy created a RunResult keeps (it counts them all).

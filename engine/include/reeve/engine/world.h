@@ -252,6 +252,16 @@ class World {
   const std::vector<Contact>& contacts() const { return contacts_; }
   /// The same grouped by touching pair (ranges of contacts()).
   const std::vector<ContactManifold>& contactManifolds() const { return manifolds_; }
+  /// Two bodies that overlapped as the scene placed them, by more than
+  /// 1e-9 m, pushed apart as poses before the first step (not as speeds:
+  /// initial_overlaps.cpp). `a` is kWorldBody for the ground.
+  struct PlacedOverlap {
+    BodyId a = kWorldBody, b = 0;
+    double depth_m = 0.0;  ///< the deepest point's overlap before the push (m)
+  };
+  /// Those the first step() pushed apart before its first substep,
+  /// deepest first; empty before it, or where none.
+  const std::vector<PlacedOverlap>& placedOverlaps() const { return placed_overlaps_; }
 
   /// Advances by dt (s) with the current settings, or less when the
   /// interrupt flag is raised meanwhile (setInterruptFlag).
@@ -582,8 +592,10 @@ class World {
   /// Broad phase (sort and sweep of bounding spheres along x over the
   /// colliding bodies) and narrow phase (collide.h) into contacts_.
   void findContacts();
-  /// Before the first step: overlaps between bodies as the scene placed
-  /// them pushed out as poses, not speeds (initial_overlaps.cpp).
+  /// Once, at the first step: bodies that overlap as placed by more than
+  /// 1e-9 m pushed apart along their contacts' normals as poses alone; the
+  /// first substep would push them out at overlap / h
+  /// (initial_overlaps.cpp).
   void settleInitialOverlaps();
 
   SolverSettings settings_;
@@ -700,6 +712,7 @@ class World {
   std::vector<double> hinge_braking_, prismatic_braking_;
   bool rotors_dirty_ = true;  // bodies or joints added since refreshRotors()
   bool overlaps_settled_ = false;  // settleInitialOverlaps() has run (before the first step)
+  std::vector<PlacedOverlap> placed_overlaps_;
   std::vector<char> hinge_rigid_;  // per hinge: its compliance was 0 at refreshRotors()
   // Per body, its joints' other bodies and edge numbers (hinges, then
   // prismatics, sphericals, fixed joints, each in order); world excluded.

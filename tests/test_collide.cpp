@@ -1,13 +1,18 @@
 // Narrow phase (collide.h): the manifold of a face on a face is the clip of
 // the incident face to the reference face, with exact depths; nearly
-// touching pairs within the contact margin give contacts with a gap.
+// touching pairs within the contact margin give contacts with a gap; two
+// curved surfaces touch through both axes, and their contact is measured
+// again where they touch when the solve moves them.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <vector>
 
 #include "reeve/engine/collide.h"
+#include "reeve/engine/contact.h"
+#include "reeve/engine/shape.h"
 
 namespace reeve::test_collide {
 namespace {
@@ -143,6 +148,49 @@ TEST(Collide, ThinRodOnAWheelTouchesOnTheRadiusThroughBothAxes) {
         EXPECT_LT(std::abs((on_rod - r.x).cross(n).dot(tangent)), 1e-12);
         EXPECT_LT(std::abs(on_wheel.cross(n).z()), 1e-12);
       }
+    }
+}
+
+TEST(Collide, ARodTurnedAboutWhereItFirstTouchedIsPushedOutWhereItTouchesNow) {
+  // A rope segment (radius 0.01 m, 6 cm long) lies on a fixed wheel
+  // (radius 0.3 m), touching at its middle. A solve then turns it about its
+  // middle by theta, as its joints do when the chain pulls one end down:
+  // one half rises, the other sinks into the wheel, 0.31 - 0.31 cos(theta)
+  // at the closest point of its axis or more at its end (0.4 mm at 0.05
+  // rad, 4.5 mm at 0.2). The contact, measured again where the two axes are
+  // now closest, pushes the rod out until its axis is 0.31 m from the
+  // axle. Held at the point found first, which rose, it pushed nothing, and
+  // the rod pivoted about that point from solve to solve: the segmented
+  // rope's rods rocked on the wheel until the chain flew apart at 100
+  // substeps of one iteration (DESIGN, "Forty-fifth session").
+  const Shape wheel = Shape::cylinder(0.3, 0.05), rod = Shape::cylinder(0.01, 0.03);
+  const auto overlap = [](const BodyState& r) {  // of the rod's axis into the 0.31 m circle (m)
+    const Vec3 u = r.q * Vec3::UnitZ();
+    const double s = std::clamp(-r.x.dot(u), -0.03, 0.03);
+    return 0.31 - (r.x + s * u).norm();
+  };
+  for (const double theta : {0.05, 0.2, -0.3})
+    for (const bool wheel_first : {true, false}) {
+      SCOPED_TRACE(testing::Message() << "theta " << theta << (wheel_first ? ", wheel first" : ", rod first"));
+      BodyState w = at(Vec3::Zero());
+      w.inv_mass = 0.0;
+      BodyState r = at(Vec3(0.0, 0.31, 0.0), rotationBetween(Vec3::UnitZ(), Vec3::UnitX()));
+      r.inv_mass = 1e4;  // 0.1 g, as the shipped rope's rods
+      r.inv_inertia = inertiaTensor(rod, 1e-4).inverse();
+      std::vector<Contact> contacts;
+      collideBodies(0, wheel_first ? wheel : rod, wheel_first ? w : r, 1, wheel_first ? rod : wheel,
+                    wheel_first ? r : w, ContactMaterial{0.0, 0.0, 0.0}, contacts);
+      ASSERT_EQ(contacts.size(), 1u);
+      EXPECT_GE(contacts.front().core_a, 0.0);
+      r.q = Quat(Eigen::AngleAxisd(theta, Vec3::UnitZ())) * r.q;
+      EXPECT_GT(overlap(r), 3e-4);
+      ContactManifold m;
+      m.a = 0;
+      m.b = 1;
+      m.count = 1;
+      EXPECT_TRUE(solveContactPositions(m, contacts.data(), wheel_first ? w : r, wheel_first ? r : w));
+      EXPECT_LT(overlap(r), 1e-9);
+      EXPECT_EQ(w.x, Vec3::Zero());
     }
 }
 

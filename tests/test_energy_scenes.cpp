@@ -82,9 +82,12 @@ const std::set<std::string>& knownCreating() {
       // frame from 0.05 s on: the contacts' velocity pass credits as a loss
       // what the next solve gives back, frame for frame (DESIGN). (Its
       // rods cut into the wheel until `reeve segment` lifted them clear:
-      // 1.8 and 2.5 % in the first frame at 10 x 2 and 32 x 32.)
-      "rope_segments direct 10x2", "rope_segments direct 32x32", "rope_segments gauss-seidel 10x2",
-      "rope_segments gauss-seidel 32x32",
+      // 1.8 and 2.5 % in the first frame at 10 x 2 and 32 x 32.) At 10 x 2
+      // its rods rock on the wheel faster than the substep resolves; the
+      // direct solver's 32 x 32 came off when curved contacts were measured
+      // again at each visit (remeasureCurvedContact); Gauss-Seidel's chain
+      // of 100 light rods is unconverged at 32 iterations.
+      "rope_segments direct 10x2", "rope_segments gauss-seidel 10x2", "rope_segments gauss-seidel 32x32",
       // The direct solver's start projection (issue 29, "Numerical
       // damping"; its ledger pairs the half-step velocity with the height
       // half a substep back): the end's cells above, and two more, none a
@@ -103,7 +106,7 @@ const std::set<std::string>& knownCreating() {
       // along their start gradients fought its contacts, 99 % of its scale
       // in its first frame at 32 x 32).
       "bow start 1x1", "bow start 1x10", "bow start 10x2",
-      "spool start 32x32", "rope_segments start 10x2", "rope_segments start 32x32",
+      "spool start 32x32", "rope_segments start 10x2",
   };
   return cells;
 }

@@ -200,10 +200,19 @@ void collideBodies(BodyId id_a, const Shape& shape_a, const BodyState& a, BodyId
   // Edge on edge, or a curved surface on anything but a face: MPR's point,
   // on each curved surface moved to where that surface touches along n.
   const Vec3 mid(pos.v[0], pos.v[1], pos.v[2]);
-  const Vec3 p_a = curvedSurfacePoint(shape_a, a, n, mid).value_or(Vec3(mid + 0.5 * depth * n));
-  const Vec3 p_b = curvedSurfacePoint(shape_b, b, -n, mid).value_or(Vec3(mid - 0.5 * depth * n));
+  const std::optional<Vec3> curved_a = curvedSurfacePoint(shape_a, a, n, mid);
+  const std::optional<Vec3> curved_b = curvedSurfacePoint(shape_b, b, -n, mid);
+  const Vec3 p_a = curved_a.value_or(Vec3(mid + 0.5 * depth * n));
+  const Vec3 p_b = curved_b.value_or(Vec3(mid - 0.5 * depth * n));
   if ((p_b - p_a).dot(n) >= margin) return;
   out.push_back(makeContact(id_a, a, p_a, id_b, b, p_b, n, material));
+  if (curved_a && curved_b) {  // both sides curved: measured again at each visit
+    Contact& c = out.back();
+    c.core_a = shape_a.type == Shape::Type::Sphere ? 0.0 : shape_a.half_length;
+    c.core_b = shape_b.type == Shape::Type::Sphere ? 0.0 : shape_b.half_length;
+    c.radius_a = shape_a.radius;
+    c.radius_b = shape_b.radius;
+  }
 }
 
 }  // namespace reeve

@@ -92,6 +92,33 @@ Vec3 patchCouple(const Mat3& inv_inertia_a, const Mat3& inv_inertia_b, const Vec
   return m.x() * u + m.y() * v;
 }
 
+/// Moves a curved contact's points to where its bodies' cores are now
+/// closest (Contact::core_a): the segments P(s) = x_a + s u_a and
+/// Q(t) = x_b + t u_b, |s| <= core_a, |t| <= core_b, closest where
+/// s = b t - c and t = b s + f (b = u_a . u_b, c = u_a . r, f = u_b . r,
+/// r = x_a - x_b), clamped in turn; the normal runs from P to Q and each
+/// point lies its radius along it. Body-fixed points let a thin rod pivot
+/// within a solve about the end that first touched, its middle sinking
+/// into the wheel, and the next substep threw it out at that depth / h.
+/// Near-parallel axes (a line contact) keep the points as found.
+void remeasureCurvedContact(Contact& c, const BodyState& a, const BodyState& b) {
+  const Vec3 u_a = a.q * Vec3::UnitZ(), u_b = b.q * Vec3::UnitZ();
+  const double cos_ab = u_a.dot(u_b);
+  const bool segments = c.core_a > 0.0 && c.core_b > 0.0;
+  if (segments && std::abs(cos_ab) > 0.99) return;
+  const Vec3 r = a.x - b.x;
+  const double cu = u_a.dot(r), fu = u_b.dot(r), det = 1.0 - cos_ab * cos_ab;
+  double s = det > 1e-12 ? std::clamp((cos_ab * fu - cu) / det, -c.core_a, c.core_a) : 0.0;
+  const double t = std::clamp(cos_ab * s + fu, -c.core_b, c.core_b);
+  s = std::clamp(cos_ab * t - cu, -c.core_a, c.core_a);
+  const Vec3 p = a.x + s * u_a, q = b.x + t * u_b, d = q - p;
+  const double distance = d.norm();
+  if (!(distance > 1e-12)) return;
+  c.normal = d / distance;
+  c.local_a = a.toLocal(p + c.radius_a * c.normal);
+  c.local_b = b.toLocal(q - c.radius_b * c.normal);
+}
+
 }  // namespace
 
 bool solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, BodyState& b) {
@@ -106,6 +133,7 @@ bool solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, 
       const int i = sweep % 2 == 0 ? m.first + k : end - 1 - k;
       // Normal row: C = (p_b - p_a) . n, dC/dp_b = n; unilateral (C < 0 only).
       Contact& c = contacts[i];
+      if (c.core_a >= 0.0) remeasureCurvedContact(c, a, b);
       const Vec3 r_a = a.q * c.local_a, r_b = b.q * c.local_b;
       const double C = ((b.x + r_b) - (a.x + r_a)).dot(c.normal);
       if (C >= 0.0) continue;
@@ -132,6 +160,14 @@ bool solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, 
   if (lambda_n <= 0.0) {  // not pressed: nothing holds the anchor
     m.stuck = false;
     return changed;
+  }
+  // A curved point rolls: its anchor is where it touches now, as it was at
+  // the substep's start (SCA 2020, eq. 27), never one kept from earlier,
+  // which would hold the rod to pivot about the point it touched first.
+  if (m.count == 1 && contacts[m.first].core_a >= 0.0) {
+    m.centre_a = contacts[m.first].local_a;
+    m.centre_b = contacts[m.first].local_b;
+    freshAnchor(m, a, b);
   }
   // Static friction of the patch: one tangential row at its anchor and one
   // twist row about n, held together or not at all.

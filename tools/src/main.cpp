@@ -110,6 +110,13 @@ int main(int argc, char** argv) {
   CLI::Option* rope_mass_opt = segment_cmd->add_option(
       "--rope-mass", rope_mass, "Total rope mass, kg (default 1 % of the lighter end body)")
       ->check(CLI::PositiveNumber);
+  int segment_substeps = 0, segment_iterations = 0;
+  CLI::Option* segment_substeps_opt = segment_cmd->add_option(
+      "--substeps", segment_substeps, "Substeps a frame of the output (default the input's)")
+      ->check(CLI::Range(1, 1000000));
+  CLI::Option* segment_iterations_opt = segment_cmd->add_option(
+      "--iterations", segment_iterations, "Iterations a substep of the output (default the input's)")
+      ->check(CLI::Range(1, 1000000));
   segment_cmd->add_option("-o,--output", segment.output,
                           "Output scene (default SCENE_segments.json beside SCENE)");
   segment_cmd->add_flag("--force", segment.force, "Overwrite an existing output file");
@@ -186,6 +193,8 @@ int main(int argc, char** argv) {
   if (*bench_cmd) return bench();
   if (*segment_cmd) {
     if (*rope_mass_opt) segment.segment.rope_mass_kg = rope_mass;
+    if (*segment_substeps_opt) segment.segment.substeps = segment_substeps;
+    if (*segment_iterations_opt) segment.segment.iterations = segment_iterations;
     std::string line = "reeve segment";
     for (int i = 1 + 1; i < argc; ++i) line += std::string(" ") + argv[i];
     segment.segment.command_line = line;

@@ -57,7 +57,9 @@ void collideGround(const GroundPlane& ground, BodyId id, const Shape& shape,
 /// MPR's single point and normal, the point moved onto each curved
 /// surface (a cylinder's side, a sphere) where it touches along the
 /// normal, so that the normal passes through the cylinder's axis or the
-/// sphere's centre. Nothing when the shapes are further apart.
+/// sphere's centre; where both surfaces are curved the contact carries
+/// their cores (Contact::core_a), and the solve measures it again at each
+/// visit. Nothing when the shapes are further apart.
 void collideBodies(BodyId id_a, const Shape& shape_a, const BodyState& a, BodyId id_b,
                    const Shape& shape_b, const BodyState& b, const ContactMaterial& material,
                    std::vector<Contact>& out);

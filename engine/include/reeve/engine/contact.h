@@ -27,6 +27,11 @@ struct Contact {
   /// after integration and before the position solve: SCA 2020's v~_n.
   double normal_speed_before = 0.0;
   double lambda_n = 0.0;  // kg m, >= 0: accumulated normal correction this substep
+  /// A curved pair (cylinder sides, spheres), measured again at each visit
+  /// (remeasureCurvedContact): each body's core, a segment along its local
+  /// z of half length `core_*` (m; 0 for a sphere's centre), and the radius
+  /// about it (m). core_a < 0: the points stay body-fixed.
+  double core_a = -1.0, core_b = -1.0, radius_a = 0.0, radius_b = 0.0;
 };
 
 /// The contact points one narrow-phase call found between two bodies,
@@ -110,7 +115,9 @@ inline constexpr int kManifoldSweeps = 8;
 ///   normal:   C = (p_b - p_a) . n  (m); solved only while C < 0, with zero
 ///             compliance; lambda_n accumulates >= 0. Contacts found within
 ///             the margin (collide.h) start with C > 0 and act only if the
-///             solve closes the gap.
+///             solve closes the gap. A curved pair's point (Contact::core_a)
+///             is measured again before each row: C = |Q - P| - r_a - r_b
+///             of its cores' closest points, n = (Q - P) / |Q - P|.
 ///   friction: at the anchor (anchorFriction) a tangential row, dp =
 ///             p_b - p_a of the anchor's points, dp_t its part normal to
 ///             n, C = |dp_t|, gradient dp_t / |dp_t|; and a twist row, C =
@@ -119,7 +126,9 @@ inline constexpr int kManifoldSweeps = 8;
 ///             (sum of lambda_n) and |sum of twist corrections| <= mu_s x
 ///             (sum of lambda_n) x patch_radius; otherwise both are undone,
 ///             the patch is not `stuck`, and the velocity pass brakes
-///             instead. A kept anchor that passes the bound is tried again
+///             instead. A curved point's anchor is where it touches now
+///             (as the paper's eq. 27), never kept: it rolls. A kept
+///             anchor that passes the bound is tried again
 ///             afresh (this substep's motion alone); held so, the patch is
 ///             not `stuck` either, and the next substep anchors afresh. A
 ///             manifold with no pressed point is not stuck.

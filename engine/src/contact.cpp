@@ -95,8 +95,9 @@ Vec3 patchCouple(const Mat3& inv_inertia_a, const Mat3& inv_inertia_b, const Vec
 /// Moves a curved contact's points to where its bodies' cores are now
 /// closest (Contact::core_a): the segments P(s) = x_a + s u_a and
 /// Q(t) = x_b + t u_b, |s| <= core_a, |t| <= core_b, closest where
-/// s = b t - c and t = b s + f (b = u_a . u_b, c = u_a . r, f = u_b . r,
-/// r = x_a - x_b), clamped in turn; the normal runs from P to Q and each
+/// s = cos_ab t - cu and t = cos_ab s + fu (cos_ab = u_a . u_b, cu =
+/// u_a . r, fu = u_b . r, r = x_a - x_b), clamped in turn (Ericson,
+/// "Real-Time Collision Detection", 5.1.9); the normal runs from P to Q and each
 /// point lies its radius along it. Body-fixed points let a thin rod pivot
 /// within a solve about the end that first touched, its middle sinking
 /// into the wheel, and the next substep threw it out at that depth / h.

@@ -92,37 +92,48 @@ Vec3 patchCouple(const Mat3& inv_inertia_a, const Mat3& inv_inertia_b, const Vec
   return m.x() * u + m.y() * v;
 }
 
-/// Moves a curved contact's points to where its bodies' cores are now
-/// closest (Contact::core_a): the segments P(s) = x_a + s u_a and
-/// Q(t) = x_b + t u_b, |s| <= core_a, |t| <= core_b, closest where
-/// s = cos_ab t - cu and t = cos_ab s + fu (cos_ab = u_a . u_b, cu =
-/// u_a . r, fu = u_b . r, r = x_a - x_b), clamped in turn (Ericson,
-/// "Real-Time Collision Detection", 5.1.9); the normal runs from P to Q and each
-/// point lies its radius along it. Body-fixed points let a thin rod pivot
-/// within a solve about the end that first touched, its middle sinking
-/// into the wheel, and the next substep threw it out at that depth / h.
-/// Near-parallel axes (a line contact) keep the points as found.
-void remeasureCurvedContact(Contact& c, const BodyState& a, const BodyState& b) {
-  const Vec3 u_a = a.q * Vec3::UnitZ(), u_b = b.q * Vec3::UnitZ();
+/// The closest points P (on a's core) and Q (on b's) of a curved pair's
+/// cores (Contact::core_a) with a at (x_a, q_a) and b at (x_b, q_b): the
+/// segments P(s) = x_a + s u_a and Q(t) = x_b + t u_b, |s| <= core_a,
+/// |t| <= core_b, closest where s = cos_ab t - cu and t = cos_ab s + fu
+/// (cos_ab = u_a . u_b, cu = u_a . r, fu = u_b . r, r = x_a - x_b),
+/// clamped in turn (Ericson, "Real-Time Collision Detection", 5.1.9).
+/// False where two segments are near parallel (a line contact, whose
+/// points stay as found) or the cores meet (no direction).
+bool closestCorePoints(const Contact& c, const Vec3& x_a, const Quat& q_a, const Vec3& x_b, const Quat& q_b,
+                       Vec3& P, Vec3& Q) {
+  const Vec3 u_a = q_a * Vec3::UnitZ(), u_b = q_b * Vec3::UnitZ();
   const double cos_ab = u_a.dot(u_b);
-  const bool segments = c.core_a > 0.0 && c.core_b > 0.0;
-  if (segments && std::abs(cos_ab) > 0.99) return;
-  const Vec3 r = a.x - b.x;
+  if (c.core_a > 0.0 && c.core_b > 0.0 && std::abs(cos_ab) > 0.99) return false;
+  const Vec3 r = x_a - x_b;
   const double cu = u_a.dot(r), fu = u_b.dot(r), det = 1.0 - cos_ab * cos_ab;
   double s = det > 1e-12 ? std::clamp((cos_ab * fu - cu) / det, -c.core_a, c.core_a) : 0.0;
   const double t = std::clamp(cos_ab * s + fu, -c.core_b, c.core_b);
   s = std::clamp(cos_ab * t - cu, -c.core_a, c.core_a);
-  const Vec3 p = a.x + s * u_a, q = b.x + t * u_b, d = q - p;
-  const double distance = d.norm();
-  if (!(distance > 1e-12)) return;
-  c.normal = d / distance;
-  c.local_a = a.toLocal(p + c.radius_a * c.normal);
-  c.local_b = b.toLocal(q - c.radius_b * c.normal);
+  P = x_a + s * u_a;
+  Q = x_b + t * u_b;
+  return (Q - P).norm() > 1e-12;
+}
+
+/// Moves a curved contact's points to where its bodies' cores are now
+/// closest: the normal runs from P to Q and each point lies its radius
+/// along it. Body-fixed points let a thin rod pivot within a solve about
+/// the end that first touched, its middle sinking into the wheel, and the
+/// next substep threw it out at that depth / h.
+void remeasureCurvedContact(Contact& c, const BodyState& a, const BodyState& b) {
+  Vec3 P, Q;
+  if (!closestCorePoints(c, a.x, a.q, b.x, b.q, P, Q)) return;
+  c.normal = (Q - P).normalized();
+  c.local_a = a.toLocal(P + c.radius_a * c.normal);
+  c.local_b = b.toLocal(Q - c.radius_b * c.normal);
 }
 
 }  // namespace
 
-bool solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, BodyState& b) {
+namespace {
+
+/// solveContactPositions but for the curved points' last measure.
+bool visitManifold(ContactManifold& m, Contact* contacts, BodyState& a, BodyState& b) {
   constexpr double kSettled = 1e-12;  // m: a sweep moving no row more than this ends the visit
   const int end = m.first + m.count;
   bool changed = false;  // a correction applied and kept
@@ -330,6 +341,20 @@ bool solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, 
   return changed || applied;
 }
 
+}  // namespace
+
+bool solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, BodyState& b) {
+  const bool changed = visitManifold(m, contacts, a, b);
+  // A friction hold that was undone measured the curved points at poses
+  // it took back: they are measured again where the bodies are, for the
+  // velocity pass and the next visit. (Left at the undone poses, a ball's
+  // normal lagged 7e-5 rad behind it on a log and the velocity pass read
+  // that as an approach.)
+  for (int i = m.first; i < m.first + m.count; ++i)
+    if (contacts[i].core_a >= 0.0) remeasureCurvedContact(contacts[i], a, b);
+  return changed;
+}
+
 void anchorFriction(ContactManifold& m, const Contact* contacts, const ContactManifold* previous,
                     const BodyState& a, const BodyState& b, double margin) {
   if (previous && previous->stuck) {
@@ -446,12 +471,34 @@ void solveContactVelocities(const ContactManifold& m, const Contact* contacts, B
     if (s.kinematic) return ((s.x + r) - (s.x_prev + s.q_prev * (s.q.conjugate() * r))) / h;
     return s.v + s.omega.cross(r);
   };
+  // A curved pair's velocity, read from its poses, is the chord of its
+  // path around the curve: it leans out of the end normal by half the turn
+  // of the normal over the substep, (v_t h / R) / 2. Taken out as an
+  // approach, that outward lean cost the motion what makes a ball leave a
+  // log: it clung on to half the centripetal speed, till cos theta = 5/12
+  // where rolling leaves at 10/17. Measured against the normal midway
+  // through the substep (the bisector of the start's and the end's, to
+  // which a chord of a circle is square), the chord is no approach.
+  const auto midNormal = [&](const Contact& c) -> Vec3 {
+    Vec3 P, Q;
+    if (c.core_a < 0.0 || !closestCorePoints(c, a.x_prev, a.q_prev, b.x_prev, b.q_prev, P, Q)) return c.normal;
+    const Vec3 mid = c.normal + (Q - P).normalized();
+    return mid.norm() > 1e-12 ? Vec3(mid.normalized()) : c.normal;
+  };
   for (int i = m.first; i < end; ++i) {
     // Restitution (eq. 34), per pressed point; e = 0 for slow contacts.
     const Contact& c = contacts[i];
     if (c.lambda_n <= 0.0) continue;
-    const Vec3 r_a = a.q * c.local_a, r_b = b.q * c.local_b;
-    const Vec3& n = c.normal;
+    const Vec3 n = midNormal(c);
+    // A curved point's arms midway too, each its radius along that normal
+    // off its core: a ball's spin then moves no point of it along n (at
+    // the end's arms, a rolling ball's spin read as an approach by that
+    // same lean, and it clung to the log as before).
+    Vec3 r_a = a.q * c.local_a, r_b = b.q * c.local_b;
+    if (c.core_a >= 0.0) {
+      r_a += c.radius_a * (n - c.normal);
+      r_b -= c.radius_b * (n - c.normal);
+    }
     const Vec3 v = pointVelocity(b, r_b) - pointVelocity(a, r_a);
     const double e = std::abs(c.normal_speed_before) <= rest_speed ? 0.0 : c.restitution;
     const double dvn = -n.dot(v) + std::max(-e * c.normal_speed_before, 0.0);
@@ -471,7 +518,8 @@ void solveContactVelocities(const ContactManifold& m, const Contact* contacts, B
   const bool slid_after_holding = !m.stuck && m.patch_has_area;
   const Vec3 r_a = a.q * m.centre_a, r_b = b.q * m.centre_b;
   const Vec3 v = pointVelocity(b, r_b) - pointVelocity(a, r_a);
-  const Vec3 vt = v - c.normal * c.normal.dot(v);
+  const Vec3 n_mid = midNormal(c);
+  const Vec3 vt = v - n_mid * n_mid.dot(v);
   const double vt_len = vt.norm();
   if (vt_len >= 1e-15) {
     const Vec3 t = vt / vt_len;

@@ -6,7 +6,8 @@
 // rises to e^2 of its height, a sphere rolls down an incline at 5/7 g sin t,
 // two spheres meet with relative speed ratio e and conserve momentum,
 // stacks of boxes stand still at every split of the solver budget, and a
-// ball leaves a log at cos theta = 2/3 sliding and 10/17 rolling.
+// ball or a roller leaves a log at cos theta = 2/3 sliding and 10/17
+// or 4/7 rolling.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -369,24 +370,30 @@ TEST(Contacts, ThinRodRestsOnAWheelWithoutSpinningOrSlidingAlongTheAxle) {
       }
 }
 
-// A ball (radius 0.1 m, 1 kg) set on top of a fixed log (radius 1 m, axle
-// along z), 0.02 rad off its crest, runs down its side and leaves it where
-// its weight's normal part, g cos(theta), no longer gives the centripetal
-// v^2 / (R + r). Frictionless, v^2 = 2 g (R + r) (1 - cos theta): it
-// leaves at cos theta = 2/3; rolling (friction holding to the end: mu 50),
-// v^2 = 10/7 g (R + r) (1 - cos theta): at cos theta = 10/17. Before its
-// contact was measured against the normal midway through each substep,
-// the velocity pass took the outward lean of the ball's chord round the
-// log for an approach and the ball clung on to half the centripetal speed
-// (cos theta 5/12 rolling, 1.14 rad for 0.94); and before the points
-// were measured again in the solve, it left at 1.06 to 1.2 rad
-// frictionless and 1.11 to 1.30 rolling, depending on the budget.
-TEST(Contacts, ABallLeavesALogWhereItsWeightNoLongerHoldsItOn) {
+// A ball, or a roller lying along the log (radius 0.1 m, 1 kg), set on
+// top of a fixed log (radius 1 m, axle along z), 0.02 rad off its crest,
+// runs down its side and leaves it where its weight's normal part, g cos
+// theta, no longer gives the centripetal v^2 / (R + r). Frictionless, v^2 =
+// 2 g (R + r) (1 - cos theta): it leaves at cos theta = 2/3. Rolling
+// (friction holding to the end: mu 50), v^2 = 2 g (R + r) (1 - cos theta)
+// / (1 + k), k = I / (m r^2): the ball (k = 2/5) at 10/17, the roller (k =
+// 1/2) at 4/7. Before its contact was measured against the normal midway
+// through each substep, the velocity pass took the outward lean of the
+// body's chord round the log for an approach and it clung on to half the
+// centripetal speed (the ball rolling: cos theta 5/12, 1.14 rad for
+// 0.94); before the points were measured again in the solve, the ball
+// left at 1.06 to 1.2 rad frictionless and 1.11 to 1.30 rolling, depending
+// on the budget, and until a line contact was measured too, the roller at
+// 0.93 and 1.06 rad for 0.84 and 0.96.
+TEST(Contacts, ABallOrARollerLeavesALogWhereItsWeightNoLongerHoldsItOn) {
   struct Case {
     const char* what;
+    Shape shape;
     double mu, cos_theta;
   };
-  for (const Case& c : {Case{"sliding", 0.0, 2.0 / 3.0}, Case{"rolling", 50.0, 10.0 / 17.0}})
+  const Shape ball = Shape::sphere(0.1), roller = Shape::cylinder(0.1, 0.2);
+  for (const Case& c : {Case{"ball sliding", ball, 0.0, 2.0 / 3.0}, Case{"ball rolling", ball, 50.0, 10.0 / 17.0},
+                        Case{"roller sliding", roller, 0.0, 2.0 / 3.0}, Case{"roller rolling", roller, 50.0, 4.0 / 7.0}})
     for (const auto& [substeps, iterations] : {std::pair{2, 4}, std::pair{10, 2}, std::pair{50, 1}})
       for (const SolverKind solver : {SolverKind::Direct, SolverKind::GaussSeidel}) {
         if (solver == SolverKind::GaussSeidel && substeps != 10) continue;  // contacts are solved alike
@@ -401,18 +408,18 @@ TEST(Contacts, ABallLeavesALogWhereItsWeightNoLongerHoldsItOn) {
         log.material = material(c.mu, c.mu, 0.0);
         world.addBody(log);
         const double start = 0.02;
-        const BodyId ball = add(world, Shape::sphere(0.1), 1.0, 1.1 * Vec3(std::sin(start), std::cos(start), 0.0),
+        const BodyId body = add(world, c.shape, 1.0, 1.1 * Vec3(std::sin(start), std::cos(start), 0.0),
                                 material(c.mu, c.mu, 0.0), true);
         double left = 0.0;
         for (int step = 0; step < 1800 && left == 0.0; ++step) {  // up to 3 s
           world.step(1.0 / 600.0);
-          const Vec3& x = world.body(ball).x;
+          const Vec3& x = world.body(body).x;
           const double theta = std::atan2(x.x(), x.y());
           double pressed = 0.0;
           for (const Contact& contact : world.contacts()) pressed += contact.lambda_n;
           if (theta > 0.3 && pressed <= 0.0) left = theta;
         }
-        // 1/600 s steps move the ball by up to 0.004 rad; 0.3 rad late before.
+        // 1/600 s steps move the body by up to 0.004 rad; 0.1 to 0.3 rad late before.
         EXPECT_NEAR(left, std::acos(c.cos_theta), 0.01);
       }
 }

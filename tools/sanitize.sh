@@ -155,6 +155,14 @@ release_only=(
   # through here, and the gym's lat bar at the paper's budget the
   # safeguard).
   'CraneScene\.PayingOutAtOneIteration'
+  # Issue 30's forty-fifth session: the segment rope's whole runs at its
+  # new 100 x 1 (75 and 63 s here, 1 s each in Release), its Atwood
+  # acceleration at 60 and 100 x 1 (40 s here) and a ball or a roller
+  # rolling off a log at four budgets (19 s here with the ball alone; the
+  # rope's start projection test at 32 x 2..32 and the rod turned on a
+  # wheel, Collide.*, take the curved contacts through here).
+  'Invariants/EveryShippedScene\.InvariantsHoldAfterEverySubstep/rope_segments_'
+  'RopeSegments\.AtManySubsteps' 'Contacts\.ABallOrARoller'
 )
 long="^($(IFS='|'; echo "${release_only[*]}"))"
 all=$(ctest --test-dir build-sanitize -N | grep -o 'Total Tests: [0-9]*')

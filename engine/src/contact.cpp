@@ -98,18 +98,29 @@ Vec3 patchCouple(const Mat3& inv_inertia_a, const Mat3& inv_inertia_b, const Vec
 /// |t| <= core_b, closest where s = cos_ab t - cu and t = cos_ab s + fu
 /// (cos_ab = u_a . u_b, cu = u_a . r, fu = u_b . r, r = x_a - x_b),
 /// clamped in turn (Ericson, "Real-Time Collision Detection", 5.1.9).
-/// False where two segments are near parallel (a line contact, whose
-/// points stay as found) or the cores meet (no direction).
+/// Two segments near parallel (|cos_ab| > 0.99: a line contact, a log
+/// on a log) are closest all along their overlap, and that formula's s
+/// jumps between its ends: there P is the middle of the overlap of b's
+/// segment, seen along a's axis, with a's (or a's end nearest it), and Q
+/// the point of b's segment nearest P. False where the cores meet (no
+/// direction).
 bool closestCorePoints(const Contact& c, const Vec3& x_a, const Quat& q_a, const Vec3& x_b, const Quat& q_b,
                        Vec3& P, Vec3& Q) {
   const Vec3 u_a = q_a * Vec3::UnitZ(), u_b = q_b * Vec3::UnitZ();
   const double cos_ab = u_a.dot(u_b);
-  if (c.core_a > 0.0 && c.core_b > 0.0 && std::abs(cos_ab) > 0.99) return false;
   const Vec3 r = x_a - x_b;
   const double cu = u_a.dot(r), fu = u_b.dot(r), det = 1.0 - cos_ab * cos_ab;
-  double s = det > 1e-12 ? std::clamp((cos_ab * fu - cu) / det, -c.core_a, c.core_a) : 0.0;
+  const bool parallel = c.core_a > 0.0 && c.core_b > 0.0 && std::abs(cos_ab) > 0.99;
+  double s = 0.0;
+  if (parallel) {
+    const double mid_b = -cu, reach_b = std::abs(cos_ab) * c.core_b;  // b's segment along a's axis
+    const double lo = std::max(-c.core_a, mid_b - reach_b), hi = std::min(c.core_a, mid_b + reach_b);
+    s = lo <= hi ? 0.5 * (lo + hi) : std::clamp(mid_b, -c.core_a, c.core_a);
+  } else if (det > 1e-12) {
+    s = std::clamp((cos_ab * fu - cu) / det, -c.core_a, c.core_a);
+  }
   const double t = std::clamp(cos_ab * s + fu, -c.core_b, c.core_b);
-  s = std::clamp(cos_ab * t - cu, -c.core_a, c.core_a);
+  if (!parallel) s = std::clamp(cos_ab * t - cu, -c.core_a, c.core_a);
   P = x_a + s * u_a;
   Q = x_b + t * u_b;
   return (Q - P).norm() > 1e-12;

@@ -406,14 +406,15 @@ TEST(Contacts, ABallOrARollerLeavesALogWhereItsWeightNoLongerHoldsItOn) {
         log.is_static = true;
         log.collides = true;
         log.material = material(c.mu, c.mu, 0.0);
+        log.position = Vec3(2.0, 1.0, 0.3);  // off the origin: its start pose is its placed one
         world.addBody(log);
         const double start = 0.02;
-        const BodyId body = add(world, c.shape, 1.0, 1.1 * Vec3(std::sin(start), std::cos(start), 0.0),
+        const BodyId body = add(world, c.shape, 1.0, log.position + 1.1 * Vec3(std::sin(start), std::cos(start), 0.0),
                                 material(c.mu, c.mu, 0.0), true);
         double left = 0.0;
         for (int step = 0; step < 1800 && left == 0.0; ++step) {  // up to 3 s
           world.step(1.0 / 600.0);
-          const Vec3& x = world.body(body).x;
+          const Vec3 x = world.body(body).x - log.position;
           const double theta = std::atan2(x.x(), x.y());
           double pressed = 0.0;
           for (const Contact& contact : world.contacts()) pressed += contact.lambda_n;

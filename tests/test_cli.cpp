@@ -555,6 +555,16 @@ TEST_F(Cli, SegmentWritesAValidSegmentedRopeSceneAndRefusesToOverwrite) {
   const Result unknown = reeve("segment " + atwood + " --cable string --segments 12 -o " + path("x.json"));
   EXPECT_EQ(unknown.code, 64);
   EXPECT_NE(unknown.err.find("rope"), std::string::npos) << "lists the cable names: " << unknown.err;
+  // The output's budget, given: the run says it runs at it.
+  ASSERT_EQ(reeve("segment " + atwood + " --cable rope --segments 12 --substeps 60 --iterations 1 -o " +
+                  path("rope60.json")).code,
+            0);
+  const Result run = reeve("run " + path("rope60.json") + " --frames 1");
+  ASSERT_EQ(run.code, 0) << run.err;
+  EXPECT_NE(run.out.find("60 substeps x 1 iterations"), std::string::npos) << run.out;
+  const Result zero = reeve("segment " + atwood + " --cable rope --segments 12 --substeps 0 -o " + path("y.json"));
+  EXPECT_EQ(zero.code, 64);
+  EXPECT_NE(zero.err.find("--substeps"), std::string::npos) << zero.err;
 }
 
 TEST_F(Cli, SolverMethodComesFromTheSceneUnlessOverridden) {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <numbers>
 #include <sstream>
@@ -18,7 +19,9 @@
 namespace reeve::test_rope_segments {
 namespace {
 
-std::string atwoodFile() { return std::string(REEVE_SCENES_DIR) + "/atwood.json"; }
+// A path, not std::string + "...": GCC 12 warned of a bogus overread
+// (-Wstringop-overread) in that concatenation, inlined at -O1.
+std::string atwoodFile() { return (std::filesystem::path(REEVE_SCENES_DIR) / "atwood.json").string(); }
 
 nlohmann::ordered_json atwoodJson() {
   std::ifstream file(atwoodFile());

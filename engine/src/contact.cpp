@@ -139,10 +139,6 @@ void remeasureCurvedContact(Contact& c, const BodyState& a, const BodyState& b) 
   c.local_b = b.toLocal(Q - c.radius_b * c.normal);
 }
 
-}  // namespace
-
-namespace {
-
 /// solveContactPositions but for the curved points' last measure.
 bool visitManifold(ContactManifold& m, Contact* contacts, BodyState& a, BodyState& b) {
   constexpr double kSettled = 1e-12;  // m: a sweep moving no row more than this ends the visit

@@ -169,7 +169,12 @@ bool solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, 
 /// and corner by corner it yawed a sliding box. At the centre of pressure
 /// instead of the patch centre it braked a spinning box (the centre of
 /// pressure wanders off the axis under Gauss-Seidel). Points whose normal
-/// row never acted this substep (lambda_n = 0) are skipped.
+/// row never acted this substep (lambda_n = 0) are skipped. A curved
+/// point's n is the bisector of its normals at the substep's start and
+/// end, and its arms lie off its cores along that n: its velocity, read
+/// from its poses, is the chord of its path round the curve, square to
+/// that n (against the end's n it read as an approach, and a ball clung
+/// to a log to half the centripetal speed).
 void solveContactVelocities(const ContactManifold& m, const Contact* contacts, BodyState& a,
                             BodyState& b, double h, double rest_speed);
 

@@ -2,7 +2,8 @@
 // the incident face to the reference face, with exact depths; nearly
 // touching pairs within the contact margin give contacts with a gap; two
 // curved surfaces touch through both axes, and their contact is measured
-// again where they touch when the solve moves them.
+// again where they touch when the solve moves them; a sphere on a box or
+// hull touches along the line from its centre's nearest point.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -192,6 +193,49 @@ TEST(Collide, ARodTurnedAboutWhereItFirstTouchedIsPushedOutWhereItTouchesNow) {
       EXPECT_LT(overlap(r), 1e-9);
       EXPECT_EQ(w.x, Vec3::Zero());
     }
+}
+
+// A sphere (0.1 m) on a turned box or on a hull of its corners, over its
+// top face, beyond its top edge and beyond its corner: the normal runs from
+// the centre's nearest point of the body to the centre, the separation is
+// their distance less the radius, and the contact carries both cores. MPR
+// gave an upright normal beyond the edge (the ball rested there, 0.8 mm
+// above it) and an overlap of 0.66 mm where there was none.
+TEST(Collide, ASphereOnABoxOrHullTakesItsNormalFromItsCentresNearestPoint) {
+  const Vec3 half(0.5, 0.4, 0.3);
+  std::vector<Vec3> corners;
+  for (const double x : {-1.0, 1.0})
+    for (const double y : {-1.0, 1.0})
+      for (const double z : {-1.0, 1.0}) corners.push_back(half.cwiseProduct(Vec3(x, y, z)));
+  const Shape ball = Shape::sphere(0.1);
+  const Quat turn(Eigen::AngleAxisd(0.4, Vec3(0.2, 1.0, 0.1).normalized()));
+  const BodyState table = at(Vec3(2.0, 1.0, 0.3), turn);
+  struct Case {
+    const char* what;
+    Vec3 nearest, out;  // table-local
+    double gap;         // m
+  };
+  for (const Shape& solid : {Shape::box(half), Shape::convexHull(corners)})
+    for (const Case& c : {Case{"over the face", Vec3(0.2, 0.4, -0.1), Vec3::UnitY(), -1e-3},
+                          Case{"beyond the edge", Vec3(0.5, 0.4, 0.1), Vec3(0.02, 1.0, 0.0), 0.0},
+                          Case{"beyond the corner", half, Vec3(1.0, 2.0, 1.5), -2e-4},
+                          Case{"off the edge", Vec3(0.5, 0.4, 0.1), Vec3(1.0, 0.3, 0.0), 1e-4}})
+      for (const bool solid_first : {true, false}) {
+        SCOPED_TRACE(testing::Message() << (solid.type == Shape::Type::Box ? "box, " : "hull, ") << c.what
+                                        << (solid_first ? ", solid first" : ", sphere first"));
+        const Vec3 out = turn * c.out.normalized();
+        const BodyState sphere = at(table.toWorld(c.nearest) + (0.1 + c.gap) * out);
+        const std::vector<Contact> contacts =
+            solid_first ? collide(solid, table, ball, sphere) : collide(ball, sphere, solid, table);
+        ASSERT_EQ(contacts.size(), 1u);
+        const Contact& k = contacts.front();
+        const BodyState &a = solid_first ? table : sphere, &b = solid_first ? sphere : table;
+        EXPECT_NEAR((k.normal - (solid_first ? out : Vec3(-out))).norm(), 0.0, 1e-12);
+        EXPECT_NEAR(separation(k, a, b), c.gap, 1e-12);
+        EXPECT_NEAR((table.toWorld(solid_first ? k.local_a : k.local_b) - table.toWorld(c.nearest)).norm(), 0.0, 1e-12);
+        EXPECT_GE(k.core_a, 0.0);
+        EXPECT_TRUE(solid_first ? (!k.box_a.isZero() || k.hull_a) : (!k.box_b.isZero() || k.hull_b));
+      }
 }
 
 }  // namespace

@@ -2,15 +2,19 @@
 // box, a corner tetrahedron with its products of inertia), the full inertia
 // tensor in the integrator (a box given as turned vertices tumbles as the
 // box turned), and hull contacts (resting, a hull stack, a hull block on a
-// hull ramp at a = g (sin t - mu_d cos t)).
+// hull ramp at a = g (sin t - mu_d cos t)), and a hull's nearest point to
+// a point.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <optional>
+#include <vector>
 
 #include "contact_fixture.h"
+#include "reeve/engine/convex_hull.h"
 
 namespace reeve::test_hull {
 namespace {
@@ -54,6 +58,46 @@ TEST(Hull, OfBoxCornersIsTheBox) {
   const Mat3 I = inertiaTensor(s, 5.0);
   const Mat3 expected = inertiaTensor(Shape::box(half), 5.0);
   EXPECT_LT((I - expected).cwiseAbs().maxCoeff(), 1e-12) << I;
+}
+
+// The nearest point of a hull of a box's corners is the point clamped to
+// the box (on a face, an edge or a corner, whichever region it lies in);
+// a point inside has none. Checked over a grid of points around the box,
+// and on a tetrahedron against the nearest of many points sampled on its
+// faces.
+TEST(Hull, TheNearestPointOfABoxsHullIsThePointClampedToTheBox) {
+  const Vec3 half(0.5, 0.3, 0.2);
+  const Shape box = Shape::convexHull(boxCorners(half));
+  int outside = 0;
+  for (double x = -0.9; x <= 0.9; x += 0.15)
+    for (double y = -0.7; y <= 0.7; y += 0.14)
+      for (double z = -0.6; z <= 0.6; z += 0.12) {
+        const Vec3 p(x, y, z), clamped = p.cwiseMax(-half).cwiseMin(half);
+        const std::optional<Vec3> nearest = nearestHullPoint(*box.hull, p);
+        if ((p - clamped).norm() < 1e-12) {
+          EXPECT_FALSE(nearest) << p.transpose();
+          continue;
+        }
+        ++outside;
+        ASSERT_TRUE(nearest) << p.transpose();
+        EXPECT_NEAR((*nearest - clamped).norm(), 0.0, 1e-12) << p.transpose();
+      }
+  EXPECT_GT(outside, 1000);
+  const std::vector<Vec3> corners{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  const Shape tetrahedron = Shape::convexHull(corners, true);
+  for (const Vec3& p : {Vec3(1, 1, 1), Vec3(-0.5, 0.2, 0.1), Vec3(0.3, -1, -1), Vec3(2, -0.2, 0.1), Vec3(0.2, 0.2, -0.3)}) {
+    double best = INFINITY;  // over points sampled on the faces (barycentric grid)
+    for (int f = 0; f < 4; ++f)
+      for (int i = 0; i <= 200; ++i)
+        for (int j = 0; i + j <= 200; ++j) {
+          const Vec3 &u = corners[f], &v = corners[(f + 1) % 4], &w = corners[(f + 2) % 4];
+          best = std::min(best, (p - (u + (i / 200.0) * (v - u) + (j / 200.0) * (w - u))).norm());
+        }
+    const std::optional<Vec3> nearest = nearestHullPoint(*tetrahedron.hull, p);
+    ASSERT_TRUE(nearest) << p.transpose();
+    EXPECT_LE((p - *nearest).norm(), best + 1e-12) << p.transpose();
+    EXPECT_GE((p - *nearest).norm(), best - 0.01) << p.transpose();  // the grid's spacing
+  }
 }
 
 TEST(Hull, CornerTetrahedronHasItsClosedFormInertia) {

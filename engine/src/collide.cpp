@@ -6,6 +6,8 @@
 
 #include <ccd/ccd.h>
 
+#include "reeve/engine/convex_hull.h"
+
 #include "clip.h"
 #include "shape_features.h"
 
@@ -71,6 +73,45 @@ std::optional<Vec3> curvedSurfacePoint(const Shape& s, const BodyState& body, co
   return body.toWorld(Vec3(s.radius * d.x() / radial, s.radius * d.y() / radial, z));
 }
 
+// A sphere on a box or hull, exactly: the normal runs from the centre's
+// nearest point of the body (on a face, an edge or a corner) to the
+// centre, and the separation is their distance less the radius. MPR's
+// normal runs along the ray between the centres: a ball 2 mm beyond a
+// table's edge rested on it with an upright normal, 0.8 mm above it, and
+// one rolling off the edge was thrown up (236 J in a frame for 1 kg at 0.5
+// m/s). The contact carries the body and the centre as its cores, measured
+// again at each visit: the normal turns as the ball rolls over the edge.
+// False, with nothing added, where the centre lies in the body (MPR's
+// then).
+bool sphereOnSolid(BodyId id_a, const Shape& shape_a, const BodyState& a, BodyId id_b, const Shape& shape_b,
+                   const BodyState& b, const ContactMaterial& material, std::vector<Contact>& out) {
+  const bool solid_a = shape_b.type == Shape::Type::Sphere;
+  const Shape& solid = solid_a ? shape_a : shape_b;
+  const Shape& sphere = solid_a ? shape_b : shape_a;
+  const BodyState& solid_body = solid_a ? a : b;
+  const Vec3& centre = (solid_a ? b : a).x;
+  const Vec3 local = solid_body.toLocal(centre);
+  const std::optional<Vec3> on = solid.type == Shape::Type::Hull
+                                     ? nearestHullPoint(*solid.hull, local)
+                                     : std::optional{Vec3(local.cwiseMax(-solid.half_extents).cwiseMin(solid.half_extents))};
+  if (!on) return false;
+  const Vec3 nearest = solid_body.toWorld(*on);
+  const Vec3 outward = centre - nearest;  // from the solid to the centre
+  const double distance = outward.norm();
+  if (!(distance > 1e-12)) return false;
+  const Vec3 u = outward / distance;
+  if (distance - sphere.radius >= contactMargin(shape_a, shape_b)) return true;  // apart
+  const Vec3 on_sphere = centre - sphere.radius * u;
+  out.push_back(solid_a ? makeContact(id_a, a, nearest, id_b, b, on_sphere, u, material)
+                        : makeContact(id_a, a, on_sphere, id_b, b, nearest, -u, material));
+  Contact& c = out.back();
+  c.core_a = c.core_b = 0.0;
+  (solid_a ? c.radius_b : c.radius_a) = sphere.radius;
+  if (solid.type == Shape::Type::Hull) (solid_a ? c.hull_a : c.hull_b) = solid.hull.get();
+  else (solid_a ? c.box_a : c.box_b) = solid.half_extents;
+  return true;
+}
+
 void ccdCenter(const void* obj, ccd_vec3_t* out) {
   const Vec3& x = static_cast<const CcdObject*>(obj)->body->x;
   ccdVec3Set(out, x.x(), x.y(), x.z());
@@ -122,6 +163,11 @@ void collideBodies(BodyId id_a, const Shape& shape_a, const BodyState& a, BodyId
   constexpr std::size_t kFaceRoom = 4 * kCapVertices;
   for (std::vector<Vec3>* v : {&ref_face.vertices, &inc_face.vertices, &scratch})
     if (v->capacity() < kFaceRoom) v->reserve(kFaceRoom);
+  const auto solid = [](const Shape& s) { return s.type == Shape::Type::Box || s.type == Shape::Type::Hull; };
+  const auto sphere = [](const Shape& s) { return s.type == Shape::Type::Sphere; };
+  if (((sphere(shape_a) && solid(shape_b)) || (solid(shape_a) && sphere(shape_b))) &&
+      sphereOnSolid(id_a, shape_a, a, id_b, shape_b, b, material, out))
+    return;
   // a grows by the margin, so MPR finds pairs up to that far apart; depth
   // below is the true one, negative for a gap.
   const double margin = contactMargin(shape_a, shape_b);

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <vector>
 
 #include "reeve/engine/contact_material.h"
+#include "reeve/engine/convex_hull.h"
 #include "reeve/engine/correction.h"
 
 namespace reeve {
@@ -98,6 +100,8 @@ Vec3 patchCouple(const Mat3& inv_inertia_a, const Mat3& inv_inertia_b, const Vec
 /// |t| <= core_b, closest where s = cos_ab t - cu and t = cos_ab s + fu
 /// (cos_ab = u_a . u_b, cu = u_a . r, fu = u_b . r, r = x_a - x_b),
 /// clamped in turn (Ericson, "Real-Time Collision Detection", 5.1.9).
+/// A box or hull core (Contact::box_a, hull_a) and a sphere's centre: the
+/// centre's nearest point of the box or hull.
 /// Two segments near parallel (|cos_ab| > 0.99: a line contact, a log
 /// on a log) are closest all along their overlap, and that formula's s
 /// jumps between its ends: there P is the middle of the overlap of b's
@@ -106,6 +110,23 @@ Vec3 patchCouple(const Mat3& inv_inertia_a, const Mat3& inv_inertia_b, const Vec
 /// direction).
 bool closestCorePoints(const Contact& c, const Vec3& x_a, const Quat& q_a, const Vec3& x_b, const Quat& q_b,
                        Vec3& P, Vec3& Q) {
+  // A box or hull and a sphere's centre: the centre's nearest point of the
+  // body, on a face, an edge or a corner. None where the centre is in it.
+  const auto nearestOn = [](const Vec3& box, const ConvexHull* hull, const Vec3& x, const Quat& q, const Vec3& p,
+                            Vec3& nearest) {
+    const Vec3 local = q.conjugate() * (p - x);
+    const std::optional<Vec3> on = hull ? nearestHullPoint(*hull, local) : std::optional{Vec3(local.cwiseMax(-box).cwiseMin(box))};
+    if (on) nearest = x + q * *on;
+    return on.has_value();
+  };
+  const bool solid_a = !c.box_a.isZero(0.0) || c.hull_a, solid_b = !c.box_b.isZero(0.0) || c.hull_b;
+  if (solid_a || solid_b) {
+    P = x_a;
+    Q = x_b;
+    if (solid_a && !nearestOn(c.box_a, c.hull_a, x_a, q_a, x_b, P)) return false;
+    if (solid_b && !nearestOn(c.box_b, c.hull_b, x_b, q_b, x_a, Q)) return false;
+    return (Q - P).norm() > 1e-12;
+  }
   const Vec3 u_a = q_a * Vec3::UnitZ(), u_b = q_b * Vec3::UnitZ();
   const double cos_ab = u_a.dot(u_b);
   const Vec3 r = x_a - x_b;

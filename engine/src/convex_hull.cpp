@@ -1,6 +1,7 @@
 #include "reeve/engine/convex_hull.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <map>
@@ -146,6 +147,36 @@ void planeSection(const ConvexHull& hull, double z, std::vector<Vec2>& points) {
       const double t = (z - p.z()) / (q.z() - p.z());
       points.emplace_back(p.x() + t * (q.x() - p.x()), p.y() + t * (q.y() - p.y()));
     }
+}
+
+std::optional<Vec3> nearestHullPoint(const ConvexHull& hull, const Vec3& p) {
+  // The nearest point lies on a face whose plane p is outside of (p - x
+  // lies in the normal cone at x, spanned by the normals of the faces
+  // through x): there, p's projection onto the plane if the face holds
+  // it, else the nearest point of the face's edges.
+  std::optional<Vec3> nearest;
+  double best = 0.0;
+  for (const ConvexHull::Face& face : hull.faces) {
+    const double height = face.normal.dot(p - hull.vertices[face.vertices[0]]);
+    if (height <= 0.0) continue;
+    const Vec3 foot = p - height * face.normal;
+    bool inside = true;
+    Vec3 candidate = foot;
+    double distance2 = height * height;
+    for (std::size_t i = 0; i < face.vertices.size(); ++i) {
+      const Vec3& u = hull.vertices[face.vertices[i]];
+      const Vec3& v = hull.vertices[face.vertices[(i + 1) % face.vertices.size()]];
+      if ((v - u).cross(foot - u).dot(face.normal) >= 0.0) continue;  // inside this edge (counter-clockwise)
+      if (inside) distance2 = INFINITY;
+      inside = false;
+      const Vec3 edge = v - u;
+      const double t = std::clamp(edge.dot(p - u) / edge.squaredNorm(), 0.0, 1.0);
+      const Vec3 q = u + t * edge;
+      if ((p - q).squaredNorm() < distance2) distance2 = (p - q).squaredNorm(), candidate = q;
+    }
+    if (!nearest || distance2 < best) nearest = candidate, best = distance2;
+  }
+  return nearest;
 }
 
 }  // namespace reeve

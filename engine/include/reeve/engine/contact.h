@@ -13,6 +13,8 @@
 
 namespace reeve {
 
+struct ConvexHull;
+
 /// One contact point, made fresh each substep by the narrow phase
 /// (collide.h) after integration, so its lambdas are those of one substep.
 struct Contact {
@@ -27,11 +29,17 @@ struct Contact {
   /// after integration and before the position solve: SCA 2020's v~_n.
   double normal_speed_before = 0.0;
   double lambda_n = 0.0;  // kg m, >= 0: accumulated normal correction this substep
-  /// A curved pair (cylinder sides, spheres), measured again at each visit
-  /// (remeasureCurvedContact): each body's core, a segment along its local
-  /// z of half length `core_*` (m; 0 for a sphere's centre), and the radius
-  /// about it (m). core_a < 0: the points stay body-fixed.
+  /// A curved pair (cylinder sides, spheres; a sphere on a box or hull),
+  /// measured again at each visit (remeasureCurvedContact): each body's
+  /// core, a segment along its local z of half length `core_*` (m; 0 for a
+  /// sphere's centre), and the radius about it (m); or the body itself,
+  /// radius 0: the box of half extents `box_*` (m) where not zero, the
+  /// hull `hull_*` (its shape's) where set. core_a < 0: the points stay
+  /// body-fixed.
   double core_a = -1.0, core_b = -1.0, radius_a = 0.0, radius_b = 0.0;
+  Vec3 box_a = Vec3::Zero(), box_b = Vec3::Zero();
+  const ConvexHull* hull_a = nullptr;
+  const ConvexHull* hull_b = nullptr;
 };
 
 /// The contact points one narrow-phase call found between two bodies,
@@ -115,9 +123,10 @@ inline constexpr int kManifoldSweeps = 8;
 ///   normal:   C = (p_b - p_a) . n  (m); solved only while C < 0, with zero
 ///             compliance; lambda_n accumulates >= 0. Contacts found within
 ///             the margin (collide.h) start with C > 0 and act only if the
-///             solve closes the gap. A curved pair's point (Contact::core_a)
-///             is measured again before each row: C = |Q - P| - r_a - r_b
-///             of its cores' closest points, n = (Q - P) / |Q - P|.
+///             solve closes the gap. A curved pair's point (Contact::core_a; a
+///             sphere on a box or hull too) is measured again before each
+///             row: C = |Q - P| - r_a - r_b of its cores' closest points,
+///             n = (Q - P) / |Q - P|.
 ///   friction: at the anchor (anchorFriction) a tangential row, dp =
 ///             p_b - p_a of the anchor's points, dp_t its part normal to
 ///             n, C = |dp_t|, gradient dp_t / |dp_t|; and a twist row, C =

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "reeve/engine/math.h"
@@ -48,5 +49,10 @@ std::vector<Vec2> planeSection(const ConvexHull& hull, double z);
 /// planeSection() into `points` (cleared first): no heap once it holds a
 /// point per face edge.
 void planeSection(const ConvexHull& hull, double z, std::vector<Vec2>& points);
+
+/// The hull's point nearest to the point `p` (both m, hull-local): on a
+/// face, an edge or a corner. nullopt where p lies in the hull or on its
+/// surface. Linear in the faces' corners.
+std::optional<Vec3> nearestHullPoint(const ConvexHull& hull, const Vec3& p);
 
 }  // namespace reeve

@@ -196,12 +196,13 @@ TEST(Collide, ARodTurnedAboutWhereItFirstTouchedIsPushedOutWhereItTouchesNow) {
 }
 
 // A sphere (0.1 m) on a turned box or on a hull of its corners, over its
-// top face, beyond its top edge and beyond its corner: the normal runs from
+// top face, beyond its top edge and beyond its corner, and on a drum over
+// its cap, beyond its rim and beside its side: the normal runs from
 // the centre's nearest point of the body to the centre, the separation is
 // their distance less the radius, and the contact carries both cores. MPR
 // gave an upright normal beyond the edge (the ball rested there, 0.8 mm
 // above it) and an overlap of 0.66 mm where there was none.
-TEST(Collide, ASphereOnABoxOrHullTakesItsNormalFromItsCentresNearestPoint) {
+TEST(Collide, ASphereOnABoxHullOrCylinderTakesItsNormalFromItsCentresNearestPoint) {
   const Vec3 half(0.5, 0.4, 0.3);
   std::vector<Vec3> corners;
   for (const double x : {-1.0, 1.0})
@@ -234,8 +235,28 @@ TEST(Collide, ASphereOnABoxOrHullTakesItsNormalFromItsCentresNearestPoint) {
         EXPECT_NEAR(separation(k, a, b), c.gap, 1e-12);
         EXPECT_NEAR((table.toWorld(solid_first ? k.local_a : k.local_b) - table.toWorld(c.nearest)).norm(), 0.0, 1e-12);
         EXPECT_GE(k.core_a, 0.0);
-        EXPECT_TRUE(solid_first ? (!k.box_a.isZero() || k.hull_a) : (!k.box_b.isZero() || k.hull_b));
+        EXPECT_EQ((solid_first ? k.solid_a : k.solid_b).kind,
+                  solid.type == Shape::Type::Box ? ContactSolid::Kind::Box : ContactSolid::Kind::Hull);
       }
+  // A drum (r 0.5 m, half length 0.4 m) standing on its cap: over the cap,
+  // beyond its rim, beside its side; the side's normal passes through the
+  // axis as a curved pair's did.
+  const Shape drum = Shape::cylinder(0.5, 0.4);
+  const BodyState stand = at(Vec3(2.0, 1.0, 0.3), turn * Quat(Eigen::AngleAxisd(-pi / 2.0, Vec3::UnitX())));
+  for (const Case& c : {Case{"over the cap", Vec3(0.1, 0.2, 0.4), Vec3::UnitZ(), -1e-3},
+                        Case{"beyond the rim", Vec3(0.3, 0.4, 0.4), Vec3(0.6, 0.8, 2.0), 0.0},
+                        Case{"beside the side", Vec3(0.0, -0.5, -0.1), Vec3(0.0, -1.0, 0.0), 5e-4}}) {
+    SCOPED_TRACE(testing::Message() << "drum, " << c.what);
+    const Vec3 out = stand.q * c.out.normalized();
+    const BodyState sphere = at(stand.toWorld(c.nearest) + (0.1 + c.gap) * out);
+    const std::vector<Contact> contacts = collide(drum, stand, ball, sphere);
+    ASSERT_EQ(contacts.size(), 1u);
+    const Contact& k = contacts.front();
+    EXPECT_NEAR((k.normal - out).norm(), 0.0, 1e-12);
+    EXPECT_NEAR(separation(k, stand, sphere), c.gap, 1e-12);
+    EXPECT_NEAR((stand.toWorld(k.local_a) - stand.toWorld(c.nearest)).norm(), 0.0, 1e-12);
+    EXPECT_EQ(k.solid_a.kind, ContactSolid::Kind::Cylinder);
+  }
 }
 
 }  // namespace

@@ -73,29 +73,35 @@ std::optional<Vec3> curvedSurfacePoint(const Shape& s, const BodyState& body, co
   return body.toWorld(Vec3(s.radius * d.x() / radial, s.radius * d.y() / radial, z));
 }
 
-// A sphere on a box or hull, exactly: the normal runs from the centre's
-// nearest point of the body (on a face, an edge or a corner) to the
-// centre, and the separation is their distance less the radius. MPR's
-// normal runs along the ray between the centres: a ball 2 mm beyond a
-// table's edge rested on it with an upright normal, 0.8 mm above it, and
-// one rolling off the edge was thrown up (236 J in a frame for 1 kg at 0.5
-// m/s). The contact carries the body and the centre as its cores, measured
-// again at each visit: the normal turns as the ball rolls over the edge.
-// False, with nothing added, where the centre lies in the body (MPR's
-// then).
+// A sphere on a box, cylinder or hull, exactly: the normal runs from the
+// centre's nearest point of the body (on a face, an edge or a corner; a
+// cylinder's side, cap or rim) to the centre, and the separation is their
+// distance less the radius. MPR's normal runs along the ray between the
+// centres: a ball 2 mm beyond a table's edge rested on it with an upright
+// normal, 0.8 mm above it, and one rolling off the edge (or a drum's rim)
+// was thrown up (236 J in a frame for 1 kg at 0.5 m/s). The contact
+// carries the body and the centre as its cores, measured again at each
+// visit: the normal turns as the ball rolls over the edge. False, with
+// nothing added, where the centre lies in the body (MPR's then).
 bool sphereOnSolid(BodyId id_a, const Shape& shape_a, const BodyState& a, BodyId id_b, const Shape& shape_b,
                    const BodyState& b, const ContactMaterial& material, std::vector<Contact>& out) {
   const bool solid_a = shape_b.type == Shape::Type::Sphere;
-  const Shape& solid = solid_a ? shape_a : shape_b;
+  const Shape& shape = solid_a ? shape_a : shape_b;
   const Shape& sphere = solid_a ? shape_b : shape_a;
-  const BodyState& solid_body = solid_a ? a : b;
+  const BodyState& body = solid_a ? a : b;
   const Vec3& centre = (solid_a ? b : a).x;
-  const Vec3 local = solid_body.toLocal(centre);
-  const std::optional<Vec3> on = solid.type == Shape::Type::Hull
-                                     ? nearestHullPoint(*solid.hull, local)
-                                     : std::optional{Vec3(local.cwiseMax(-solid.half_extents).cwiseMin(solid.half_extents))};
+  ContactSolid solid;
+  switch (shape.type) {
+    case Shape::Type::Box: solid = {ContactSolid::Kind::Box, shape.half_extents, nullptr}; break;
+    case Shape::Type::Cylinder:
+      solid = {ContactSolid::Kind::Cylinder, Vec3(shape.radius, shape.radius, shape.half_length), nullptr};
+      break;
+    case Shape::Type::Hull: solid = {ContactSolid::Kind::Hull, Vec3::Zero(), shape.hull.get()}; break;
+    case Shape::Type::Sphere: return false;
+  }
+  const std::optional<Vec3> on = nearestSolidPoint(solid, body.toLocal(centre));
   if (!on) return false;
-  const Vec3 nearest = solid_body.toWorld(*on);
+  const Vec3 nearest = body.toWorld(*on);
   const Vec3 outward = centre - nearest;  // from the solid to the centre
   const double distance = outward.norm();
   if (!(distance > 1e-12)) return false;
@@ -107,8 +113,7 @@ bool sphereOnSolid(BodyId id_a, const Shape& shape_a, const BodyState& a, BodyId
   Contact& c = out.back();
   c.core_a = c.core_b = 0.0;
   (solid_a ? c.radius_b : c.radius_a) = sphere.radius;
-  if (solid.type == Shape::Type::Hull) (solid_a ? c.hull_a : c.hull_b) = solid.hull.get();
-  else (solid_a ? c.box_a : c.box_b) = solid.half_extents;
+  (solid_a ? c.solid_a : c.solid_b) = solid;
   return true;
 }
 
@@ -163,10 +168,8 @@ void collideBodies(BodyId id_a, const Shape& shape_a, const BodyState& a, BodyId
   constexpr std::size_t kFaceRoom = 4 * kCapVertices;
   for (std::vector<Vec3>* v : {&ref_face.vertices, &inc_face.vertices, &scratch})
     if (v->capacity() < kFaceRoom) v->reserve(kFaceRoom);
-  const auto solid = [](const Shape& s) { return s.type == Shape::Type::Box || s.type == Shape::Type::Hull; };
   const auto sphere = [](const Shape& s) { return s.type == Shape::Type::Sphere; };
-  if (((sphere(shape_a) && solid(shape_b)) || (solid(shape_a) && sphere(shape_b))) &&
-      sphereOnSolid(id_a, shape_a, a, id_b, shape_b, b, material, out))
+  if (sphere(shape_a) != sphere(shape_b) && sphereOnSolid(id_a, shape_a, a, id_b, shape_b, b, material, out))
     return;
   // a grows by the margin, so MPR finds pairs up to that far apart; depth
   // below is the true one, negative for a gap.

@@ -100,8 +100,8 @@ Vec3 patchCouple(const Mat3& inv_inertia_a, const Mat3& inv_inertia_b, const Vec
 /// |t| <= core_b, closest where s = cos_ab t - cu and t = cos_ab s + fu
 /// (cos_ab = u_a . u_b, cu = u_a . r, fu = u_b . r, r = x_a - x_b),
 /// clamped in turn (Ericson, "Real-Time Collision Detection", 5.1.9).
-/// A box or hull core (Contact::box_a, hull_a) and a sphere's centre: the
-/// centre's nearest point of the box or hull.
+/// A solid core (Contact::solid_a) and a sphere's centre: the centre's
+/// nearest point of the solid.
 /// Two segments near parallel (|cos_ab| > 0.99: a line contact, a log
 /// on a log) are closest all along their overlap, and that formula's s
 /// jumps between its ends: there P is the middle of the overlap of b's
@@ -110,21 +110,19 @@ Vec3 patchCouple(const Mat3& inv_inertia_a, const Mat3& inv_inertia_b, const Vec
 /// direction).
 bool closestCorePoints(const Contact& c, const Vec3& x_a, const Quat& q_a, const Vec3& x_b, const Quat& q_b,
                        Vec3& P, Vec3& Q) {
-  // A box or hull and a sphere's centre: the centre's nearest point of the
-  // body, on a face, an edge or a corner. None where the centre is in it.
-  const auto nearestOn = [](const Vec3& box, const ConvexHull* hull, const Vec3& x, const Quat& q, const Vec3& p,
-                            Vec3& nearest) {
-    const Vec3 local = q.conjugate() * (p - x);
-    const std::optional<Vec3> on = hull ? nearestHullPoint(*hull, local) : std::optional{Vec3(local.cwiseMax(-box).cwiseMin(box))};
+  // A box, cylinder or hull and a sphere's centre: the centre's nearest
+  // point of the body. None where the centre is in it.
+  const auto nearestOn = [](const ContactSolid& solid, const Vec3& x, const Quat& q, const Vec3& p, Vec3& nearest) {
+    const std::optional<Vec3> on = nearestSolidPoint(solid, q.conjugate() * (p - x));
     if (on) nearest = x + q * *on;
     return on.has_value();
   };
-  const bool solid_a = !c.box_a.isZero(0.0) || c.hull_a, solid_b = !c.box_b.isZero(0.0) || c.hull_b;
+  const bool solid_a = c.solid_a.kind != ContactSolid::Kind::None, solid_b = c.solid_b.kind != ContactSolid::Kind::None;
   if (solid_a || solid_b) {
     P = x_a;
     Q = x_b;
-    if (solid_a && !nearestOn(c.box_a, c.hull_a, x_a, q_a, x_b, P)) return false;
-    if (solid_b && !nearestOn(c.box_b, c.hull_b, x_b, q_b, x_a, Q)) return false;
+    if (solid_a && !nearestOn(c.solid_a, x_a, q_a, x_b, P)) return false;
+    if (solid_b && !nearestOn(c.solid_b, x_b, q_b, x_a, Q)) return false;
     return (Q - P).norm() > 1e-12;
   }
   const Vec3 u_a = q_a * Vec3::UnitZ(), u_b = q_b * Vec3::UnitZ();
@@ -381,6 +379,26 @@ bool solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, 
   for (int i = m.first; i < m.first + m.count; ++i)
     if (contacts[i].core_a >= 0.0) remeasureCurvedContact(contacts[i], a, b);
   return changed;
+}
+
+std::optional<Vec3> nearestSolidPoint(const ContactSolid& solid, const Vec3& p) {
+  switch (solid.kind) {
+    case ContactSolid::Kind::Box: {
+      const Vec3 on = p.cwiseMax(-solid.size).cwiseMin(solid.size);
+      if (on == p) return std::nullopt;
+      return on;
+    }
+    case ContactSolid::Kind::Cylinder: {
+      // The radial part clamped to the radius, the axial to the half length.
+      const double radial = std::hypot(p.x(), p.y()), r = solid.size.x(), h = solid.size.z();
+      if (radial <= r && std::abs(p.z()) <= h) return std::nullopt;
+      const double scale = radial > r ? r / radial : 1.0;
+      return Vec3(scale * p.x(), scale * p.y(), std::clamp(p.z(), -h, h));
+    }
+    case ContactSolid::Kind::Hull: return nearestHullPoint(*solid.hull, p);
+    case ContactSolid::Kind::None: break;
+  }
+  return std::nullopt;
 }
 
 void anchorFriction(ContactManifold& m, const Contact* contacts, const ContactManifold* previous,

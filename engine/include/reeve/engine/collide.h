@@ -47,11 +47,12 @@ void collideGround(const GroundPlane& ground, BodyId id, const Shape& shape,
                    std::vector<Contact>& out);
 
 /// Appends to `out` the contacts (normal from a into b) between two shapes
-/// closer than contactMargin. A sphere on a box or hull: one point, the
-/// normal from the sphere centre's nearest point of the body (a face, an
-/// edge or a corner) to the centre, the contact carrying the body and the
-/// centre as its cores (Contact::box_a, hull_a), measured again at each
-/// visit; a centre inside the body is left to MPR, as the rest. Otherwise,
+/// closer than contactMargin. A sphere on a box, cylinder or hull: one
+/// point, the normal from the sphere centre's nearest point of the body (a
+/// face, an edge or a corner; a cylinder's side, cap or rim) to the
+/// centre, the contact carrying the body and the centre as its cores
+/// (Contact::solid_a), measured again at each visit; a centre inside the
+/// body is left to MPR, as the rest. Otherwise,
 /// when a face normal (box and hull faces, cylinder caps)
 /// overlaps no more than MPR's depth (+1e-6 m + 0.1 % of the smaller
 /// bounding radius), that face is the reference and the other body's

@@ -9,11 +9,29 @@
 // away from a. The ground is body a = kWorldBody.
 #pragma once
 
+#include <optional>
+
 #include "reeve/engine/body.h"
 
 namespace reeve {
 
 struct ConvexHull;
+
+/// A body that a contact takes whole as its core (Contact::solid_a): a box
+/// of half extents `size` (m), a cylinder of radius size.x() and half
+/// length size.z() about its local z (m), or the hull `hull` (its shape's,
+/// which outlives the contact).
+struct ContactSolid {
+  enum class Kind : unsigned char { None, Box, Cylinder, Hull };
+  Kind kind = Kind::None;
+  Vec3 size = Vec3::Zero();
+  const ConvexHull* hull = nullptr;
+};
+
+/// The point of `solid` nearest to the point `p` (both m, body-local): on a
+/// face, an edge, a corner, a cylinder's side, cap or rim. nullopt where p
+/// lies in the solid or on its surface, or the kind is None.
+std::optional<Vec3> nearestSolidPoint(const ContactSolid& solid, const Vec3& p);
 
 /// One contact point, made fresh each substep by the narrow phase
 /// (collide.h) after integration, so its lambdas are those of one substep.
@@ -29,17 +47,14 @@ struct Contact {
   /// after integration and before the position solve: SCA 2020's v~_n.
   double normal_speed_before = 0.0;
   double lambda_n = 0.0;  // kg m, >= 0: accumulated normal correction this substep
-  /// A curved pair (cylinder sides, spheres; a sphere on a box or hull),
-  /// measured again at each visit (remeasureCurvedContact): each body's
-  /// core, a segment along its local z of half length `core_*` (m; 0 for a
-  /// sphere's centre), and the radius about it (m); or the body itself,
-  /// radius 0: the box of half extents `box_*` (m) where not zero, the
-  /// hull `hull_*` (its shape's) where set. core_a < 0: the points stay
-  /// body-fixed.
+  /// A curved pair (cylinder sides, spheres; a sphere on a box, hull or
+  /// cylinder), measured again at each visit (remeasureCurvedContact): each
+  /// body's core, a segment along its local z of half length `core_*` (m;
+  /// 0 for a sphere's centre), and the radius about it (m); or, where
+  /// `solid_*` is not None, the body itself, radius 0 (nearestSolidPoint).
+  /// core_a < 0: the points stay body-fixed.
   double core_a = -1.0, core_b = -1.0, radius_a = 0.0, radius_b = 0.0;
-  Vec3 box_a = Vec3::Zero(), box_b = Vec3::Zero();
-  const ConvexHull* hull_a = nullptr;
-  const ConvexHull* hull_b = nullptr;
+  ContactSolid solid_a, solid_b;
 };
 
 /// The contact points one narrow-phase call found between two bodies,

@@ -2,8 +2,9 @@
 // the incident face to the reference face, with exact depths; nearly
 // touching pairs within the contact margin give contacts with a gap; two
 // curved surfaces touch through both axes, and their contact is measured
-// again where they touch when the solve moves them; a sphere on a box or
-// hull touches along the line from its centre's nearest point.
+// again where they touch when the solve moves them; a sphere on a box,
+// hull or cylinder, and a log beyond a box's edge, touch along the line
+// from the centre's or axis' nearest point.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -257,6 +258,36 @@ TEST(Collide, ASphereOnABoxHullOrCylinderTakesItsNormalFromItsCentresNearestPoin
     EXPECT_NEAR((stand.toWorld(k.local_a) - stand.toWorld(c.nearest)).norm(), 0.0, 1e-12);
     EXPECT_EQ(k.solid_a.kind, ContactSolid::Kind::Cylinder);
   }
+}
+
+// A log (r 0.1 m, half length 0.2 m) beyond a turned box's top edge, lying
+// along it and skewed 0.3 rad across it (turned about the normal): the
+// normal runs from the edge to the axis, at the middle of where the axis
+// runs along the edge, or where the skewed axis passes nearest it. Lengthwise over the edge a cap
+// touches, which stays MPR's (no solid core).
+TEST(Collide, ALogBeyondABoxsEdgeTakesItsNormalFromTheEdgeToItsAxis) {
+  const Vec3 half(0.5, 0.4, 0.3);
+  const Shape box = Shape::box(half), log = Shape::cylinder(0.1, 0.2);
+  const Quat turn(Eigen::AngleAxisd(0.4, Vec3(0.2, 1.0, 0.1).normalized()));
+  const BodyState table = at(Vec3(2.0, 1.0, 0.3), turn);
+  const Vec3 out = turn * Vec3(0.2, 1.0, 0.0).normalized();  // between the top's and the side's normals
+  for (const double skew : {0.0, 0.3}) {
+    SCOPED_TRACE(testing::Message() << "skew " << skew);
+    const Vec3 on_edge = table.toWorld(Vec3(0.5, 0.4, 0.05));
+    const Quat along = Quat(Eigen::AngleAxisd(skew, out)) * turn;  // the axis turned about the normal
+    const BodyState body = at(on_edge + 0.1005 * out, along);  // 0.5 mm apart
+    const std::vector<Contact> contacts = collide(box, table, log, body);
+    ASSERT_EQ(contacts.size(), 1u);
+    const Contact& k = contacts.front();
+    EXPECT_NEAR((k.normal - out).norm(), 0.0, 1e-7);
+    EXPECT_NEAR(separation(k, table, body), 5e-4, 1e-9);
+    EXPECT_NEAR((table.toWorld(k.local_a) - on_edge).norm(), 0.0, 1e-7);
+    EXPECT_EQ(k.solid_a.kind, ContactSolid::Kind::Box);
+  }
+  const BodyState lengthwise = at(table.toWorld(Vec3(0.5 + 0.15, 0.4 + 0.0995, 0.0)), turn * rotationBetween(Vec3::UnitZ(), Vec3::UnitX()));
+  const std::vector<Contact> capped = collide(box, table, log, lengthwise);
+  ASSERT_FALSE(capped.empty());
+  EXPECT_EQ(capped.front().solid_a.kind, ContactSolid::Kind::None);
 }
 
 }  // namespace

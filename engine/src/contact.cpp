@@ -118,6 +118,10 @@ bool closestCorePoints(const Contact& c, const Vec3& x_a, const Quat& q_a, const
     return on.has_value();
   };
   const bool solid_a = c.solid_a.kind != ContactSolid::Kind::None, solid_b = c.solid_b.kind != ContactSolid::Kind::None;
+  if (solid_a && c.core_b > 0.0)  // a cylinder's side on it
+    return nearestAxisPoint(c.solid_a, x_a, q_a, x_b, q_b * Vec3::UnitZ(), c.core_b, c.radius_b, Q, P);
+  if (solid_b && c.core_a > 0.0)
+    return nearestAxisPoint(c.solid_b, x_b, q_b, x_a, q_a * Vec3::UnitZ(), c.core_a, c.radius_a, P, Q);
   if (solid_a || solid_b) {
     P = x_a;
     Q = x_b;
@@ -399,6 +403,56 @@ std::optional<Vec3> nearestSolidPoint(const ContactSolid& solid, const Vec3& p) 
     case ContactSolid::Kind::None: break;
   }
   return std::nullopt;
+}
+
+bool nearestAxisPoint(const ContactSolid& solid, const Vec3& x_s, const Quat& q_s, const Vec3& x, const Vec3& u,
+                      double half, double radius, Vec3& on_axis, Vec3& on_solid) {
+  // In the solid's frame, the axis from e0 (t = -half) to e1 (t = half).
+  const Vec3 e0 = q_s.conjugate() * (x - half * u - x_s), e1 = q_s.conjugate() * (x + half * u - x_s);
+  bool inside = false;
+  const auto distance = [&](double s) {
+    const Vec3 p = e0 + s * (e1 - e0);
+    const std::optional<Vec3> on = nearestSolidPoint(solid, p);
+    inside = inside || !on;
+    return on ? (p - *on).norm() : 0.0;
+  };
+  constexpr double kGolden = 0.6180339887498949;
+  // To 1e-9 of the axis: the point's place along a stretch moves neither
+  // the normal nor the depth, and off one only to second order.
+  constexpr int kGoldenSteps = 43, kBisections = 30;
+  double lo = 0.0, hi = 1.0, m1 = hi - kGolden * (hi - lo), m2 = lo + kGolden * (hi - lo);
+  double f1 = distance(m1), f2 = distance(m2);
+  for (int k = 0; k < kGoldenSteps; ++k) {
+    if (f1 <= f2) {
+      hi = m2, m2 = m1, f2 = f1;
+      m1 = hi - kGolden * (hi - lo), f1 = distance(m1);
+    } else {
+      lo = m1, m1 = m2, f1 = f2;
+      m2 = lo + kGolden * (hi - lo), f2 = distance(m2);
+    }
+  }
+  const double best = std::min({f1, f2, distance(0.0), distance(1.0)});
+  if (inside || !(best > 1e-6 * radius)) return false;  // the axis in it: deep, MPR's
+  // The stretch within the tolerance of the least distance: an interval
+  // (a convex function's sublevel set) about the minimum.
+  const double level = best + 1e-3 * radius, at = f1 <= f2 ? m1 : m2;
+  const auto edge = [&](double in, double out) {  // distance(in) <= level < distance(out), or out itself
+    if (distance(out) <= level) return out;
+    for (int k = 0; k < kBisections; ++k) {
+      const double mid = 0.5 * (in + out);
+      (distance(mid) <= level ? in : out) = mid;
+    }
+    return in;
+  };
+  const double first = edge(at, 0.0), last = edge(at, 1.0);
+  if (last <= 1e-9 || first >= 1.0 - 1e-9) return false;  // at an end: its cap
+  const double s = 0.5 * (first + last);
+  const Vec3 p = e0 + s * (e1 - e0);
+  const std::optional<Vec3> on = nearestSolidPoint(solid, p);
+  if (!on || !((p - *on).norm() > 1e-12)) return false;
+  on_axis = x_s + q_s * p;
+  on_solid = x_s + q_s * *on;
+  return true;
 }
 
 void anchorFriction(ContactManifold& m, const Contact* contacts, const ContactManifold* previous,

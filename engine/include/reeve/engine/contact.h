@@ -33,6 +33,17 @@ struct ContactSolid {
 /// lies in the solid or on its surface, or the kind is None.
 std::optional<Vec3> nearestSolidPoint(const ContactSolid& solid, const Vec3& p);
 
+/// Where a cylinder's side (its axis the segment x + t u, |t| <= `half`,
+/// world, m; `radius` m) comes nearest to `solid` at (x_s, q_s): the middle
+/// of the stretch of the axis within 1e-3 `radius` of the least distance
+/// (the whole overlap of an axis parallel to an edge or face), `on_axis`,
+/// and the solid's point nearest it, `on_solid` (world). The distance
+/// along the axis is convex: golden-section search, then bisection for
+/// the stretch's ends. False where the axis meets the solid, or where the
+/// stretch is at an end of the axis (a cap touches there, not the side).
+bool nearestAxisPoint(const ContactSolid& solid, const Vec3& x_s, const Quat& q_s, const Vec3& x, const Vec3& u,
+                      double half, double radius, Vec3& on_axis, Vec3& on_solid);
+
 /// One contact point, made fresh each substep by the narrow phase
 /// (collide.h) after integration, so its lambdas are those of one substep.
 struct Contact {
@@ -51,7 +62,8 @@ struct Contact {
   /// cylinder), measured again at each visit (remeasureCurvedContact): each
   /// body's core, a segment along its local z of half length `core_*` (m;
   /// 0 for a sphere's centre), and the radius about it (m); or, where
-  /// `solid_*` is not None, the body itself, radius 0 (nearestSolidPoint).
+  /// `solid_*` is not None, the body itself, radius 0 (nearestSolidPoint;
+  /// against a cylinder's axis, nearestAxisPoint).
   /// core_a < 0: the points stay body-fixed.
   double core_a = -1.0, core_b = -1.0, radius_a = 0.0, radius_b = 0.0;
   ContactSolid solid_a, solid_b;

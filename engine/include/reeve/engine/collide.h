@@ -54,12 +54,11 @@ void collideGround(const GroundPlane& ground, BodyId id, const Shape& shape,
 /// (Contact::solid_a), measured again at each visit; a centre inside the
 /// body is left to MPR, as the rest. A cylinder's side on a box or hull
 /// where no face holds the other's feature (a log beyond a table's edge):
-/// the same from its axis (nearestAxisPoint). Otherwise,
-/// when a face normal (box and hull faces, cylinder caps)
-/// overlaps no more than MPR's depth (+1e-6 m + 0.1 % of the smaller
-/// bounding radius), that face is the reference and the other body's
-/// feature facing it (face, cylinder side line or sphere point) is clipped
-/// to the prism over it; every clipped point less than the margin above
+/// the same from its axis (nearestAxisPoint). Otherwise, when a face
+/// normal (box and hull faces, cylinder caps) overlaps no more than MPR's
+/// depth (+1e-6 m + 0.1 % of the smaller bounding radius), that face is
+/// the reference and the other body's feature facing it (face, cylinder
+/// side line or sphere point) is clipped to the prism over it; every clipped point less than the margin above
 /// the reference plane is a contact, its point on the reference body
 /// projected onto the plane. Otherwise (edge on edge, curved on curved)
 /// MPR's single point and normal, the point moved onto each curved

@@ -150,10 +150,10 @@ inline constexpr int kManifoldSweeps = 8;
 ///   normal:   C = (p_b - p_a) . n  (m); solved only while C < 0, with zero
 ///             compliance; lambda_n accumulates >= 0. Contacts found within
 ///             the margin (collide.h) start with C > 0 and act only if the
-///             solve closes the gap. A curved pair's point (Contact::core_a; a
-///             sphere on a box or hull too) is measured again before each
-///             row: C = |Q - P| - r_a - r_b of its cores' closest points,
-///             n = (Q - P) / |Q - P|.
+///             solve closes the gap. A curved pair's point (Contact::core_a;
+///             a sphere or a cylinder's side on a solid too) is measured
+///             again before each row: C = |Q - P| - r_a - r_b of its cores'
+///             closest points, n = (Q - P) / |Q - P|.
 ///   friction: at the anchor (anchorFriction) a tangential row, dp =
 ///             p_b - p_a of the anchor's points, dp_t its part normal to
 ///             n, C = |dp_t|, gradient dp_t / |dp_t|; and a twist row, C =

@@ -6,8 +6,6 @@
 
 #include <ccd/ccd.h>
 
-#include "reeve/engine/convex_hull.h"
-
 #include "clip.h"
 #include "shape_features.h"
 
@@ -85,72 +83,41 @@ ContactSolid solidOf(const Shape& shape) {
   return {};
 }
 
-// A sphere on a box, cylinder or hull, exactly: the normal runs from the
-// centre's nearest point of the body (on a face, an edge or a corner; a
-// cylinder's side, cap or rim) to the centre, and the separation is their
+// A sphere, or a cylinder's side, on a box, cylinder or hull, exactly: the
+// contact takes the body whole as one core and the sphere's centre or the
+// cylinder's axis as the other (Contact::solid_a, core_a), and measures it
+// as the solve will at each visit (closestCorePoints): the normal runs
+// from the body's point nearest the centre (on a face, an edge or a
+// corner; a cylinder's side, cap or rim), or nearest the axis' nearest
+// stretch, to that centre or axis point, and the separation is their
 // distance less the radius. MPR's normal runs along the ray between the
 // centres: a ball 2 mm beyond a table's edge rested on it with an upright
-// normal, 0.8 mm above it, and one rolling off the edge (or a drum's rim)
-// was thrown up (236 J in a frame for 1 kg at 0.5 m/s). The contact
-// carries the body and the centre as its cores, measured again at each
-// visit: the normal turns as the ball rolls over the edge. False, with
-// nothing added, where the centre lies in the body (MPR's then).
-bool sphereOnSolid(BodyId id_a, const Shape& shape_a, const BodyState& a, BodyId id_b, const Shape& shape_b,
-                   const BodyState& b, const ContactMaterial& material, std::vector<Contact>& out) {
-  const bool solid_a = shape_b.type == Shape::Type::Sphere;
-  const Shape& shape = solid_a ? shape_a : shape_b;
-  const Shape& sphere = solid_a ? shape_b : shape_a;
-  const BodyState& body = solid_a ? a : b;
-  const Vec3& centre = (solid_a ? b : a).x;
-  const ContactSolid solid = solidOf(shape);
-  const std::optional<Vec3> on = nearestSolidPoint(solid, body.toLocal(centre));
-  if (!on) return false;
-  const Vec3 nearest = body.toWorld(*on);
-  const Vec3 outward = centre - nearest;  // from the solid to the centre
-  const double distance = outward.norm();
-  if (!(distance > 1e-12)) return false;
-  const Vec3 u = outward / distance;
-  if (distance - sphere.radius >= contactMargin(shape_a, shape_b)) return true;  // apart
-  const Vec3 on_sphere = centre - sphere.radius * u;
-  out.push_back(solid_a ? makeContact(id_a, a, nearest, id_b, b, on_sphere, u, material)
-                        : makeContact(id_a, a, on_sphere, id_b, b, nearest, -u, material));
+// normal, 0.8 mm above it, one rolling off the edge (or a drum's rim) was
+// thrown up (236 J in a frame for 1 kg at 0.5 m/s), and a log beyond the
+// edge rested there too. False, with nothing added, where the centre or
+// axis lies in the body or a cap touches (MPR's then).
+bool curvedOnSolid(BodyId id_a, const Shape& shape_a, const BodyState& a, BodyId id_b, const Shape& shape_b,
+                   const BodyState& b, const ContactMaterial& material, double margin, std::vector<Contact>& out) {
+  const auto curved = [](const Shape& s) { return s.type == Shape::Type::Sphere || s.type == Shape::Type::Cylinder; };
+  const bool solid_a = !curved(shape_a) || (shape_a.type == Shape::Type::Cylinder && shape_b.type == Shape::Type::Sphere);
+  const Shape& round = solid_a ? shape_b : shape_a;
+  Contact probe;
+  (solid_a ? probe.solid_a : probe.solid_b) = solidOf(solid_a ? shape_a : shape_b);
+  probe.core_a = solid_a ? 0.0 : round.type == Shape::Type::Sphere ? 0.0 : round.half_length;
+  probe.core_b = solid_a ? (round.type == Shape::Type::Sphere ? 0.0 : round.half_length) : 0.0;
+  (solid_a ? probe.radius_b : probe.radius_a) = round.radius;
+  Vec3 P, Q;
+  if (!closestCorePoints(probe, a.x, a.q, b.x, b.q, P, Q)) return false;
+  const Vec3 n = (Q - P).normalized();
+  if ((Q - P).norm() - probe.radius_a - probe.radius_b >= margin) return true;  // apart
+  out.push_back(makeContact(id_a, a, P + probe.radius_a * n, id_b, b, Q - probe.radius_b * n, n, material));
   Contact& c = out.back();
-  c.core_a = c.core_b = 0.0;
-  (solid_a ? c.radius_b : c.radius_a) = sphere.radius;
-  (solid_a ? c.solid_a : c.solid_b) = solid;
-  return true;
-}
-
-// A cylinder's side on a box's or hull's edge or corner (a log rolling off
-// a table), where no face of either holds the other's feature: the axis
-// point nearest the body (nearestAxisPoint: the middle of the stretch
-// where an axis parallel to the edge runs along it) and the body's point
-// nearest that give the normal and the separation, as a sphere's centre
-// does (sphereOnSolid), measured again at each visit. MPR's normal, along
-// the ray between the centres, held a log 2 mm beyond a table's edge at
-// rest on it. False, with nothing added, where the axis meets the body or
-// a cap touches (MPR's then).
-bool cylinderOnSolid(BodyId id_a, const Shape& shape_a, const BodyState& a, BodyId id_b, const Shape& shape_b,
-                     const BodyState& b, const ContactMaterial& material, double margin, std::vector<Contact>& out) {
-  const bool solid_a = shape_b.type == Shape::Type::Cylinder;
-  const Shape& cylinder = solid_a ? shape_b : shape_a;
-  const BodyState& axis = solid_a ? b : a;
-  const BodyState& body = solid_a ? a : b;
-  const ContactSolid solid = solidOf(solid_a ? shape_a : shape_b);
-  Vec3 on_axis, on_solid;
-  if (!nearestAxisPoint(solid, body.x, body.q, axis.x, axis.q * Vec3::UnitZ(), cylinder.half_length, cylinder.radius,
-                        on_axis, on_solid))
-    return false;
-  const Vec3 u = (on_axis - on_solid).normalized();  // from the solid to the axis
-  if ((on_axis - on_solid).norm() - cylinder.radius >= margin) return true;  // apart
-  const Vec3 on_side = on_axis - cylinder.radius * u;
-  out.push_back(solid_a ? makeContact(id_a, a, on_solid, id_b, b, on_side, u, material)
-                        : makeContact(id_a, a, on_side, id_b, b, on_solid, -u, material));
-  Contact& c = out.back();
-  c.core_a = solid_a ? 0.0 : cylinder.half_length;
-  c.core_b = solid_a ? cylinder.half_length : 0.0;
-  (solid_a ? c.radius_b : c.radius_a) = cylinder.radius;
-  (solid_a ? c.solid_a : c.solid_b) = solid;
+  c.core_a = probe.core_a;
+  c.core_b = probe.core_b;
+  c.radius_a = probe.radius_a;
+  c.radius_b = probe.radius_b;
+  c.solid_a = probe.solid_a;
+  c.solid_b = probe.solid_b;
   return true;
 }
 
@@ -205,12 +172,12 @@ void collideBodies(BodyId id_a, const Shape& shape_a, const BodyState& a, BodyId
   constexpr std::size_t kFaceRoom = 4 * kCapVertices;
   for (std::vector<Vec3>* v : {&ref_face.vertices, &inc_face.vertices, &scratch})
     if (v->capacity() < kFaceRoom) v->reserve(kFaceRoom);
-  const auto sphere = [](const Shape& s) { return s.type == Shape::Type::Sphere; };
-  if (sphere(shape_a) != sphere(shape_b) && sphereOnSolid(id_a, shape_a, a, id_b, shape_b, b, material, out))
-    return;
   // a grows by the margin, so MPR finds pairs up to that far apart; depth
   // below is the true one, negative for a gap.
   const double margin = contactMargin(shape_a, shape_b);
+  const auto sphere = [](const Shape& s) { return s.type == Shape::Type::Sphere; };
+  if (sphere(shape_a) != sphere(shape_b) && curvedOnSolid(id_a, shape_a, a, id_b, shape_b, b, material, margin, out))
+    return;
   const CcdObject obj_a{&shape_a, &a, margin}, obj_b{&shape_b, &b, 0.0};
   ccd_t ccd;
   CCD_INIT(&ccd);
@@ -286,7 +253,7 @@ void collideBodies(BodyId id_a, const Shape& shape_a, const BodyState& a, BodyId
   const auto cylinder = [](const Shape& s) { return s.type == Shape::Type::Cylinder; };
   const auto flat = [](const Shape& s) { return s.type == Shape::Type::Box || s.type == Shape::Type::Hull; };
   if (((cylinder(shape_a) && flat(shape_b)) || (flat(shape_a) && cylinder(shape_b))) &&
-      cylinderOnSolid(id_a, shape_a, a, id_b, shape_b, b, material, margin, out))
+      curvedOnSolid(id_a, shape_a, a, id_b, shape_b, b, material, margin, out))
     return;
   // Edge on edge, or a curved surface on anything but a face: MPR's point,
   // on each curved surface moved to where that surface touches along n.

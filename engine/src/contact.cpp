@@ -94,20 +94,89 @@ Vec3 patchCouple(const Mat3& inv_inertia_a, const Mat3& inv_inertia_b, const Vec
   return m.x() * u + m.y() * v;
 }
 
-/// The closest points P (on a's core) and Q (on b's) of a curved pair's
-/// cores (Contact::core_a) with a at (x_a, q_a) and b at (x_b, q_b): the
-/// segments P(s) = x_a + s u_a and Q(t) = x_b + t u_b, |s| <= core_a,
-/// |t| <= core_b, closest where s = cos_ab t - cu and t = cos_ab s + fu
-/// (cos_ab = u_a . u_b, cu = u_a . r, fu = u_b . r, r = x_a - x_b),
-/// clamped in turn (Ericson, "Real-Time Collision Detection", 5.1.9).
-/// A solid core (Contact::solid_a) and a sphere's centre: the centre's
-/// nearest point of the solid.
-/// Two segments near parallel (|cos_ab| > 0.99: a line contact, a log
-/// on a log) are closest all along their overlap, and that formula's s
-/// jumps between its ends: there P is the middle of the overlap of b's
-/// segment, seen along a's axis, with a's (or a's end nearest it), and Q
-/// the point of b's segment nearest P. False where the cores meet (no
-/// direction).
+// The point of `solid` nearest to the point `p` (both m, body-local): on a
+// face, an edge, a corner, a cylinder's side, cap or rim. nullopt where p
+// lies in the solid or on its surface.
+std::optional<Vec3> nearestSolidPoint(const ContactSolid& solid, const Vec3& p) {
+  switch (solid.kind) {
+    case ContactSolid::Kind::Box: {
+      const Vec3 on = p.cwiseMax(-solid.size).cwiseMin(solid.size);
+      if (on == p) return std::nullopt;
+      return on;
+    }
+    case ContactSolid::Kind::Cylinder: {
+      // The radial part clamped to the radius, the axial to the half length.
+      const double radial = std::hypot(p.x(), p.y()), r = solid.size.x(), h = solid.size.z();
+      if (radial <= r && std::abs(p.z()) <= h) return std::nullopt;
+      const double scale = radial > r ? r / radial : 1.0;
+      return Vec3(scale * p.x(), scale * p.y(), std::clamp(p.z(), -h, h));
+    }
+    case ContactSolid::Kind::Hull: return nearestHullPoint(*solid.hull, p);
+    case ContactSolid::Kind::None: break;
+  }
+  return std::nullopt;
+}
+
+// Where a cylinder's side (its axis the segment x + t u, |t| <= `half`,
+// world, m; `radius` m) comes nearest to `solid` at (x_s, q_s): the middle
+// of the stretch of the axis within 1e-3 `radius` of the least distance
+// (the whole overlap of an axis parallel to an edge or face), `on_axis`,
+// and the solid's point nearest it, `on_solid` (world). The distance along
+// the axis is convex: golden-section search, then bisection for the
+// stretch's ends. False where the axis meets the solid, or where the
+// stretch is at an end of the axis (a cap touches there, not the side).
+bool nearestAxisPoint(const ContactSolid& solid, const Vec3& x_s, const Quat& q_s, const Vec3& x, const Vec3& u,
+                      double half, double radius, Vec3& on_axis, Vec3& on_solid) {
+  // In the solid's frame, the axis from e0 (t = -half) to e1 (t = half).
+  const Vec3 e0 = q_s.conjugate() * (x - half * u - x_s), e1 = q_s.conjugate() * (x + half * u - x_s);
+  bool inside = false;
+  const auto distance = [&](double s) {
+    const Vec3 p = e0 + s * (e1 - e0);
+    const std::optional<Vec3> on = nearestSolidPoint(solid, p);
+    inside = inside || !on;
+    return on ? (p - *on).norm() : 0.0;
+  };
+  constexpr double kGolden = 0.6180339887498949;
+  // To 1e-9 of the axis: the point's place along a stretch moves neither
+  // the normal nor the depth, and off one only to second order.
+  constexpr int kGoldenSteps = 43, kBisections = 30;
+  double lo = 0.0, hi = 1.0, m1 = hi - kGolden * (hi - lo), m2 = lo + kGolden * (hi - lo);
+  double f1 = distance(m1), f2 = distance(m2);
+  for (int k = 0; k < kGoldenSteps; ++k) {
+    if (f1 <= f2) {
+      hi = m2, m2 = m1, f2 = f1;
+      m1 = hi - kGolden * (hi - lo), f1 = distance(m1);
+    } else {
+      lo = m1, m1 = m2, f1 = f2;
+      m2 = lo + kGolden * (hi - lo), f2 = distance(m2);
+    }
+  }
+  const double best = std::min({f1, f2, distance(0.0), distance(1.0)});
+  if (inside || !(best > 1e-6 * radius)) return false;  // the axis in it: deep, MPR's
+  // The stretch within the tolerance of the least distance: an interval
+  // (a convex function's sublevel set) about the minimum.
+  const double level = best + 1e-3 * radius, at = f1 <= f2 ? m1 : m2;
+  const auto edge = [&](double in, double out) {  // distance(in) <= level < distance(out), or out itself
+    if (distance(out) <= level) return out;
+    for (int k = 0; k < kBisections; ++k) {
+      const double mid = 0.5 * (in + out);
+      (distance(mid) <= level ? in : out) = mid;
+    }
+    return in;
+  };
+  const double first = edge(at, 0.0), last = edge(at, 1.0);
+  if (last <= 1e-9 || first >= 1.0 - 1e-9) return false;  // at an end: its cap
+  const double s = 0.5 * (first + last);
+  const Vec3 p = e0 + s * (e1 - e0);
+  const std::optional<Vec3> on = nearestSolidPoint(solid, p);
+  if (!on || !((p - *on).norm() > 1e-12)) return false;
+  on_axis = x_s + q_s * p;
+  on_solid = x_s + q_s * *on;
+  return true;
+}
+
+}  // namespace
+
 bool closestCorePoints(const Contact& c, const Vec3& x_a, const Quat& q_a, const Vec3& x_b, const Quat& q_b,
                        Vec3& P, Vec3& Q) {
   // A box, cylinder or hull and a sphere's centre: the centre's nearest
@@ -148,6 +217,8 @@ bool closestCorePoints(const Contact& c, const Vec3& x_a, const Quat& q_a, const
   Q = x_b + t * u_b;
   return (Q - P).norm() > 1e-12;
 }
+
+namespace {
 
 /// Moves a curved contact's points to where its bodies' cores are now
 /// closest: the normal runs from P to Q and each point lies its radius
@@ -383,76 +454,6 @@ bool solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, 
   for (int i = m.first; i < m.first + m.count; ++i)
     if (contacts[i].core_a >= 0.0) remeasureCurvedContact(contacts[i], a, b);
   return changed;
-}
-
-std::optional<Vec3> nearestSolidPoint(const ContactSolid& solid, const Vec3& p) {
-  switch (solid.kind) {
-    case ContactSolid::Kind::Box: {
-      const Vec3 on = p.cwiseMax(-solid.size).cwiseMin(solid.size);
-      if (on == p) return std::nullopt;
-      return on;
-    }
-    case ContactSolid::Kind::Cylinder: {
-      // The radial part clamped to the radius, the axial to the half length.
-      const double radial = std::hypot(p.x(), p.y()), r = solid.size.x(), h = solid.size.z();
-      if (radial <= r && std::abs(p.z()) <= h) return std::nullopt;
-      const double scale = radial > r ? r / radial : 1.0;
-      return Vec3(scale * p.x(), scale * p.y(), std::clamp(p.z(), -h, h));
-    }
-    case ContactSolid::Kind::Hull: return nearestHullPoint(*solid.hull, p);
-    case ContactSolid::Kind::None: break;
-  }
-  return std::nullopt;
-}
-
-bool nearestAxisPoint(const ContactSolid& solid, const Vec3& x_s, const Quat& q_s, const Vec3& x, const Vec3& u,
-                      double half, double radius, Vec3& on_axis, Vec3& on_solid) {
-  // In the solid's frame, the axis from e0 (t = -half) to e1 (t = half).
-  const Vec3 e0 = q_s.conjugate() * (x - half * u - x_s), e1 = q_s.conjugate() * (x + half * u - x_s);
-  bool inside = false;
-  const auto distance = [&](double s) {
-    const Vec3 p = e0 + s * (e1 - e0);
-    const std::optional<Vec3> on = nearestSolidPoint(solid, p);
-    inside = inside || !on;
-    return on ? (p - *on).norm() : 0.0;
-  };
-  constexpr double kGolden = 0.6180339887498949;
-  // To 1e-9 of the axis: the point's place along a stretch moves neither
-  // the normal nor the depth, and off one only to second order.
-  constexpr int kGoldenSteps = 43, kBisections = 30;
-  double lo = 0.0, hi = 1.0, m1 = hi - kGolden * (hi - lo), m2 = lo + kGolden * (hi - lo);
-  double f1 = distance(m1), f2 = distance(m2);
-  for (int k = 0; k < kGoldenSteps; ++k) {
-    if (f1 <= f2) {
-      hi = m2, m2 = m1, f2 = f1;
-      m1 = hi - kGolden * (hi - lo), f1 = distance(m1);
-    } else {
-      lo = m1, m1 = m2, f1 = f2;
-      m2 = lo + kGolden * (hi - lo), f2 = distance(m2);
-    }
-  }
-  const double best = std::min({f1, f2, distance(0.0), distance(1.0)});
-  if (inside || !(best > 1e-6 * radius)) return false;  // the axis in it: deep, MPR's
-  // The stretch within the tolerance of the least distance: an interval
-  // (a convex function's sublevel set) about the minimum.
-  const double level = best + 1e-3 * radius, at = f1 <= f2 ? m1 : m2;
-  const auto edge = [&](double in, double out) {  // distance(in) <= level < distance(out), or out itself
-    if (distance(out) <= level) return out;
-    for (int k = 0; k < kBisections; ++k) {
-      const double mid = 0.5 * (in + out);
-      (distance(mid) <= level ? in : out) = mid;
-    }
-    return in;
-  };
-  const double first = edge(at, 0.0), last = edge(at, 1.0);
-  if (last <= 1e-9 || first >= 1.0 - 1e-9) return false;  // at an end: its cap
-  const double s = 0.5 * (first + last);
-  const Vec3 p = e0 + s * (e1 - e0);
-  const std::optional<Vec3> on = nearestSolidPoint(solid, p);
-  if (!on || !((p - *on).norm() > 1e-12)) return false;
-  on_axis = x_s + q_s * p;
-  on_solid = x_s + q_s * *on;
-  return true;
 }
 
 void anchorFriction(ContactManifold& m, const Contact* contacts, const ContactManifold* previous,

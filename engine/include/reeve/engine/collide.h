@@ -51,10 +51,10 @@ void collideGround(const GroundPlane& ground, BodyId id, const Shape& shape,
 /// point, the normal from the sphere centre's nearest point of the body (a
 /// face, an edge or a corner; a cylinder's side, cap or rim) to the
 /// centre, the contact carrying the body and the centre as its cores
-/// (Contact::solid_a), measured again at each visit; a centre inside the
-/// body is left to MPR, as the rest. A cylinder's side on a box or hull
-/// where no face holds the other's feature (a log beyond a table's edge):
-/// the same from its axis (nearestAxisPoint). Otherwise, when a face
+/// (Contact::solid_a), measured as at each visit (closestCorePoints); a
+/// centre inside the body is left to MPR, as the rest. A cylinder's side
+/// on a box or hull where no face holds the other's feature (a log beyond
+/// a table's edge): the same from its axis. Otherwise, when a face
 /// normal (box and hull faces, cylinder caps) overlaps no more than MPR's
 /// depth (+1e-6 m + 0.1 % of the smaller bounding radius), that face is
 /// the reference and the other body's feature facing it (face, cylinder

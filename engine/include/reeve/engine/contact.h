@@ -9,8 +9,6 @@
 // away from a. The ground is body a = kWorldBody.
 #pragma once
 
-#include <optional>
-
 #include "reeve/engine/body.h"
 
 namespace reeve {
@@ -27,22 +25,6 @@ struct ContactSolid {
   Vec3 size = Vec3::Zero();
   const ConvexHull* hull = nullptr;
 };
-
-/// The point of `solid` nearest to the point `p` (both m, body-local): on a
-/// face, an edge, a corner, a cylinder's side, cap or rim. nullopt where p
-/// lies in the solid or on its surface, or the kind is None.
-std::optional<Vec3> nearestSolidPoint(const ContactSolid& solid, const Vec3& p);
-
-/// Where a cylinder's side (its axis the segment x + t u, |t| <= `half`,
-/// world, m; `radius` m) comes nearest to `solid` at (x_s, q_s): the middle
-/// of the stretch of the axis within 1e-3 `radius` of the least distance
-/// (the whole overlap of an axis parallel to an edge or face), `on_axis`,
-/// and the solid's point nearest it, `on_solid` (world). The distance
-/// along the axis is convex: golden-section search, then bisection for
-/// the stretch's ends. False where the axis meets the solid, or where the
-/// stretch is at an end of the axis (a cap touches there, not the side).
-bool nearestAxisPoint(const ContactSolid& solid, const Vec3& x_s, const Quat& q_s, const Vec3& x, const Vec3& u,
-                      double half, double radius, Vec3& on_axis, Vec3& on_solid);
 
 /// One contact point, made fresh each substep by the narrow phase
 /// (collide.h) after integration, so its lambdas are those of one substep.
@@ -62,8 +44,7 @@ struct Contact {
   /// cylinder), measured again at each visit (remeasureCurvedContact): each
   /// body's core, a segment along its local z of half length `core_*` (m;
   /// 0 for a sphere's centre), and the radius about it (m); or, where
-  /// `solid_*` is not None, the body itself, radius 0 (nearestSolidPoint;
-  /// against a cylinder's axis, nearestAxisPoint).
+  /// `solid_*` is not None, the body itself, radius 0 (closestCorePoints).
   /// core_a < 0: the points stay body-fixed.
   double core_a = -1.0, core_b = -1.0, radius_a = 0.0, radius_b = 0.0;
   ContactSolid solid_a, solid_b;
@@ -104,6 +85,28 @@ struct ContactManifold {
   /// (solveContactPositions): the next substep may keep it.
   bool stuck = false;
 };
+
+/// The closest points P (on a's core) and Q (on b's) of a curved pair's
+/// cores (Contact::core_a) with a at (x_a, q_a) and b at (x_b, q_b), world
+/// (m); the contact's normal runs from P to Q, its points r_a and r_b
+/// along it off them. Two segments P(s) = x_a + s u_a and Q(t) = x_b + t
+/// u_b, |s| <= core_a, |t| <= core_b: closest where s = cos_ab t - cu and t
+/// = cos_ab s + fu (cos_ab = u_a . u_b, cu = u_a . r, fu = u_b . r, r = x_a
+/// - x_b), clamped in turn (Ericson, "Real-Time Collision Detection",
+/// 5.1.9); near parallel (|cos_ab| > 0.99: a line contact, a log on a log)
+/// they are closest all along their overlap, and that formula's s jumps
+/// between its ends: there P is the middle of the overlap of b's segment,
+/// seen along a's axis, with a's (or a's end nearest it), and Q the point
+/// of b's segment nearest P. A solid core (Contact::solid_a) and a
+/// sphere's centre: the centre's nearest point of the solid (a box
+/// clamped, a cylinder clamped radially and axially, a hull's faces); and
+/// a cylinder's axis: the middle of the axis' stretch within 1e-3 of its
+/// radius of the least distance to the solid (golden-section search of
+/// that convex distance, then bisection for the stretch's ends), and the
+/// solid's point nearest it. False where the cores meet (no direction),
+/// or where the axis' stretch is at its end (a cap touches, not the side).
+bool closestCorePoints(const Contact& c, const Vec3& x_a, const Quat& q_a, const Vec3& x_b, const Quat& q_b,
+                       Vec3& P, Vec3& Q);
 
 /// Sets the patch of manifold `m` from its contacts at the poses a, b: the
 /// patch is the convex hull of the points that overlap (separation < 0;

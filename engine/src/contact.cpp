@@ -63,6 +63,35 @@ double distanceToHull(const std::vector<Vec2>& hull, const Vec2& p) {
   return inside ? 0.0 : distance;
 }
 
+/// A patch's shape from the convex hull of its points along n
+/// (convexHull): its centre, the lever arm of its twisting friction (m)
+/// and whether it has area (describePatch).
+struct PatchShape {
+  Vec2 centre;
+  double radius;
+  bool has_area;
+};
+PatchShape shapeOf(const std::vector<Vec2>& hull) {
+  // Its area, centroid and longest chord.
+  double area = 0.0, spread = 0.0;
+  Vec2 centroid = Vec2::Zero(), mean = Vec2::Zero();
+  for (std::size_t k = 0; k < hull.size(); ++k) {
+    const Vec2& p = hull[k];
+    const Vec2& q = hull[(k + 1) % hull.size()];
+    const double cross = p.x() * q.y() - p.y() * q.x();
+    area += 0.5 * cross;
+    centroid += (p + q) * cross / 6.0;
+    mean += p;
+    for (const Vec2& r : hull) spread = std::max(spread, (r - p).norm());
+  }
+  mean /= static_cast<double>(hull.size());
+  // A patch of no area (a line, a point) is centred on its hull's vertices.
+  const bool flat = std::abs(area) <= 1e-9 * spread * spread;
+  return {flat ? mean : Vec2(centroid / area),
+          std::max(2.0 / 3.0 * std::sqrt(std::abs(area) / std::numbers::pi), 0.25 * spread),
+          !flat && hull.size() >= 3};
+}
+
 /// Static friction's anchor at the patch centre as it was at the substep's
 /// start (x_prev, q_prev).
 void freshAnchor(ContactManifold& m, const BodyState& a, const BodyState& b) {
@@ -233,8 +262,18 @@ void remeasureCurvedContact(Contact& c, const BodyState& a, const BodyState& b) 
   c.local_b = b.toLocal(Q - c.radius_b * c.normal);
 }
 
-/// solveContactPositions but for the curved points' last measure.
-bool visitManifold(ContactManifold& m, Contact* contacts, BodyState& a, BodyState& b) {
+/// What a manifold's FrictionPool fellows (the pool's other manifolds)
+/// lend its visit (kg m): `spare`, their capacity less the size of their
+/// friction (negative where what they hold passes their bound), which its
+/// hold may take on top of its own; `pressure`, their pressure.
+struct PoolShare {
+  const FrictionPool* pool = nullptr;  // none: spare and pressure 0
+  double spare = 0.0, pressure = 0.0;
+};
+
+/// solveContactPositions but for the curved points' last measure and the
+/// pool's sums.
+bool visitManifold(ContactManifold& m, Contact* contacts, BodyState& a, BodyState& b, const PoolShare& share) {
   constexpr double kSettled = 1e-12;  // m: a sweep moving no row more than this ends the visit
   const int end = m.first + m.count;
   bool changed = false;  // a correction applied and kept
@@ -269,7 +308,9 @@ bool visitManifold(ContactManifold& m, Contact* contacts, BodyState& a, BodyStat
     if (largest <= kSettled) break;
   }
   const double lambda_n = pressed();
+  const double mu_s = contacts[m.first].static_friction;
   m.pressure = lambda_n;
+  m.friction_capacity = mu_s * std::max(lambda_n, 0.0);
   if (lambda_n <= 0.0) {  // not pressed: nothing holds the anchor
     m.stuck = false;
     return changed;
@@ -285,8 +326,8 @@ bool visitManifold(ContactManifold& m, Contact* contacts, BodyState& a, BodyStat
   // Static friction of the patch: one tangential row at its anchor and one
   // twist row about n, held together or not at all.
   const Vec3& n = contacts[m.first].normal;
-  const double mu_s = contacts[m.first].static_friction;
-  const double radius = m.patch_radius;
+  const FrictionPool* pool = share.pool;
+  const double radius = pool ? std::max(m.patch_radius, pool->radius) : m.patch_radius;
   // What holding changes on a body, kept to undo it (on the bodies the
   // solve writes to: BodyState::takesImpulses).
   struct Held {
@@ -334,24 +375,34 @@ bool visitManifold(ContactManifold& m, Contact* contacts, BodyState& a, BodyStat
   // free to tilt (DESIGN, "Thirty-fourth session"). A kinematic body takes
   // impulses (its work is booked) but moves as its schedule says, as the
   // ground does: counted as moving, it held a box up to a degree past the
-  // friction angle (DESIGN, "Thirty-fifth session").
-  const bool level_pair = m.patch_has_area && (!a.moves() || !b.moves());
+  // friction angle (DESIGN, "Thirty-fifth session"). A pool's manifold,
+  // a single point's too, is held level: the body's other supports keep
+  // it from tilting about the one that holds (free to, a box held at one
+  // of three balls asked too little and held at 0.5 rad where mu_s = 0.5;
+  // DESIGN, "Forty-seventh session").
+  const bool level_pair = (m.patch_has_area || pool) && (!a.moves() || !b.moves());
   const Vec3 u = n.unitOrthogonal(), v = n.cross(u);
   const Mat3 inv_inertia_a = level_pair ? inverseInertiaWorld(a) : Mat3::Zero();
   const Mat3 inv_inertia_b = level_pair ? inverseInertiaWorld(b) : Mat3::Zero();
   // Whether the patch's pressure `pressure` (kg m) can put up the couple
   // `couple` (on b): its centre, moved by n x couple / pressure from the
   // patch centre, stays on the patch (the hull of its points along n).
+  // A pool's patch is its compound patch, under all its pressure.
   const auto pressureCentreOnPatch = [&](const Vec3& couple, double pressure) {
     thread_local std::vector<Vec2> points, hull;
     points.clear();
-    points.reserve(scratchPoints(m.count));
-    for (int i = m.first; i < end; ++i) {
-      const Vec3 p = b.toWorld(contacts[i].local_b);
-      points.emplace_back(u.dot(p), v.dot(p));
+    const BodyState& moving = a.moves() ? a : b;
+    const auto add = [&](const Vec3& p) { points.emplace_back(u.dot(p), v.dot(p)); };
+    if (pool) {
+      points.reserve(scratchPoints(pool->hull_count));
+      for (int k = 0; k < pool->hull_count; ++k) add(moving.toWorld(pool->hull[k]));
+    } else {
+      points.reserve(scratchPoints(m.count));
+      for (int i = m.first; i < end; ++i) add(b.toWorld(contacts[i].local_b));
     }
     convexHull(points, hull);
-    const Vec3 centre = b.toWorld(m.centre_b) + n.cross(couple) / pressure;
+    const Vec3 centre = pool ? Vec3(moving.toWorld(pool->centre) + n.cross(couple) / (pressure + share.pressure))
+                             : Vec3(b.toWorld(m.centre_b) + n.cross(couple) / pressure);
     return distanceToHull(hull, Vec2(u.dot(centre), v.dot(centre))) == 0.0;
   };
   bool applied = false, tipped = false;
@@ -359,7 +410,7 @@ bool visitManifold(ContactManifold& m, Contact* contacts, BodyState& a, BodyStat
                         double kept_pressure) {
     applied = tipped = false;
     for (const bool pressing : {false, true}) {
-      if (pressing && m.count != 1) break;
+      if (pressing && (m.count != 1 || level)) break;
       for (int sweep = 0; sweep < kManifoldSweeps; ++sweep) {
         // Tangential: C = |dp_t| of the anchor, gradient dp_t / |dp_t| wrt b.
         const Vec3 r_a = a.q * local_a, r_b = b.q * local_b;
@@ -407,9 +458,20 @@ bool visitManifold(ContactManifold& m, Contact* contacts, BodyState& a, BodyStat
                                                                      b.q * local_b, m.friction_impulse, u, v),
                                                          holding);
       tipped |= tips;
-      if (!tips && m.friction_impulse.norm() <= mu_s * holding &&
-          std::abs(m.twist_impulse) <= mu_s * holding * radius)
+      const double bound = mu_s * holding + share.spare;
+      // A pool's friction twists about its centre: held at one support off
+      // it, the twist row takes back the turn the friction there gives
+      // (a box on four balls needs none, but held at one it asked 0.5 m x
+      // the friction).
+      double twist = m.twist_impulse;
+      if (pool) {
+        const Vec3 arm = (b.x + b.q * local_b) - (a.moves() ? a : b).toWorld(pool->centre);
+        twist += n.dot(arm.cross(m.friction_impulse));
+      }
+      if (!tips && m.friction_impulse.norm() <= bound && std::abs(twist) <= bound * radius) {
+        m.friction_capacity = mu_s * holding;
         return true;
+      }
     }
     // Sliding or spinning: undone.
     undo(a, before_a);
@@ -444,8 +506,24 @@ bool visitManifold(ContactManifold& m, Contact* contacts, BodyState& a, BodyStat
 
 }  // namespace
 
-bool solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, BodyState& b) {
-  const bool changed = visitManifold(m, contacts, a, b);
+bool solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, BodyState& b,
+                           FrictionPool* pool) {
+  // The pool's fellows: their capacity less what they hold already (its
+  // size: the spread of a total within the sum of the bounds is free).
+  const Vec3 friction_before = m.friction_impulse;
+  const double capacity_before = m.friction_capacity, pressure_before = m.pressure;
+  PoolShare share;
+  if (pool) {
+    share.pool = pool;
+    share.spare = (pool->capacity - capacity_before) - (pool->friction - friction_before).norm();
+    share.pressure = pool->pressure - pressure_before;
+  }
+  const bool changed = visitManifold(m, contacts, a, b, share);
+  if (pool) {
+    pool->friction += m.friction_impulse - friction_before;
+    pool->capacity += m.friction_capacity - capacity_before;
+    pool->pressure += m.pressure - pressure_before;
+  }
   // A friction hold that was undone measured the curved points at poses
   // it took back: they are measured again where the bodies are, for the
   // velocity pass and the next visit. (Left at the undone poses, a ball's
@@ -506,29 +584,33 @@ void describePatch(ContactManifold& m, const Contact* contacts, const BodyState&
     }
   }
   h /= static_cast<double>(points.size());
-  // Their convex hull, its area, centroid and longest chord.
   thread_local std::vector<Vec2> hull;
   convexHull(points, hull);
-  double area = 0.0, spread = 0.0;
-  Vec2 centroid = Vec2::Zero(), mean = Vec2::Zero();
-  for (std::size_t k = 0; k < hull.size(); ++k) {
-    const Vec2& p = hull[k];
-    const Vec2& q = hull[(k + 1) % hull.size()];
-    const double cross = p.x() * q.y() - p.y() * q.x();
-    area += 0.5 * cross;
-    centroid += (p + q) * cross / 6.0;
-    mean += p;
-    for (const Vec2& r : hull) spread = std::max(spread, (r - p).norm());
-  }
-  mean /= static_cast<double>(hull.size());
-  // A patch of no area (a line, a point) is centred on its hull's vertices.
-  const bool flat = std::abs(area) <= 1e-9 * spread * spread;
-  const Vec2 c = flat ? mean : Vec2(centroid / area);
-  const Vec3 centre = c.x() * u + c.y() * v + h * n;
+  const PatchShape shape = shapeOf(hull);
+  const Vec3 centre = shape.centre.x() * u + shape.centre.y() * v + h * n;
   m.centre_a = a.toLocal(centre);
   m.centre_b = b.toLocal(centre);
-  m.patch_radius = std::max(2.0 / 3.0 * std::sqrt(std::abs(area) / std::numbers::pi), 0.25 * spread);
-  m.patch_has_area = !flat && hull.size() >= 3;
+  m.patch_radius = shape.radius;
+  m.patch_has_area = shape.has_area;
+}
+
+void describePool(FrictionPool& pool, const std::vector<Vec3>& points, const Vec3& n, std::vector<Vec3>& hull) {
+  const Vec3 u = n.unitOrthogonal(), v = n.cross(u);
+  thread_local std::vector<Vec2> flat, flat_hull;
+  flat.clear();
+  flat.reserve(scratchPoints(static_cast<int>(points.size())));
+  double h = 0.0;
+  for (const Vec3& p : points) {
+    flat.emplace_back(u.dot(p), v.dot(p));
+    h += n.dot(p);
+  }
+  h /= static_cast<double>(points.size());
+  convexHull(flat, flat_hull);
+  const PatchShape shape = shapeOf(flat_hull);
+  for (const Vec2& p : flat_hull) hull.push_back(p.x() * u + p.y() * v + h * n);
+  pool.hull_count = static_cast<int>(flat_hull.size());
+  pool.centre = shape.centre.x() * u + shape.centre.y() * v + h * n;
+  pool.radius = shape.radius;
 }
 
 namespace {
@@ -616,7 +698,7 @@ void solveContactVelocities(const ContactManifold& m, const Contact* contacts, B
   // weight on those and rocked between the two, sliding at 1 cm/s where
   // it should have sped up (DESIGN, "Thirty-fifth session").
   const Contact& c = contacts[m.first];
-  const bool slid_after_holding = !m.stuck && m.patch_has_area;
+  const bool slid_after_holding = !m.stuck && (m.patch_has_area || m.pool >= 0);
   const Vec3 r_a = a.q * m.centre_a, r_b = b.q * m.centre_b;
   const Vec3 v = pointVelocity(b, r_b) - pointVelocity(a, r_a);
   const Vec3 n_mid = midNormal(c);

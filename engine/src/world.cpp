@@ -587,11 +587,14 @@ void World::substep(int s, double h, bool start_pairing, bool catching_up) {
     if (islands_dirty_) buildIslands();
   }
   const bool contacts = hasContacts();
-  if (contacts) findContacts();
-  else if (!contacts_.empty()) {  // the ground was removed
+  if (contacts) {
+    findContacts();
+    poolFriction();
+  } else if (!contacts_.empty()) {  // the ground was removed
     contacts_.clear();
     manifolds_.clear();
     previous_manifolds_.clear();
+    friction_pools_.clear();
   }
   sortManifolds();
   // A ResolveCheck reads every island's solve: the solves run first, on
@@ -1068,6 +1071,7 @@ void World::solvePositionsChecked(double h) {
   for (const PrismaticJoint& j : prismatics_) start.prismatic_spring.push_back(j.spring_previous);
   start.contacts = contacts_;
   start.manifolds = manifolds_;
+  start.friction_pools = friction_pools_;
   solvePositions(h, false);
   for (int again = 0; again < kMaxResolves && !interrupted_; ++again) {
     bool changed = false;
@@ -1081,6 +1085,7 @@ void World::solvePositionsChecked(double h) {
     for (size_t i = 0; i < prismatics_.size(); ++i) prismatics_[i].spring_previous = start.prismatic_spring[i];
     contacts_ = start.contacts;
     manifolds_ = start.manifolds;
+    friction_pools_ = start.friction_pools;
     solvePositions(h, true);
   }
 }

@@ -9,6 +9,8 @@
 // away from a. The ground is body a = kWorldBody.
 #pragma once
 
+#include <vector>
+
 #include "reeve/engine/body.h"
 
 namespace reeve {
@@ -84,7 +86,56 @@ struct ContactManifold {
   /// Static friction held the anchor at the manifold's last visit
   /// (solveContactPositions): the next substep may keep it.
   bool stuck = false;
+  /// mu_s x the pressure (kg m) its last visit bounded its friction by:
+  /// what it adds to its FrictionPool's capacity; 0 before a visit.
+  double friction_capacity = 0.0;
+  /// Its FrictionPool (the World's, this substep; World::poolFriction),
+  /// -1 for none.
+  int pool = -1;
 };
+
+/// The static friction that one moving body's manifolds share: those by
+/// which it presses, along normals within kPoolAngle of each other, on
+/// bodies that constraints do not move and that move as one (static
+/// ones; kinematic ones moving alike). A plank across two fixed posts or a
+/// box on three fixed balls is held by all its supports' friction
+/// together, spread among them as their pressures allow: any spread with
+/// each |f_j| <= mu_s,j |f_n,j| holds it (rigid-body statics leave the
+/// spread open), so holding needs only the total within the sum of their
+/// bounds. Each manifold still holds the body's whole slip at its own
+/// anchor, all or nothing, and may then take the friction its fellows'
+/// pressures leave spare (solveContactPositions). Against supports that
+/// move on their own the pressures cannot be pooled: friction one takes
+/// beyond its own bound would push that body past Coulomb's law.
+struct FrictionPool {
+  /// Sums over its manifolds (kg m), brought up to date at each visit:
+  /// their friction_impulse, friction_capacity and pressure.
+  Vec3 friction = Vec3::Zero();
+  double capacity = 0.0, pressure = 0.0;
+  /// Its compound patch (describePool), body-local on the moving body
+  /// (m): the convex hull of all its manifolds' points seen along their
+  /// normal, `hull_count` vertices from `hull` (World's storage, set for
+  /// the substep), its centre and the lever arm of its twisting friction,
+  /// as describePatch's. A hold keeps the body level on it unless the
+  /// pressure's centre would leave it, and holds its twist with that arm:
+  /// a box on three balls yawed about n under a hold at one of them.
+  const Vec3* hull = nullptr;
+  int hull_count = 0;
+  Vec3 centre = Vec3::Zero();
+  double radius = 0.0;
+};
+
+/// Describes `pool`'s compound patch from `points`, all its manifolds'
+/// points on the moving body, body-local (m), seen along `n`
+/// (unit, body-local): appends its hull's vertices to `hull` and sets
+/// hull_count, centre and radius (hull is left for the caller to point
+/// at its vertices, once `hull` no longer grows).
+void describePool(FrictionPool& pool, const std::vector<Vec3>& points, const Vec3& n, std::vector<Vec3>& hull);
+
+/// Largest angle (rad) between two manifolds' normals that one
+/// FrictionPool takes: for parallel normals the pooled bound is exact,
+/// within a few degrees it is off by 1 - cos (0.4 % at this angle).
+inline constexpr double kPoolAngle = 0.09;
 
 /// The closest points P (on a's core) and Q (on b's) of a curved pair's
 /// cores (Contact::core_a) with a at (x_a, q_a) and b at (x_b, q_b), world
@@ -170,7 +221,15 @@ inline constexpr int kManifoldSweeps = 8;
 ///             anchor that passes the bound is tried again
 ///             afresh (this substep's motion alone); held so, the patch is
 ///             not `stuck` either, and the next substep anchors afresh. A
-///             manifold with no pressed point is not stuck.
+///             manifold with no pressed point is not stuck. In a
+///             FrictionPool the bound grows by what the pool's other
+///             manifolds leave spare (their capacity less |their
+///             friction|): a post under half a plank's weight holds all of
+///             its slip while the other post holds none. Its hold keeps
+///             the body level (a single point's too), the twist bounded is
+///             about the pool's centre (the twist row's plus the
+///             friction's moment), the twist arm and the pressure centre's
+///             patch are the pool's compound patch.
 /// The paper holds the motion since the substep's start, a fresh anchor
 /// each substep: what one substep's unconverged solve let slip stayed, and
 /// a stack of three boxes crept 8 mm in 10 s at 10 x 2 (issue 28, item
@@ -183,7 +242,10 @@ inline constexpr int kManifoldSweeps = 8;
 /// Returns whether the visit moved a body (a correction applied and kept):
 /// one that moved none changed nothing, and another at the same poses
 /// would do the same (World::solveDirect stops there).
-bool solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, BodyState& b);
+/// `pool`: m's FrictionPool (nullptr for none), whose sums the visit
+/// brings up to date.
+bool solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, BodyState& b,
+                           FrictionPool* pool = nullptr);
 
 /// The velocity pass of one manifold (SCA 2020, eq. 29-34), after the
 /// velocities were read from the positions. With v = (v_b + w_b x r_b) -

@@ -592,6 +592,14 @@ class World {
   /// Broad phase (sort and sweep of bounding spheres along x over the
   /// colliding bodies) and narrow phase (collide.h) into contacts_.
   void findContacts();
+  /// Groups this substep's manifolds into FrictionPools (contact.h;
+  /// friction_pools.cpp): a body's manifolds on bodies that move as one,
+  /// normals within kPoolAngle; a manifold alone keeps pool -1.
+  void poolFriction();
+  /// Manifold m's FrictionPool, nullptr for none.
+  FrictionPool* frictionPool(const ContactManifold& m) {
+    return m.pool >= 0 ? &friction_pools_[static_cast<std::size_t>(m.pool)] : nullptr;
+  }
   /// Once, at the first step: bodies that overlap as placed by more than
   /// 1e-9 m pushed apart along their contacts' normals as poses alone; the
   /// first substep would push them out at overlap / h
@@ -619,6 +627,7 @@ class World {
     std::vector<double> hinge_spring, prismatic_spring;
     std::vector<Contact> contacts;
     std::vector<ContactManifold> manifolds;
+    std::vector<FrictionPool> friction_pools;
   };
   SolveStart solve_start_;
   std::optional<GroundPlane> ground_;
@@ -628,6 +637,10 @@ class World {
   std::vector<Contact> contacts_;       // this substep's; capacity kept between substeps
   std::vector<ContactManifold> manifolds_;  // ranges of contacts_, one per touching pair
   std::vector<ContactManifold> previous_manifolds_;  // the last substep's, sorted by pair (findContacts)
+  std::vector<FrictionPool> friction_pools_;          // this substep's (poolFriction)
+  std::vector<int> pool_order_;                       // poolFriction's scratch
+  std::vector<Vec3> pool_points_;                     // poolFriction's scratch
+  std::vector<Vec3> pool_hull_;  // the pools' hull vertices (FrictionPool::hull points into it)
   double time_ = 0.0;
   double last_h_ = 0.0;
   // The poses are a position solve's (its solve_turn holds what it turned

@@ -535,9 +535,9 @@ TEST(AcrossTwoOrThreeSupports, UnequalFrictionsOnItsTwoPostsAddUp) {
   // post of 0.3 alone holds to atan 0.3 (0.29 rad) and the plank slid off
   // it. Measured: held at 0.42 rad to 1.7e-6 m over 2 s at one substep a
   // frame, 2e-9 from ten, either post downhill; slid at 0.5. Where it lets
-  // go between them depends on how the normal rows share the weight: 0.574
-  // on the post visited first where statics says 0.5 (rows only push),
-  // which moves the limit about 0.01 rad either way (DESIGN,
+  // go between them depends on how the solve shares the weight, which
+  // rigid statics leaves open from 0.417 to 0.583 on one post (0.574 on
+  // the post visited first here): about 0.01 rad either way (DESIGN,
   // "Forty-seventh session"); not checked.
   for (const std::vector<double>& mu_s : {std::vector{0.1, 0.9}, std::vector{0.9, 0.1}})
     for (const SolverKind solver : {SolverKind::Direct, SolverKind::GaussSeidel})

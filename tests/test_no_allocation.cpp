@@ -177,6 +177,49 @@ TEST(NoAllocation, AStringPassingAHullOffItsPlaneAllocatesNothing) {
   }
 }
 
+// A plank across two fixed posts and a box on three fixed balls, gravity
+// tilted by `theta` rad along -x (mu_s 0.5): their supports' friction is
+// pooled each substep (World::poolFriction).
+Scene bodiesAcrossSupports(double theta, SolverKind solver) {
+  const std::string gravity =
+      "[" + std::to_string(-9.81 * std::sin(theta)) + ", " + std::to_string(-9.81 * std::cos(theta)) + ", 0]";
+  const std::string json = R"({
+  "name": "supports", "duration_s": 2,
+  "solver": {"substeps": 10, "iterations": 2, "method": ")" +
+                           std::string(solver == SolverKind::Direct ? "direct" : "gauss-seidel") +
+                           R"(", "gravity_m_per_s2": )" + gravity + R"(},
+  "bodies": [
+    {"name": "post_a", "shape": {"type": "box", "half_extents_m": [0.1, 0.2, 0.3]}, "static": true,
+     "position_m": [-0.6, 0, 0], "collides": true, "static_friction": 0.5, "dynamic_friction": 0.4},
+    {"name": "post_b", "shape": {"type": "box", "half_extents_m": [0.1, 0.2, 0.3]}, "static": true,
+     "position_m": [0.6, 0, 0], "collides": true, "static_friction": 0.5, "dynamic_friction": 0.4},
+    {"name": "plank", "shape": {"type": "box", "half_extents_m": [1.0, 0.05, 0.25]}, "mass_kg": 1.0,
+     "position_m": [0, 0.25, 0], "collides": true, "static_friction": 0.5, "dynamic_friction": 0.4},
+    {"name": "ball_a", "shape": {"type": "sphere", "radius_m": 0.1}, "static": true,
+     "position_m": [-0.5, 0, 4.7], "collides": true, "static_friction": 0.5, "dynamic_friction": 0.4},
+    {"name": "ball_b", "shape": {"type": "sphere", "radius_m": 0.1}, "static": true,
+     "position_m": [-0.5, 0, 5.3], "collides": true, "static_friction": 0.5, "dynamic_friction": 0.4},
+    {"name": "ball_c", "shape": {"type": "sphere", "radius_m": 0.1}, "static": true,
+     "position_m": [0.5, 0, 5], "collides": true, "static_friction": 0.5, "dynamic_friction": 0.4},
+    {"name": "box", "shape": {"type": "box", "half_extents_m": [1.0, 0.05, 0.5]}, "mass_kg": 1.0,
+     "position_m": [0, 0.15, 5], "collides": true, "static_friction": 0.5, "dynamic_friction": 0.4}]
+})";
+  return parseScene(json, "supports");
+}
+
+TEST(NoAllocation, BodiesHeldOrSlidingAcrossSeveralSupportsAllocateNothing) {
+  // Held (0.4 rad) and sliding (0.5 rad): the pools, their hulls and the
+  // holds' scratch keep their room from the first frame.
+  for (const SolverKind solver : {SolverKind::Direct, SolverKind::GaussSeidel})
+    for (const double theta : {0.4, 0.5}) {
+      Scene scene = bodiesAcrossSupports(theta, solver);
+      int exempt = 0;
+      EXPECT_EQ(allocationsAfterFirstFrame(scene, exempt), 0)
+          << (solver == SolverKind::Direct ? "direct, " : "gauss-seidel, ") << theta << " rad";
+      EXPECT_EQ(exempt, 0);
+    }
+}
+
 TEST(NoAllocation, CopiesSteppedOnAThreadPoolAllocateNothing) {
   // Four copies each of hilbert2 and the Atwood machine on 2 threads (the
   // pool's workers and the caller): after each copy's first frame, a frame

@@ -496,7 +496,8 @@ Across acrossSupports(Supports supports, double theta, double seconds, int subst
 
 TEST(AcrossTwoOrThreeSupports, ItsSupportsFrictionHoldsItTogetherUpToTheFrictionAngle) {
   // atan(mu_s) = 0.4636 rad. Below it the body stays (measured: within
-  // 2.6e-5 m over 2 s at one substep a frame, 2e-9 m from ten); above it
+  // 2.6e-5 m over 2 s at one substep a frame, the box settling on its
+  // balls; the plank 1.6e-6 m there and 2e-9 m from ten); above it
   // it slides (measured: 0.947 to 0.981 of g (sin - mu_d cos)). Before
   // the supports' friction was pooled (contact.h, FrictionPool), each held
   // the body's whole slip on its own pressure, all or nothing: a support

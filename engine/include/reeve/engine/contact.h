@@ -258,7 +258,8 @@ bool solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, 
 ///   dynamic friction, once at the patch centre: impulse
 ///     -v_t/|v_t| min(mu_d lambda_n / h, |v_t| / w_t), lambda_n of the
 ///     whole manifold (mu_d |f_n| h, f_n = lambda_n / h^2); on a patch
-///     with area that held at a visit this substep but not at its last,
+///     with area (or in a FrictionPool) that held at a visit this substep
+///     but not at its last,
 ///     mu_d lambda_n less what those holds pushed against v_t
 ///     (friction_impulse), so that all its friction is mu_d lambda_n;
 ///   twisting friction: with s = n . (w_b - w_a) and w_s = n . (I_a^-1 +

@@ -177,9 +177,10 @@ TEST(NoAllocation, AStringPassingAHullOffItsPlaneAllocatesNothing) {
   }
 }
 
-// A plank across two fixed posts and a box on three fixed balls, gravity
-// tilted by `theta` rad along -x (mu_s 0.5): their supports' friction is
-// pooled each substep (World::poolFriction).
+// A plank across two fixed posts, a box on three fixed balls and a log in
+// a V of two fixed slabs, gravity tilted by `theta` rad along -x (mu_s
+// 0.5): their supports' friction is pooled, or grouped, each substep
+// (World::poolFriction).
 Scene bodiesAcrossSupports(double theta, SolverKind solver) {
   const std::string gravity =
       "[" + std::to_string(-9.81 * std::sin(theta)) + ", " + std::to_string(-9.81 * std::cos(theta)) + ", 0]";
@@ -202,7 +203,16 @@ Scene bodiesAcrossSupports(double theta, SolverKind solver) {
     {"name": "ball_c", "shape": {"type": "sphere", "radius_m": 0.1}, "static": true,
      "position_m": [0.5, 0, 5], "collides": true, "static_friction": 0.5, "dynamic_friction": 0.4},
     {"name": "box", "shape": {"type": "box", "half_extents_m": [1.0, 0.05, 0.5]}, "mass_kg": 1.0,
-     "position_m": [0, 0.15, 5], "collides": true, "static_friction": 0.5, "dynamic_friction": 0.4}]
+     "position_m": [0, 0.15, 5], "collides": true, "static_friction": 0.5, "dynamic_friction": 0.4},
+    {"name": "side_a", "shape": {"type": "box", "half_extents_m": [1.5, 0.05, 0.5]}, "static": true,
+     "position_m": [0, -0.0353553, 9.9646447], "orientation": {"axis": [1, 0, 0], "angle_rad": 0.7853982},
+     "collides": true, "static_friction": 0.5, "dynamic_friction": 0.4},
+    {"name": "side_b", "shape": {"type": "box", "half_extents_m": [1.5, 0.05, 0.5]}, "static": true,
+     "position_m": [0, -0.0353553, 10.0353553], "orientation": {"axis": [1, 0, 0], "angle_rad": -0.7853982},
+     "collides": true, "static_friction": 0.5, "dynamic_friction": 0.4},
+    {"name": "log", "shape": {"type": "cylinder", "radius_m": 0.1, "half_length_m": 0.8}, "mass_kg": 1.0,
+     "position_m": [0, 0.1414214, 10], "orientation": {"axis": [0, 1, 0], "angle_rad": 1.5707963},
+     "collides": true, "static_friction": 0.5, "dynamic_friction": 0.4}]
 })";
   return parseScene(json, "supports");
 }

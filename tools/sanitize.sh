@@ -173,7 +173,8 @@ release_only=(
   'Contacts\.ABallOrALogRollsOver' 'InitialOverlaps\.AStackPlaced'
   # Forty-seventh session: bodies across two or three supports at five
   # budgets, both solvers (8 s in Release; the mass and tall-block tests
-  # take the friction pools through here).
+  # take the friction pools through here, the log in a V-groove the
+  # support groups).
   'AcrossTwoOrThreeSupports\.ItsSupportsFriction' 'AcrossTwoOrThreeSupports\.UnequalFrictions'
 )
 long="^($(IFS='|'; echo "${release_only[*]}"))"

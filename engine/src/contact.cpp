@@ -269,6 +269,25 @@ void remeasureCurvedContact(Contact& c, const BodyState& a, const BodyState& b) 
 struct PoolShare {
   const FrictionPool* pool = nullptr;  // none: spare and pressure 0
   double spare = 0.0, pressure = 0.0;
+  /// The visit's SupportGroup (none: nothing lent), the contacts, and the
+  /// manifold visited.
+  const SupportGroup* group = nullptr;
+  const Contact* contacts = nullptr;
+  const ContactManifold* self = nullptr;
+
+  /// What the group's manifolds outside the visited one's pool leave
+  /// spare along the unit direction t (kg m; SupportGroup).
+  double lent(const Vec3& t) const {
+    double sum = 0.0;
+    for (int k = 0; group && k < group->count; ++k) {
+      const ContactManifold& o = group->manifolds[group->members[k]];
+      if (&o == self || (self->pool >= 0 && o.pool == self->pool)) continue;
+      const double along = contacts[o.first].normal.dot(t);
+      sum += std::max(0.0, o.friction_capacity * std::sqrt(std::max(0.0, 1.0 - along * along)) -
+                               o.friction_impulse.norm());
+    }
+    return sum;
+  }
 };
 
 /// solveContactPositions but for the curved points' last measure and the
@@ -458,7 +477,9 @@ bool visitManifold(ContactManifold& m, Contact* contacts, BodyState& a, BodyStat
                                                                      b.q * local_b, m.friction_impulse, u, v),
                                                          holding);
       tipped |= tips;
-      const double bound = mu_s * holding + share.spare;
+      const double held = m.friction_impulse.norm();
+      const double bound =
+          mu_s * holding + share.spare + (share.group && held > 0.0 ? share.lent(m.friction_impulse / held) : 0.0);
       // A pool's friction twists about its centre: held at one support off
       // it, the twist row takes back the turn the friction there gives
       // (a box on four balls needs none, but held at one it asked 0.5 m x
@@ -468,7 +489,7 @@ bool visitManifold(ContactManifold& m, Contact* contacts, BodyState& a, BodyStat
         const Vec3 arm = (b.x + b.q * local_b) - (a.moves() ? a : b).toWorld(pool->centre);
         twist += n.dot(arm.cross(m.friction_impulse));
       }
-      if (!tips && m.friction_impulse.norm() <= bound && std::abs(twist) <= bound * radius) {
+      if (!tips && held <= bound && std::abs(twist) <= bound * radius) {
         m.friction_capacity = mu_s * holding;
         return true;
       }
@@ -507,12 +528,15 @@ bool visitManifold(ContactManifold& m, Contact* contacts, BodyState& a, BodyStat
 }  // namespace
 
 bool solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, BodyState& b,
-                           FrictionPool* pool) {
+                           FrictionPool* pool, const SupportGroup* group) {
   // The pool's fellows: their capacity less what they hold already (its
   // size: the spread of a total within the sum of the bounds is free).
   const Vec3 friction_before = m.friction_impulse;
   const double capacity_before = m.friction_capacity, pressure_before = m.pressure;
   PoolShare share;
+  share.group = group;
+  share.contacts = contacts;
+  share.self = &m;
   if (pool) {
     share.pool = pool;
     share.spare = (pool->capacity - capacity_before) - (pool->friction - friction_before).norm();

@@ -1,5 +1,6 @@
-// Friction pools (contact.h, FrictionPool): which of a substep's manifolds
-// share their static friction.
+// Friction pools and support groups (contact.h, FrictionPool,
+// SupportGroup): which of a substep's manifolds share their static
+// friction.
 #include <algorithm>
 #include <cmath>
 
@@ -24,12 +25,16 @@ void World::poolFriction() {
   friction_pools_.clear();
   pool_order_.clear();
   pool_hull_.clear();
+  support_groups_.clear();
+  group_members_.clear();
   // Room for every manifold up front: a step allocates nothing once the
   // first frame ran, beyond a new high-water mark.
   if (pool_order_.capacity() < manifolds_.capacity()) pool_order_.reserve(manifolds_.capacity());
   if (friction_pools_.capacity() < manifolds_.capacity() / 2) friction_pools_.reserve(manifolds_.capacity() / 2);
   if (pool_points_.capacity() < contacts_.capacity()) pool_points_.reserve(contacts_.capacity());
   if (pool_hull_.capacity() < contacts_.capacity()) pool_hull_.reserve(contacts_.capacity());
+  if (group_members_.capacity() < manifolds_.capacity()) group_members_.reserve(manifolds_.capacity());
+  if (support_groups_.capacity() < manifolds_.capacity() / 2) support_groups_.reserve(manifolds_.capacity() / 2);
   // A manifold between a moving body and one that constraints do not move.
   const auto moving = [&](int i) { return body(manifolds_[i].a).moves() ? manifolds_[i].a : manifolds_[i].b; };
   const auto support = [&](int i) -> const BodyState& {
@@ -75,9 +80,38 @@ void World::poolFriction() {
       describePool(friction_pools_.emplace_back(), pool_points_, body_moving.q.conjugate() * normal(lead),
                    pool_hull_);
     }
+    // The group of the body's supports that move as one, where they are
+    // not all one pool: each manifold not yet in one gathers the later
+    // ones.
+    for (std::size_t k = first; k < end; ++k) {
+      const int lead = pool_order_[k];
+      if (manifolds_[lead].group >= 0) continue;
+      const int group = static_cast<int>(support_groups_.size()), start = static_cast<int>(group_members_.size());
+      bool mixed = false;  // members of more than one pool, or of none
+      group_members_.push_back(lead);
+      for (std::size_t j = k + 1; j < end; ++j) {
+        const int other = pool_order_[j];
+        if (manifolds_[other].group >= 0 || !moveAsOne(support(lead), support(other))) continue;
+        mixed |= manifolds_[other].pool < 0 || manifolds_[other].pool != manifolds_[lead].pool;
+        group_members_.push_back(other);
+      }
+      if (!mixed) {
+        group_members_.resize(static_cast<std::size_t>(start));
+        continue;
+      }
+      for (int g = start; g < static_cast<int>(group_members_.size()); ++g) manifolds_[group_members_[g]].group = group;
+      support_groups_.push_back({nullptr, nullptr, static_cast<int>(group_members_.size()) - start});
+    }
     first = end;
   }
-  // The hulls' storage grows no more this substep.
+  // The groups' members, and the hulls' storage, grow no more this
+  // substep.
+  const int* member = group_members_.data();
+  for (SupportGroup& g : support_groups_) {
+    g.manifolds = manifolds_.data();
+    g.members = member;
+    member += g.count;
+  }
   const Vec3* hull = pool_hull_.data();
   for (FrictionPool& p : friction_pools_) {
     p.hull = hull;

@@ -595,6 +595,7 @@ void World::substep(int s, double h, bool start_pairing, bool catching_up) {
     manifolds_.clear();
     previous_manifolds_.clear();
     friction_pools_.clear();
+    support_groups_.clear();
   }
   sortManifolds();
   // A ResolveCheck reads every island's solve: the solves run first, on
@@ -1084,7 +1085,7 @@ void World::solvePositionsChecked(double h) {
     for (size_t i = 0; i < hinges_.size(); ++i) hinges_[i].spring_previous = start.hinge_spring[i];
     for (size_t i = 0; i < prismatics_.size(); ++i) prismatics_[i].spring_previous = start.prismatic_spring[i];
     contacts_ = start.contacts;
-    manifolds_ = start.manifolds;
+    manifolds_ = start.manifolds;  // the same size: the same storage, which support_groups_ point at
     friction_pools_ = start.friction_pools;
     solvePositions(h, true);
   }

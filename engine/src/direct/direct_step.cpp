@@ -48,7 +48,7 @@ void World::solveDirect(Island& island, double h, bool again) {
     for (const int i : island.manifolds) {
       ContactManifold& m = manifolds_[i];
       const Contact& c = contacts_[m.first];
-      contacts_moved |= solveContactPositions(m, contacts_.data(), body(c.a), body(c.b), frictionPool(m));
+      contacts_moved |= solveContactPositions(m, contacts_.data(), body(c.a), body(c.b), frictionPool(m), supportGroup(m));
     }
     if (weighted)
       for (const int i : island.paths)

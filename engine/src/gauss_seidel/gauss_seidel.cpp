@@ -86,7 +86,7 @@ void World::sweepGaussSeidel(Island& island, double h) {
     for (const int i : island.manifolds) {
       ContactManifold& m = manifolds_[i];
       const Contact& c = contacts_[m.first];
-      solveContactPositions(m, contacts_.data(), body(c.a), body(c.b), frictionPool(m));
+      solveContactPositions(m, contacts_.data(), body(c.a), body(c.b), frictionPool(m), supportGroup(m));
     }
     if (it + 1 < settings_.iterations && interruptRequested()) {  // the substep ends here
       island.interrupted = true;

@@ -90,8 +90,8 @@ struct ContactManifold {
   /// what it adds to its FrictionPool's capacity; 0 before a visit.
   double friction_capacity = 0.0;
   /// Its FrictionPool (the World's, this substep; World::poolFriction),
-  /// -1 for none.
-  int pool = -1;
+  /// -1 for none; its SupportGroup, -1 for none.
+  int pool = -1, group = -1;
 };
 
 /// The static friction that one moving body's manifolds share: those by
@@ -131,6 +131,22 @@ struct FrictionPool {
 /// hull_count, centre and radius (hull is left for the caller to point
 /// at its vertices, once `hull` no longer grows).
 void describePool(FrictionPool& pool, const std::vector<Vec3>& points, const Vec3& n, std::vector<Vec3>& hull);
+
+/// The manifolds by which one moving body presses on supports that move
+/// as one, whatever their normals, where they are not all one
+/// FrictionPool (a log in a V-groove, a block between two jaws, a ladder
+/// on a floor against a wall): `count` indices from `members` into
+/// `manifolds` (the World's, this substep). A hold may take what those
+/// outside its own pool leave spare along its direction t: each lends
+/// max(0, friction_capacity |P t| - |friction_impulse|), P its tangent
+/// plane's projector (|P t| = sqrt(1 - (n . t)^2)). The sides of a V lend
+/// all of theirs along the groove, a wall nothing to a ladder's foot
+/// sliding away from it.
+struct SupportGroup {
+  const ContactManifold* manifolds = nullptr;
+  const int* members = nullptr;
+  int count = 0;
+};
 
 /// Largest angle (rad) between two manifolds' normals that one
 /// FrictionPool takes: for parallel normals the pooled bound is exact,
@@ -243,9 +259,9 @@ inline constexpr int kManifoldSweeps = 8;
 /// one that moved none changed nothing, and another at the same poses
 /// would do the same (World::solveDirect stops there).
 /// `pool`: m's FrictionPool (nullptr for none), whose sums the visit
-/// brings up to date.
+/// brings up to date; `group`: its SupportGroup (nullptr for none).
 bool solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, BodyState& b,
-                           FrictionPool* pool = nullptr);
+                           FrictionPool* pool = nullptr, const SupportGroup* group = nullptr);
 
 /// The velocity pass of one manifold (SCA 2020, eq. 29-34), after the
 /// velocities were read from the positions. With v = (v_b + w_b x r_b) -

@@ -600,6 +600,10 @@ class World {
   FrictionPool* frictionPool(const ContactManifold& m) {
     return m.pool >= 0 ? &friction_pools_[static_cast<std::size_t>(m.pool)] : nullptr;
   }
+  /// Manifold m's SupportGroup, nullptr for none.
+  const SupportGroup* supportGroup(const ContactManifold& m) const {
+    return m.group >= 0 ? &support_groups_[static_cast<std::size_t>(m.group)] : nullptr;
+  }
   /// Once, at the first step: bodies that overlap as placed by more than
   /// 1e-9 m pushed apart along their contacts' normals as poses alone; the
   /// first substep would push them out at overlap / h
@@ -641,6 +645,8 @@ class World {
   std::vector<int> pool_order_;                       // poolFriction's scratch
   std::vector<Vec3> pool_points_;                     // poolFriction's scratch
   std::vector<Vec3> pool_hull_;  // the pools' hull vertices (FrictionPool::hull points into it)
+  std::vector<SupportGroup> support_groups_;  // this substep's (poolFriction), over manifolds_
+  std::vector<int> group_members_;            // their members (SupportGroup::members points into it)
   double time_ = 0.0;
   double last_h_ = 0.0;
   // The poses are a position solve's (its solve_turn holds what it turned

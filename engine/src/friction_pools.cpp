@@ -81,27 +81,28 @@ void World::poolFriction() {
                    pool_hull_);
     }
     // The group of the body's supports that move as one, where they are
-    // not all one pool: each manifold not yet in one gathers the later
-    // ones.
+    // not all one pool: each manifold not yet gathered gathers the later
+    // ones (once each, so one pass over a body on one kind of support).
+    constexpr int kGathered = -2;  // in no group, but gathered: led by none
     for (std::size_t k = first; k < end; ++k) {
       const int lead = pool_order_[k];
-      if (manifolds_[lead].group >= 0) continue;
+      if (manifolds_[lead].group != -1) continue;
       const int group = static_cast<int>(support_groups_.size()), start = static_cast<int>(group_members_.size());
       bool mixed = false;  // members of more than one pool, or of none
       group_members_.push_back(lead);
       for (std::size_t j = k + 1; j < end; ++j) {
         const int other = pool_order_[j];
-        if (manifolds_[other].group >= 0 || !moveAsOne(support(lead), support(other))) continue;
+        if (manifolds_[other].group != -1 || !moveAsOne(support(lead), support(other))) continue;
         mixed |= manifolds_[other].pool < 0 || manifolds_[other].pool != manifolds_[lead].pool;
         group_members_.push_back(other);
       }
-      if (!mixed) {
-        group_members_.resize(static_cast<std::size_t>(start));
-        continue;
-      }
-      for (int g = start; g < static_cast<int>(group_members_.size()); ++g) manifolds_[group_members_[g]].group = group;
-      support_groups_.push_back({nullptr, nullptr, static_cast<int>(group_members_.size()) - start});
+      for (int g = start; g < static_cast<int>(group_members_.size()); ++g)
+        manifolds_[group_members_[g]].group = mixed ? group : kGathered;
+      if (mixed) support_groups_.push_back({nullptr, nullptr, static_cast<int>(group_members_.size()) - start});
+      else group_members_.resize(static_cast<std::size_t>(start));
     }
+    for (std::size_t k = first; k < end; ++k)
+      if (manifolds_[pool_order_[k]].group == kGathered) manifolds_[pool_order_[k]].group = -1;
     first = end;
   }
   // The groups' members, and the hulls' storage, grow no more this

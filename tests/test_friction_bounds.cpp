@@ -566,6 +566,84 @@ TEST(AcrossTwoOrThreeSupports, ItsFrictionDoesNotDependOnItsMass) {
     }
 }
 
+/// A 2 x 0.1 x 2 m box, `mass` kg, put touching on an n x n bed of fixed
+/// balls of 1 cm across 1.8 m, mu_s 0.5 and mu_d 0.4, gravity tilted by
+/// theta along +x toward -x: how far it slid over `seconds`, and its
+/// acceleration, as acrossSupports.
+Across boxOnABed(int n, double theta, double seconds, int substeps, int iterations, SolverKind solver,
+                 double mass = 1.0) {
+  World world = makeWorld(substeps, iterations, kG * Vec3(-std::sin(theta), -std::cos(theta), 0.0));
+  world.settings().solver = solver;
+  const ContactMaterial m = material(0.5, 0.4, 0.0);
+  constexpr double r = 0.01;  // m
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < n; ++k) {
+      BodyDef ball;
+      ball.shape = Shape::sphere(r);
+      ball.material = m;
+      ball.collides = true;
+      ball.is_static = true;
+      ball.position = Vec3(-0.9 + 1.8 * i / (n - 1), 0.0, -0.9 + 1.8 * k / (n - 1));
+      world.addBody(ball);
+    }
+  BodyDef body;
+  body.mass = mass;
+  body.material = m;
+  body.collides = true;
+  body.shape = Shape::box(Vec3(1.0, 0.05, 1.0));
+  body.position = Vec3(0.0, r + 0.05, 0.0);
+  const BodyId id = world.addBody(body);
+  const int frames = static_cast<int>(std::lround(seconds / kFrame));
+  const int f1 = static_cast<int>(std::lround(0.25 / kFrame));
+  double v1 = 0.0;
+  for (int f = 1; f <= frames; ++f) {
+    world.step(kFrame);
+    if (f == f1) v1 = -world.body(id).v.x();
+  }
+  return {-(world.body(id).x - body.position).x(), (-world.body(id).v.x() - v1) / (frames * kFrame - 0.25)};
+}
+
+TEST(AcrossTwoOrThreeSupports, ABoxPutOnABedOfSmallBallsHoldsUpToTheFrictionAngle) {
+  // Put touching, the box settles onto its balls: on 4 x 4 their
+  // pressures add up to 1.56 x its weight in the first substep (10 x 2),
+  // 1.10 x in the second and 0.88 x in the third; on 8 x 8 to 1.73, 1.23
+  // and 0.77 x. Against that dip every hold let go, and once sliding mu_d
+  // < tan theta kept it going: it slid at 0.455 rad at every budget (8 x
+  // 8: from 0.44). A pool that held its body in the last substep now
+  // keeps each ball's pressure then as a floor under its bound
+  // (FrictionPool::held_before). Measured on 4 x 4: held at 0.455 rad to
+  // 3.8e-5 m over 2 s at 1 x 1 and 1 x 10 (the settling), 3.8e-7 at 10 x
+  // 2, 3.6e-8 at 32 x 32, 1.2e-5 at 100 x 1; both solvers alike.
+  // Above, it slides, but brakes too hard: 0.91 to 0.94 of g (sin - mu_d
+  // cos) at 0.472 and 0.5 rad on 8 x 8, as the plank on two posts brakes
+  // 3.5 % too hard: sliding, the balls' pressures sum to 1.023 x its
+  // weight (the velocity pass takes the rest back), so mu_d x their sum is
+  // too much. Checked: it slides, no faster than mechanics allows and at
+  // least 0.85 of that. Not checked: 3 x 3 balls of 1 cm at one iteration
+  // creep 5e-4 m/s at 0.44 rad, before this too (DESIGN, "Forty-eighth
+  // session").
+  const double expected = kG * (std::sin(0.5) - 0.4 * std::cos(0.5));
+  for (const SolverKind solver : {SolverKind::Direct, SolverKind::GaussSeidel})
+    for (const auto& [substeps, iterations] : {std::pair{1, 1}, {1, 10}, {10, 2}, {32, 32}, {100, 1}}) {
+      SCOPED_TRACE(testing::Message() << (solver == SolverKind::Direct ? "direct " : "gauss-seidel ") << substeps
+                                      << " x " << iterations);
+      EXPECT_LT(std::abs(boxOnABed(4, 0.455, 2.0, substeps, iterations, solver).slid_m), 1e-4);
+      const Across a = boxOnABed(4, 0.5, 0.75, substeps, iterations, solver);
+      EXPECT_LT(a.acceleration_m_per_s2, 1.01 * expected);
+      EXPECT_GT(a.acceleration_m_per_s2, 0.85 * expected);
+    }
+  // 64 balls, and a microgram box and a thousand-tonne one, which do what
+  // the kilogram does.
+  EXPECT_LT(std::abs(boxOnABed(8, 0.455, 2.0, 10, 2, SolverKind::Direct).slid_m), 1e-4);
+  for (const double theta : {0.455, 0.5}) {
+    const Across one = boxOnABed(4, theta, 0.75, 10, 2, SolverKind::Direct);
+    for (const double mass : {1e-6, 1e6}) {
+      const Across a = boxOnABed(4, theta, 0.75, 10, 2, SolverKind::Direct, mass);
+      EXPECT_NEAR(a.slid_m, one.slid_m, 1e-9 + 1e-9 * std::abs(one.slid_m)) << mass << " kg, " << theta << " rad";
+    }
+  }
+}
+
 /// How far (m) a log (radius 0.1 m, 1.6 m long, 1 kg) laid in a V of two
 /// fixed slabs at 45 degrees either side of upright has slid along its
 /// axis after 2 s, gravity tilted by theta along it (toward -x); mu_s 0.5
@@ -603,9 +681,21 @@ TEST(AcrossTwoOrThreeSupports, ALogInAVeeIsHeldByBothSidesWedgedUpToMuSOverCos45
   // that holds (a line contact has no area to be held level on), it asks
   // a little less friction and holds up to 0.62 rad from 1 x 10 up (0.64
   // slides everywhere): 5 % in tan theta over the wedge's (DESIGN,
-  // "Forty-seventh session").
+  // "Forty-seventh session"). The fine budgets are the next test's.
   for (const SolverKind solver : {SolverKind::Direct, SolverKind::GaussSeidel})
-    for (const auto& [substeps, iterations] : {std::pair{1, 1}, {1, 10}, {10, 2}, {32, 32}, {100, 1}}) {
+    for (const auto& [substeps, iterations] : {std::pair{1, 1}, {1, 10}, {10, 2}}) {
+      SCOPED_TRACE(testing::Message() << (solver == SolverKind::Direct ? "direct " : "gauss-seidel ") << substeps
+                                      << " x " << iterations);
+      EXPECT_LT(std::abs(logInAVee(0.58, substeps, iterations, solver)), 1e-4);
+      EXPECT_GT(logInAVee(0.66, substeps, iterations, solver), 1.0);
+    }
+}
+
+// The same at 32 x 32 and 100 x 1 (50 s of the sanitizer phase's tests,
+// which the test above takes through the support groups' code).
+TEST(AcrossTwoOrThreeSupports, ALogInAVeeIsWedgedAlikeAtFineBudgets) {
+  for (const SolverKind solver : {SolverKind::Direct, SolverKind::GaussSeidel})
+    for (const auto& [substeps, iterations] : {std::pair{32, 32}, {100, 1}}) {
       SCOPED_TRACE(testing::Message() << (solver == SolverKind::Direct ? "direct " : "gauss-seidel ") << substeps
                                       << " x " << iterations);
       EXPECT_LT(std::abs(logInAVee(0.58, substeps, iterations, solver)), 1e-4);

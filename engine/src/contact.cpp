@@ -329,7 +329,7 @@ bool visitManifold(ContactManifold& m, Contact* contacts, BodyState& a, BodyStat
   const double lambda_n = pressed();
   const double mu_s = contacts[m.first].static_friction;
   m.pressure = lambda_n;
-  m.friction_capacity = mu_s * std::max(lambda_n, 0.0);
+  m.friction_capacity = lambda_n > 0.0 ? mu_s * std::max(lambda_n, share.pool ? m.kept_pressure : 0.0) : 0.0;
   if (lambda_n <= 0.0) {  // not pressed: nothing holds the anchor
     m.stuck = false;
     return changed;
@@ -511,7 +511,7 @@ bool visitManifold(ContactManifold& m, Contact* contacts, BodyState& a, BodyStat
     }
     return hold(local_a, local_b, anchor_turn, false, 0.0);
   };
-  m.stuck = holdAnchor(m.anchor_a, m.anchor_b, m.anchor_turn, m.anchor_kept ? m.kept_pressure : 0.0);
+  m.stuck = holdAnchor(m.anchor_a, m.anchor_b, m.anchor_turn, m.anchor_kept || pool ? m.kept_pressure : 0.0);
   changed |= applied;
   if (m.stuck || !m.anchor_kept) return changed;
   // Pulling back what earlier substeps let slip passes the bound (in an

@@ -105,6 +105,16 @@ void World::poolFriction() {
       if (manifolds_[pool_order_[k]].group == kGathered) manifolds_[pool_order_[k]].group = -1;
     first = end;
   }
+  // A pool that held its body in the last substep (a member stuck: the
+  // pool's holds are all or nothing for the body's whole slip, so one
+  // member's hold held it) keeps each member's pressure then as a floor
+  // under its bound: a curved point's anchor is never kept, and with it
+  // its pressure, where a patch's is (anchorFriction).
+  for (const int i : pool_order_)
+    if (manifolds_[i].pool >= 0 && manifolds_[i].last_stuck) friction_pools_[manifolds_[i].pool].held_before = true;
+  for (const int i : pool_order_)
+    if (ContactManifold& m = manifolds_[i]; m.pool >= 0 && friction_pools_[m.pool].held_before)
+      m.kept_pressure = m.last_pressure;
   // The groups' members, and the hulls' storage, grow no more this
   // substep.
   const int* member = group_members_.data();

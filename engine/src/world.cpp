@@ -203,6 +203,10 @@ void World::findContacts() {
     const Shape& shape_b = defs_[c.b].shape;
     anchorFriction(m, contacts_.data(), kept ? &*found : nullptr, a, b,
                    contactMargin(c.a == kWorldBody ? shape_b : defs_[c.a].shape, shape_b));
+    if (kept) {
+      m.last_pressure = found->pressure;
+      m.last_stuck = found->stuck;
+    }
     manifolds_.push_back(m);
   };
   if (ground_) {

@@ -79,10 +79,16 @@ struct ContactManifold {
   Quat anchor_turn = Quat::Identity();
   bool anchor_kept = false;  // from an earlier substep, not this one's start
   /// lambda_n of the whole manifold (kg m) at its last visit, before
-  /// static friction; `kept_pressure`: with a kept anchor, the `pressure`
+  /// static friction; `kept_pressure`: with a kept anchor, or in a
+  /// FrictionPool that held its body in the last substep, the `pressure`
   /// of the earlier substep's manifold it came from (a floor under the
-  /// bound of a level hold, solveContactPositions).
+  /// bound of a level hold and under a pooled one's capacity,
+  /// solveContactPositions).
   double pressure = 0.0, kept_pressure = 0.0;
+  /// The same pair's manifold in the last substep (findContacts): its
+  /// `pressure` and `stuck`, 0 and false where there was none.
+  double last_pressure = 0.0;
+  bool last_stuck = false;
   /// Static friction held the anchor at the manifold's last visit
   /// (solveContactPositions): the next substep may keep it.
   bool stuck = false;
@@ -112,6 +118,12 @@ struct FrictionPool {
   /// their friction_impulse, friction_capacity and pressure.
   Vec3 friction = Vec3::Zero();
   double capacity = 0.0, pressure = 0.0;
+  /// One of its manifolds stuck in the last substep (last_stuck): the pool
+  /// held its body there, and each manifold's bound keeps the pressure it
+  /// had then as a floor (kept_pressure; World::poolFriction). Without,
+  /// the settling of a box placed on a bed of 64 balls pressed them 0.77 x
+  /// its weight in its third substep, and every hold let go.
+  bool held_before = false;
   /// Its compound patch (describePool), body-local on the moving body
   /// (m): the convex hull of all its manifolds' points seen along their
   /// normal, `hull_count` vertices from `hull` (World's storage, set for

@@ -290,6 +290,29 @@ struct PoolShare {
   }
 };
 
+// Whether the pressure `pressure` (kg m; a pool's: all of it) can put up
+// the couple `couple` (kg m^2, on b) between a and b: its centre, moved by
+// n x couple / pressure from the patch's centre, stays on the patch (the
+// hull of its points along n), or on `pool`'s compound patch.
+bool centreOnPatch(const ContactManifold& m, const Contact* contacts, const BodyState& a, const BodyState& b,
+                   const FrictionPool* pool, const Vec3& n, const Vec3& couple, double pressure) {
+  const Vec3 u = n.unitOrthogonal(), v = n.cross(u);
+  thread_local std::vector<Vec2> points, hull;
+  points.clear();
+  const BodyState& moving = a.moves() ? a : b;
+  const auto add = [&](const Vec3& p) { points.emplace_back(u.dot(p), v.dot(p)); };
+  if (pool) {
+    points.reserve(scratchPoints(pool->hull_count));
+    for (int k = 0; k < pool->hull_count; ++k) add(moving.toWorld(pool->hull[k]));
+  } else {
+    points.reserve(scratchPoints(m.count));
+    for (int i = m.first; i < m.first + m.count; ++i) add(b.toWorld(contacts[i].local_b));
+  }
+  convexHull(points, hull);
+  const Vec3 centre = (pool ? moving.toWorld(pool->centre) : b.toWorld(m.centre_b)) + n.cross(couple) / pressure;
+  return distanceToHull(hull, Vec2(u.dot(centre), v.dot(centre))) == 0.0;
+}
+
 /// solveContactPositions but for the curved points' last measure and the
 /// pool's sums.
 bool visitManifold(ContactManifold& m, Contact* contacts, BodyState& a, BodyState& b, const PoolShare& share) {
@@ -408,21 +431,7 @@ bool visitManifold(ContactManifold& m, Contact* contacts, BodyState& a, BodyStat
   // patch centre, stays on the patch (the hull of its points along n).
   // A pool's patch is its compound patch, under all its pressure.
   const auto pressureCentreOnPatch = [&](const Vec3& couple, double pressure) {
-    thread_local std::vector<Vec2> points, hull;
-    points.clear();
-    const BodyState& moving = a.moves() ? a : b;
-    const auto add = [&](const Vec3& p) { points.emplace_back(u.dot(p), v.dot(p)); };
-    if (pool) {
-      points.reserve(scratchPoints(pool->hull_count));
-      for (int k = 0; k < pool->hull_count; ++k) add(moving.toWorld(pool->hull[k]));
-    } else {
-      points.reserve(scratchPoints(m.count));
-      for (int i = m.first; i < end; ++i) add(b.toWorld(contacts[i].local_b));
-    }
-    convexHull(points, hull);
-    const Vec3 centre = pool ? Vec3(moving.toWorld(pool->centre) + n.cross(couple) / (pressure + share.pressure))
-                             : Vec3(b.toWorld(m.centre_b) + n.cross(couple) / pressure);
-    return distanceToHull(hull, Vec2(u.dot(centre), v.dot(centre))) == 0.0;
+    return centreOnPatch(m, contacts, a, b, pool, n, couple, pool ? pressure + share.pressure : pressure);
   };
   bool applied = false, tipped = false;
   const auto hold = [&](const Vec3& local_a, const Vec3& local_b, const Quat& anchor_turn, bool level,
@@ -659,10 +668,48 @@ double inverseMassAlong(const BodyState& a, const BodyState& b, const Vec3& r_a,
   return generalizedInverseMass(a, r_a, dir) + generalizedInverseMass(b, r_b, dir);
 }
 
+// Dynamic friction of a pooled manifold (bound: mu_d lambda_n / h, kg
+// m/s) along -t at arms r_a, r_b, level: the couple of the friction at
+// the body's base goes into its supports' pressures (patchCouple, the
+// position pass's level hold), not into a pitch. Applied free, the pitch
+// of a plank sliding on two posts pressed the leading post in, the
+// position pass lifted it out, and the posts' pressures summed to 1.2 %
+// over its weight: mu_d x that braked it 3.2 % too hard (6.5 % on a bed of
+// 64 balls; DESIGN, "Forty-eighth session"). Returns false, applying
+// nothing, where the couple would take the pressure's centre off the
+// pool's compound patch: the body tips, and its friction is applied free.
+bool levelDynamicFriction(const ContactManifold& m, const Contact* contacts, BodyState& a, BodyState& b,
+                          const FrictionPool& pool, const Vec3& r_a, const Vec3& r_b, const Vec3& n, const Vec3& t,
+                          double bound, double speed, double h) {
+  const Vec3 u = n.unitOrthogonal(), v = n.cross(u);
+  const Mat3 inv_inertia_a = inverseInertiaWorld(a), inv_inertia_b = inverseInertiaWorld(b);
+  const Vec3 couple = patchCouple(inv_inertia_a, inv_inertia_b, r_a, r_b, t, u, v);  // per unit impulse along t
+  const Vec3 turn_b = inv_inertia_b * (r_b.cross(t) + couple);
+  const Vec3 turn_a = -(inv_inertia_a * (r_a.cross(t) + couple));
+  const double w = a.inv_mass + b.inv_mass + t.dot(turn_b.cross(r_b) - turn_a.cross(r_a));
+  if (!(w > 0.0)) return false;
+  // The impulse and its couple do work -impulse (speed + couple . (w_b -
+  // w_a)) + impulse^2 w / 2: taken no larger than that rate over w, never
+  // positive (a body pitching against its couple is not pushed on).
+  const double rate = std::min(speed, speed + couple.dot(b.omega - a.omega));
+  const double impulse = std::min(bound, std::max(0.0, rate) / w);  // kg m/s, along -t
+  // The couple as a position-level impulse (kg m^2) against the pool's
+  // pressure (kg m): the same ratio, metres.
+  if (pool.pressure <= 0.0 || !centreOnPatch(m, contacts, a, b, &pool, n, -impulse * h * couple, pool.pressure))
+    return false;
+  applyVelocityImpulse(a, b, r_a, r_b, -impulse * t, h);
+  const Vec3 L = -impulse * couple;  // angular impulse on b, kg m^2/s
+  b.omega += b.applyInvInertia(L);
+  a.omega -= a.applyInvInertia(L);
+  b.angular_impulse += h * L;
+  a.angular_impulse -= h * L;
+  return true;
+}
+
 }  // namespace
 
 void solveContactVelocities(const ContactManifold& m, const Contact* contacts, BodyState& a,
-                            BodyState& b, double h, double rest_speed) {
+                            BodyState& b, double h, double rest_speed, const FrictionPool* pool) {
   const int end = m.first + m.count;
   double lambda_n = 0.0;
   for (int i = m.first; i < end; ++i) lambda_n += contacts[i].lambda_n;
@@ -732,7 +779,8 @@ void solveContactVelocities(const ContactManifold& m, const Contact* contacts, B
     const Vec3 t = vt / vt_len;
     const double held = slid_after_holding ? std::max(0.0, -m.friction_impulse.dot(t)) : 0.0;
     const double bound = std::max(0.0, c.dynamic_friction * lambda_n - held) / h;
-    if (const double w = inverseMassAlong(a, b, r_a, r_b, t); w > 0.0)
+    const bool level = pool && levelDynamicFriction(m, contacts, a, b, *pool, r_a, r_b, n_mid, t, bound, vt_len, h);
+    if (const double w = inverseMassAlong(a, b, r_a, r_b, t); !level && w > 0.0)
       applyVelocityImpulse(a, b, r_a, r_b, -t * std::min(bound, vt_len / w), h);
   }
   // Dynamic twist friction: the spin about n, braked by a torque of at

@@ -862,7 +862,7 @@ void World::contactVelocityPass(const Island& island, double h, WorldEnergy& flo
     const Contact& c = contacts_[m.first];
     const double before = kineticEnergy(c.a) + kineticEnergy(c.b);
     const double driven = kinematicWork(c.a, h) + kinematicWork(c.b, h);
-    solveContactVelocities(m, contacts_.data(), body(c.a), body(c.b), h, rest_speed);
+    solveContactVelocities(m, contacts_.data(), body(c.a), body(c.b), h, rest_speed, frictionPool(m));
     // What a kinematic body put in (a conveyor dragging a box) is work,
     // not a loss. Only a loss is credited: a pass that added energy shows
     // in the balance.

@@ -289,7 +289,11 @@ bool solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, 
 ///     with area (or in a FrictionPool) that held at a visit this substep
 ///     but not at its last,
 ///     mu_d lambda_n less what those holds pushed against v_t
-///     (friction_impulse), so that all its friction is mu_d lambda_n;
+///     (friction_impulse), so that all its friction is mu_d lambda_n; in
+///     a FrictionPool (`pool`) level, as its holds are: the couple of the
+///     friction at the body's base goes into its supports' pressures, not
+///     into a pitch (with w_t of the level motion), unless it would take
+///     the pressure's centre off the pool's compound patch;
 ///   twisting friction: with s = n . (w_b - w_a) and w_s = n . (I_a^-1 +
 ///     I_b^-1) n, angular impulse -sign(s) n min(mu_d lambda_n r / h,
 ///     |s| / w_s), r = patch_radius.
@@ -306,7 +310,7 @@ bool solveContactPositions(ContactManifold& m, Contact* contacts, BodyState& a, 
 /// that n (against the end's n it read as an approach, and a ball clung
 /// to a log to half the centripetal speed).
 void solveContactVelocities(const ContactManifold& m, const Contact* contacts, BodyState& a,
-                            BodyState& b, double h, double rest_speed);
+                            BodyState& b, double h, double rest_speed, const FrictionPool* pool);
 
 /// Normal force (N) of a contact over its substep h (s): lambda_n / h^2, on b along n.
 inline double contactNormalForce(const Contact& c, double h) { return c.lambda_n / (h * h); }

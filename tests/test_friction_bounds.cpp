@@ -648,6 +648,56 @@ TEST(AcrossTwoOrThreeSupports, ABoxPutOnABedOfSmallBallsHoldsUpToTheFrictionAngl
   }
 }
 
+/// A log (radius 0.1 m, 1.6 m long, 1 kg) laid along a fixed 20 m slab,
+/// gravity tilted by theta along its axis (toward -x); mu_s 0.5, mu_d 0.4:
+/// how far it slid over `seconds`, and its acceleration, as acrossSupports.
+Across logAlongARamp(double theta, double seconds, int substeps, int iterations, SolverKind solver) {
+  World world = makeWorld(substeps, iterations, kG * Vec3(-std::sin(theta), -std::cos(theta), 0.0));
+  world.settings().solver = solver;
+  const ContactMaterial m = material(0.5, 0.4, 0.0);
+  BodyDef slab;
+  slab.shape = Shape::box(Vec3(10.0, 0.05, 0.5));
+  slab.is_static = true;
+  slab.material = m;
+  slab.collides = true;
+  slab.position = Vec3(-8.0, -0.05, 0.0);
+  world.addBody(slab);
+  const Vec3 start(0.0, 0.1, 0.0);
+  const BodyId log = add(world, Shape::cylinder(0.1, 0.8), 1.0, start, m, true,
+                         Quat(Eigen::AngleAxisd(std::numbers::pi / 2, Vec3::UnitY())));
+  const int frames = static_cast<int>(std::lround(seconds / kFrame));
+  const int f1 = static_cast<int>(std::lround(0.25 / kFrame));
+  double v1 = 0.0;
+  for (int f = 1; f <= frames; ++f) {
+    world.step(kFrame);
+    if (f == f1) v1 = -world.body(log).v.x();
+  }
+  return {-(world.body(log).x - start).x(), (-world.body(log).v.x() - v1) / (frames * kFrame - 0.25)};
+}
+
+TEST(BoxOnARamp, ALogLaidAlongItHoldsUpToTheFrictionAngleAndSlidesAtTheClosedFormRateAbove) {
+  // A line contact: no area to be held level on. Put touching, its
+  // pressure was 1.042 x its weight in the first substep (10 x 2) and
+  // 0.948 x in the second, where a hold at 0.455 rad needs 0.978 x: it let
+  // go, and mu_d < tan theta kept it going. It slid from 0.455 rad at 1 x
+  // 10 and finer (held at 0.452). A kept anchor's pressure was a floor
+  // under level holds only; it is now under any hold on a body that
+  // constraints do not move (solveContactPositions). Measured: held at
+  // 0.455 rad to 5.6e-5 m over 2 s at 1 x 1, 1.4e-5 at 1 x 10, 1.5e-7 at 10
+  // x 2, 1.3e-8 at 32 x 32; sliding at 1.0000 of g (sin - mu_d cos).
+  for (const SolverKind solver : {SolverKind::Direct, SolverKind::GaussSeidel})
+    for (const auto& [substeps, iterations] : {std::pair{1, 1}, {1, 10}, {10, 2}, {32, 32}, {100, 1}}) {
+      SCOPED_TRACE(testing::Message() << (solver == SolverKind::Direct ? "direct " : "gauss-seidel ") << substeps
+                                      << " x " << iterations);
+      EXPECT_LT(std::abs(logAlongARamp(0.455, 2.0, substeps, iterations, solver).slid_m), 1e-4);
+      for (const double theta : {0.472, 0.5}) {
+        const double expected = kG * (std::sin(theta) - 0.4 * std::cos(theta));
+        const Across a = logAlongARamp(theta, 0.75, substeps, iterations, solver);
+        EXPECT_NEAR(a.acceleration_m_per_s2, expected, 0.003 * expected) << theta << " rad";
+      }
+    }
+}
+
 /// How far (m) a log (radius 0.1 m, 1.6 m long, 1 kg) laid in a V of two
 /// fixed slabs at 45 degrees either side of upright has slid along its
 /// axis after 2 s, gravity tilted by theta along it (toward -x); mu_s 0.5

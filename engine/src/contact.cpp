@@ -480,8 +480,11 @@ bool visitManifold(ContactManifold& m, Contact* contacts, BodyState& a, BodyStat
       // A kept anchor's pressure is at least what it was at the end of
       // the substep it comes from: an unconverged solve carries a stack's
       // weight to its bottom late (its pressure dipped 10 % a few substeps
-      // after it was put, at 10 x 2, and a push at 0.9 mu_s slid it).
-      const double holding = std::max(pressing ? pressed() : lambda_n, level ? kept_pressure : 0.0);
+      // after it was put, at 10 x 2, and a push at 0.9 mu_s slid it), and
+      // a body put touching settles (a log laid along a ramp, a line
+      // contact held free, pressed 1.04 then 0.95 x its weight and let go
+      // at 0.455 rad). `kept_pressure` is 0 where there is no such floor.
+      const double holding = std::max(pressing ? pressed() : lambda_n, kept_pressure);
       const bool tips = level && !pressureCentreOnPatch(patchCouple(inv_inertia_a, inv_inertia_b, a.q * local_a,
                                                                      b.q * local_b, m.friction_impulse, u, v),
                                                          holding);
@@ -518,7 +521,11 @@ bool visitManifold(ContactManifold& m, Contact* contacts, BodyState& a, BodyStat
       if (hold(local_a, local_b, anchor_turn, true, kept_pressure)) return true;
       if (!tipped) return false;  // it slides
     }
-    return hold(local_a, local_b, anchor_turn, false, 0.0);
+    // Free: on a body that constraints do not move with the floor (a line
+    // contact, a single point), not where a level hold tipped (its
+    // pressure is moving to an edge) nor between two moving bodies.
+    const bool floored = !level_pair && (!a.moves() || !b.moves());
+    return hold(local_a, local_b, anchor_turn, false, floored ? kept_pressure : 0.0);
   };
   m.stuck = holdAnchor(m.anchor_a, m.anchor_b, m.anchor_turn, m.anchor_kept || pool ? m.kept_pressure : 0.0);
   changed |= applied;

@@ -81,9 +81,10 @@ struct ContactManifold {
   /// lambda_n of the whole manifold (kg m) at its last visit, before
   /// static friction; `kept_pressure`: with a kept anchor, or in a
   /// FrictionPool that held its body in the last substep, the `pressure`
-  /// of the earlier substep's manifold it came from (a floor under the
-  /// bound of a level hold and under a pooled one's capacity,
-  /// solveContactPositions).
+  /// of the earlier substep's manifold it came from: a floor under the
+  /// bound of a hold against a body that constraints do not move (not of
+  /// one redone free where a level hold tipped), and under a pooled
+  /// manifold's capacity (solveContactPositions).
   double pressure = 0.0, kept_pressure = 0.0;
   /// The same pair's manifold in the last substep (findContacts): its
   /// `pressure` and `stuck`, 0 and false where there was none.

@@ -521,9 +521,10 @@ bool visitManifold(ContactManifold& m, Contact* contacts, BodyState& a, BodyStat
       if (hold(local_a, local_b, anchor_turn, true, kept_pressure)) return true;
       if (!tipped) return false;  // it slides
     }
-    // Free: on a body that constraints do not move with the floor (a line
-    // contact, a single point), not where a level hold tipped (its
-    // pressure is moving to an edge) nor between two moving bodies.
+    // A free hold against a body that constraints do not move keeps the
+    // floor (a line contact, a single point); one redone free where a
+    // level hold tipped does not (its pressure is moving to an edge), nor
+    // one between two moving bodies.
     const bool floored = !level_pair && (!a.moves() || !b.moves());
     return hold(local_a, local_b, anchor_turn, false, floored ? kept_pressure : 0.0);
   };

@@ -444,6 +444,21 @@ struct Across {
   double acceleration_m_per_s2;  // along -x, from the velocities at 0.25 s and at the end
 };
 
+/// Steps `world` for `seconds`: how far body `id` slid along -x from
+/// `start` relative to supports carried at `carried` (m/s), and its
+/// acceleration along -x from its velocity at 0.25 s to the end.
+Across slideFor(World& world, BodyId id, const Vec3& start, const Vec3& carried, double seconds) {
+  const int frames = static_cast<int>(std::lround(seconds / kFrame));
+  const int f1 = static_cast<int>(std::lround(0.25 / kFrame));
+  double v1 = 0.0;
+  for (int f = 1; f <= frames; ++f) {
+    world.step(kFrame);
+    if (f == f1) v1 = -world.body(id).v.x();
+  }
+  return {-(world.body(id).x - start - carried * frames * kFrame).x(),
+          (-world.body(id).v.x() - v1) / (frames * kFrame - 0.25)};
+}
+
 /// `post_mu_s`: the posts' own mu_s (their mu_d 0.8 of it), downhill first
 /// (each pair takes the mean of its two bodies' coefficients); empty: 0.5.
 Across acrossSupports(Supports supports, double theta, double seconds, int substeps, int iterations,
@@ -483,15 +498,7 @@ Across acrossSupports(Supports supports, double theta, double seconds, int subst
     body.position = Vec3(0.0, 0.25, 0.0);
   }
   const BodyId id = world.addBody(body);
-  const int frames = static_cast<int>(std::lround(seconds / kFrame));
-  const int f1 = static_cast<int>(std::lround(0.25 / kFrame));
-  double v1 = 0.0;
-  for (int f = 1; f <= frames; ++f) {
-    world.step(kFrame);
-    if (f == f1) v1 = -world.body(id).v.x();
-  }
-  const double slid = -(world.body(id).x - body.position - carried * frames * kFrame).x();
-  return {slid, (-world.body(id).v.x() - v1) / (frames * kFrame - 0.25)};
+  return slideFor(world, id, body.position, carried, seconds);
 }
 
 TEST(AcrossTwoOrThreeSupports, ItsSupportsFrictionHoldsItTogetherUpToTheFrictionAngle) {
@@ -597,14 +604,7 @@ Across boxOnABed(int n, double theta, double seconds, int substeps, int iteratio
   body.shape = Shape::box(Vec3(1.0, 0.05, 1.0));
   body.position = Vec3(0.0, r + 0.05, 0.0);
   const BodyId id = world.addBody(body);
-  const int frames = static_cast<int>(std::lround(seconds / kFrame));
-  const int f1 = static_cast<int>(std::lround(0.25 / kFrame));
-  double v1 = 0.0;
-  for (int f = 1; f <= frames; ++f) {
-    world.step(kFrame);
-    if (f == f1) v1 = -world.body(id).v.x();
-  }
-  return {-(world.body(id).x - body.position).x(), (-world.body(id).v.x() - v1) / (frames * kFrame - 0.25)};
+  return slideFor(world, id, body.position, Vec3::Zero(), seconds);
 }
 
 TEST(AcrossTwoOrThreeSupports, ABoxPutOnABedOfSmallBallsHoldsUpToTheFrictionAngle) {
@@ -665,14 +665,7 @@ Across logAlongARamp(double theta, double seconds, int substeps, int iterations,
   const Vec3 start(0.0, 0.1, 0.0);
   const BodyId log = add(world, Shape::cylinder(0.1, 0.8), 1.0, start, m, true,
                          Quat(Eigen::AngleAxisd(std::numbers::pi / 2, Vec3::UnitY())));
-  const int frames = static_cast<int>(std::lround(seconds / kFrame));
-  const int f1 = static_cast<int>(std::lround(0.25 / kFrame));
-  double v1 = 0.0;
-  for (int f = 1; f <= frames; ++f) {
-    world.step(kFrame);
-    if (f == f1) v1 = -world.body(log).v.x();
-  }
-  return {-(world.body(log).x - start).x(), (-world.body(log).v.x() - v1) / (frames * kFrame - 0.25)};
+  return slideFor(world, log, start, Vec3::Zero(), seconds);
 }
 
 TEST(BoxOnARamp, ALogLaidAlongItHoldsUpToTheFrictionAngleAndSlidesAtTheClosedFormRateAbove) {

@@ -357,6 +357,10 @@ bool visitManifold(ContactManifold& m, Contact* contacts, BodyState& a, BodyStat
     m.stuck = false;
     return changed;
   }
+  if (m.friction_rows) {  // held in the direct solve, with its cables
+    m.stuck = true;
+    return changed;
+  }
   // A curved point rolls: its anchor is where it touches now, as it was at
   // the substep's start (SCA 2020, eq. 27), never one kept from earlier,
   // which would hold the rod to pivot about the point it touched first.

@@ -46,6 +46,7 @@ struct Island {
   std::vector<int> swept_hinges;      // Gauss-Seidel's: the hinges with a row (hingeSolvesNothing), for one solve
   std::vector<SpanEnds> span_ends;  // Gauss-Seidel's, by paths' order, for one solve (World::sweepGaussSeidel)
   int iterations = 0;        // the last solve's
+  int contact_layouts = 0;   // this step's: DirectSolver::prepare built its layout again for a contact
   bool interrupted = false;  // the last solve stopped for the interrupt flag
   bool driven = false;       // a joint of it has a drive this substep (World::beginSolve)
   bool moved = false;        // the hooks moved a row of it onto other bodies' island (World::rowsMoved)

@@ -519,6 +519,7 @@ void World::step(double dt) {
     island->at = 0;
     island->started = island->cut = false;
     island->substep_iterations.clear();
+    island->contact_layouts = 0;
   }
   substep_iterations_.clear();
   if (runsWholeSteps()) {
@@ -530,6 +531,8 @@ void World::step(double dt) {
       if (!interrupted_ && s + 1 < settings_.substeps) interrupted_ = interruptRequested();
     }
   }
+  last_contact_layouts_ = 0;
+  for (const auto& island : islands_) last_contact_layouts_ += island->contact_layouts;
   recordNonFinite();
   last_h_ = h;
 }

@@ -135,7 +135,7 @@ bool listed(const World& world, BodyId id) { return direct::listed(world.body(id
 
 }  // namespace
 
-void DirectSolver::describe(World& world, const Island& island, std::vector<int>& sig) const {
+std::size_t DirectSolver::describe(World& world, const Island& island, std::vector<int>& sig) const {
   sig.clear();
   const auto joint = [&](Source source, int index, BodyId a, BodyId b, int rows) {
     // A rotor's hinge without a drive or limit has no row (its axle is
@@ -191,6 +191,52 @@ void DirectSolver::describe(World& world, const Island& island, std::vector<int>
     }
     if (!moving) sig.resize(head);  // nothing in it moves
     else sig[head + 3] = static_cast<int>(sig.size() - head - 4);
+  }
+  const std::size_t contacts_begin = sig.size();
+  describeContacts(world, island, sig);
+  return contacts_begin;
+}
+
+void DirectSolver::describeContacts(const World& world, const Island& island, std::vector<int>& sig) const {
+  // The bodies the cables above move (paths as [source, index, 1, count,
+  // bodies...], distances as joints, [source, index, rows, a, b]).
+  row_bodies_.clear();
+  for (std::size_t k = 0; k < sig.size();) {
+    const auto source = static_cast<Source>(sig[k]);
+    if (source == Source::Path) {
+      row_bodies_.insert(row_bodies_.end(), sig.begin() + k + 4, sig.begin() + k + 4 + sig[k + 3]);
+      k += 4 + sig[k + 3];
+    } else {
+      if (source == Source::Distance) row_bodies_.insert(row_bodies_.end(), {sig[k + 3], sig[k + 4]});
+      k += 5;
+    }
+  }
+  if (row_bodies_.empty()) return;
+  std::sort(row_bodies_.begin(), row_bodies_.end());
+  // A manifold joins as [Contact, its place in island.manifolds, rows, a,
+  // b] where one body is one those cables move and the other is static
+  // (not kinematic: its schedule moves it), its points stay on their
+  // bodies (a curved pair's move as they roll: remeasureCurvedContact, in
+  // the sweep alone), and it touched in the last substep too (resting: an
+  // impact is the sweep's). Between two moving bodies the sweep's friction
+  // pools and level holds share the load (contact.h). A body only joints
+  // hold keeps the sweep: MuJoCo's humanoid, its feet 12 points a
+  // manifold, blew up at its landing with them in the solve (DESIGN,
+  // "Forty-ninth session").
+  const std::vector<ContactManifold>& manifolds = world.contactManifolds();
+  const std::vector<Contact>& contacts = world.contacts();
+  for (std::size_t k = 0; k < island.manifolds.size(); ++k) {
+    const ContactManifold& m = manifolds[island.manifolds[k]];
+    const BodyState &a = world.body(m.a), &b = world.body(m.b);
+    const bool b_held = b.moves() && !a.moves() && !a.kinematic;
+    const bool a_held = a.moves() && !b.moves() && !b.kinematic;
+    if ((!a_held && !b_held) || m.last_pressure <= 0.0) continue;
+    if (!std::binary_search(row_bodies_.begin(), row_bodies_.end(), b_held ? m.b : m.a)) continue;
+    const auto curved = [](const Contact& c) { return c.core_a >= 0.0 || c.core_b >= 0.0; };
+    if (std::any_of(contacts.begin() + m.first, contacts.begin() + m.first + m.count, curved)) continue;
+    sig.insert(sig.end(), {static_cast<int>(Source::Contact), static_cast<int>(k),
+                           m.count + frictionRows(m, contacts[m.first]), a_held ? m.a : kWorldBody,
+                           b_held ? m.b : kWorldBody});
   }
 }
 
@@ -430,18 +476,32 @@ void DirectSolver::build(World& world) {
   stiffness_.assign(m, Mat3::Zero());
   lateral_stiffness_.assign(m, Mat3::Zero());
   jointed_.assign(m, 0);
+  // A contact row holds its body along the normal alone: the span ends'
+  // sideways stiffness stays (newtonResidual).
   for (const Entry& e : entries_)
-    if (rows_[e.row].source != Source::Path && rows_[e.row].source != Source::Distance) jointed_[e.body] = 1;
+    if (const Source source = rows_[e.row].source;
+        source != Source::Path && source != Source::Distance && source != Source::Contact)
+      jointed_[e.body] = 1;
+  contact_rows_.clear();
+  for (int r = 0; r < n; ++r)
+    if (rows_[r].source == Source::Contact) contact_rows_.push_back(r);
+  contact_of_.assign(n, -1);
+  contact_written_.assign(n, 0.0);
+  contact_dir_.assign(n, Vec3::Zero());
+  contact_kind_.assign(n, ContactRow::Normal);
   world_inertia_.assign(m, Mat3::Zero());
   axial_stiffness_.assign(m, 0.0);
   reweigh_.assign(m, 0);
 }
 
-void DirectSolver::prepare(World& world, const Island& island, double h, bool again) {
-  describe(world, island, scratch_);
+bool DirectSolver::prepare(World& world, const Island& island, double h, bool again) {
+  const std::size_t contacts_begin = describe(world, island, scratch_);
   const bool rebuilt = scratch_ != signature_;
+  const bool contacts_relaid = rebuilt && contacts_begin == contacts_begin_ &&
+                               std::equal(scratch_.begin(), scratch_.begin() + contacts_begin, signature_.begin());
   if (rebuilt) {
     signature_ = scratch_;  // a copy: scratch_ keeps its capacity for the next substeps
+    contacts_begin_ = contacts_begin;
     build(world);
   }
   // What stays put over the substep: inverse masses, rotors' axles (they
@@ -459,6 +519,15 @@ void DirectSolver::prepare(World& world, const Island& island, double h, bool ag
     f.evaluated_turn = b.solve_turn;
   }
   evaluated_ = false;
+  manifolds_ = &island.manifolds;
+  for (const int r : contact_rows_) {  // they push, and only that
+    lo_[r] = 0.0;
+    hi_[r] = kInf;
+    mirror_[r] = nullptr;
+    linear_a_[r] = angular_a_[r] = nullptr;
+    contact_written_[r] = 0.0;
+    contact_of_[r] = -1;  // set as evaluated
+  }
   for (std::size_t r = 0; r < rows_.size(); ++r) {
     const Row& row = rows_[r];
     if (row.source != Source::Path && row.source != Source::Distance) continue;
@@ -506,6 +575,7 @@ void DirectSolver::prepare(World& world, const Island& island, double h, bool ag
   } else {
     start_.clear();
   }
+  return contacts_relaid;
 }
 
 void DirectSolver::startPoint(const World& world, double h, bool again, bool rebuilt) {

@@ -29,8 +29,15 @@
 // and a limit on one coordinate, one direction twice, are settled before
 // it: the touched limit wins (driveAgainstLimit). A spring drive is a
 // compliant row (alpha~ on its diagonal, joint_rows::prepareCoordinate),
-// not dependent on a limit. Contacts stay Gauss-Seidel, after each
-// iteration. Private to reeve_engine.
+// not dependent on a limit. Contacts are swept Gauss-Seidel after each
+// iteration (friction, and the contacts between moving bodies), but the
+// normal rows of a body that other rows hold, pressed on one that nothing
+// moves (a load set down on the ground while its cables still pull), are
+// rows here too (Source::Contact): swept only, the solve pulled such a
+// body back into the ground by what the contacts had pushed it out,
+// shrinking 0.17 to 0.3 an iteration (DESIGN, "Forty-ninth session").
+// Their lambdas are the contacts' pressure (pressContacts). Private to
+// reeve_engine.
 //
 // A body with many rows (a tackle's block, an effector on K cables, a
 // palm) would make J W J^T dense among them: K^2 values and a K^3
@@ -69,6 +76,8 @@ namespace reeve {
 
 class World;
 struct Island;
+struct Contact;
+struct ContactManifold;
 
 namespace direct {
 /// A row lists the bodies it moves and the kinematic ones it pushes on: a
@@ -84,16 +93,26 @@ class DirectSolver {
   /// changed since the last substep, clears the lambdas, sets
   /// what stays put over the substep. `again`: the substep's solve done
   /// again (World::ResolveCheck), which starts from the first one's active
-  /// set, not from what the first one ended with.
-  void prepare(World& world, const Island& island, double h, bool again);
+  /// set, not from what the first one ended with. Returns true where the
+  /// layout was built again only because a resting contact joined or left
+  /// it (its rows are the layout's last: describeContacts), which
+  /// allocates, as a cable event's layout does.
+  bool prepare(World& world, const Island& island, double h, bool again);
   /// One iteration: linearize, solve, move the bodies. Returns false, and
   /// moves nothing, when every row is already met to the settings'
   /// tolerance: the iterations left would do nothing either, unless
   /// something else (a contact) moves a body.
   bool iterate(World& world, double h);
+  /// Adds what the contact rows' lambdas gained since the last call to
+  /// their contacts' lambda_n (kg m), the pressure the contact sweep's
+  /// friction bounds, pools and the velocity pass read, and the friction
+  /// rows' to their manifolds' friction_impulse and twist_impulse, which
+  /// the sweep bounds. `contacts`, `manifolds`: the World's, this
+  /// substep's.
+  void pressContacts(std::vector<Contact>& contacts, std::vector<ContactManifold>& manifolds);
 
  private:
-  enum class Source : unsigned char { Hinge, Prismatic, Spherical, Fixed, Distance, Path };
+  enum class Source : unsigned char { Hinge, Prismatic, Spherical, Fixed, Distance, Path, Contact };
   struct Entry {  // one moving body of one row
     int body = 0;  // index into bodies_
     int row = 0;
@@ -128,8 +147,10 @@ class DirectSolver {
 
   /// Writes the layout of the island's rows to `signature`: for each row
   /// its source, index and moving bodies. Unchanged signature, unchanged
-  /// layout.
-  void describe(World& world, const Island& island, std::vector<int>& signature) const;
+  /// layout. Returns where its contact rows begin in it.
+  std::size_t describe(World& world, const Island& island, std::vector<int>& signature) const;
+  /// describe()'s contact rows, after the rest (Source::Contact).
+  void describeContacts(const World& world, const Island& island, std::vector<int>& signature) const;
   void build(World& world);
   /// Fills C, bounds, activity and the entries' gradients of every row.
   void evaluate(World& world, double h);
@@ -209,6 +230,19 @@ class DirectSolver {
   const Mat3& rotation(int slot);
   /// Returns the number of rows the joint has.
   int evaluateJoint(World& world, int first_row, double h);
+  /// A manifold's rows from `first_row`: its normal rows, one a point, C =
+  /// (p_b - p_a) . n (m, the contact sweep's: solveContactPositions),
+  /// pushing only (lambda >= 0), rigid; then its static friction's
+  /// (frictionRows). Returns the number of rows.
+  int evaluateContacts(const World& world, int first_row);
+  /// The static friction rows of a manifold whose first contact is `c`:
+  /// two along the patch at its anchor (ContactManifold::anchor_a,
+  /// anchor_b), C = (p_b - p_a) . t, and one about n where the patch has a
+  /// radius, C = the turn of b relative to a since the anchor; none
+  /// without friction (mu_s = 0).
+  /// A manifold in a FrictionPool or SupportGroup has none: its fellows
+  /// share a bound that the sweep keeps (contact.h).
+  static int frictionRows(const ContactManifold& m, const Contact& c);
   /// The states of a coordinate's drive and limit rows, which share their
   /// direction, when a limit is touched and the drive is rigid;
   /// `first_clamped` is the row of the joint's first clamped row.
@@ -260,6 +294,22 @@ class DirectSolver {
   double hubGradient(const Entry& e, int dof) const;
 
   std::vector<int> signature_, scratch_;
+  std::size_t contacts_begin_ = 0;  // where signature_'s contact rows begin
+  // describe()'s: the bodies of the rows listed before the contacts, sorted.
+  mutable std::vector<BodyId> row_bodies_;
+  // The island's manifolds (Island::manifolds, this substep): a contact
+  // row's index is its manifold's place in them.
+  const std::vector<int>* manifolds_ = nullptr;
+  // Per contact row: its contact (World::contacts()) this iteration, and
+  // the lambda pressContacts() last added to it.
+  // A friction row's contact_of_ is its manifold's (World::
+  // contactManifolds()), and contact_dir_ its direction, world (t, or n
+  // about which it twists).
+  enum class ContactRow : unsigned char { Normal, Slip, Twist };
+  std::vector<int> contact_rows_, contact_of_;
+  std::vector<double> contact_written_;
+  std::vector<Vec3> contact_dir_;
+  std::vector<ContactRow> contact_kind_;
   struct RunScratch {  // evaluateRun's, per point of the path
     std::vector<Vec3> arm, pos;
     std::vector<int> entry;

@@ -19,7 +19,7 @@ void World::solveDirect(Island& island, double h, bool again) {
   // take. They are swept after each direct iteration, as contacts are.
   bool weighted = false;
   for (const int i : island.paths) weighted |= paths_[i].enabled && !paths_[i].weights.empty();
-  island.direct.prepare(*this, island, h, again);
+  island.contact_layouts += island.direct.prepare(*this, island, h, again) ? 1 : 0;
   // Bodies too light to carry their own motion against their cables'
   // loads, placed where massless ones would lie before each iteration
   // linearizes the rows and after the last (light_bodies.h).
@@ -44,6 +44,7 @@ void World::solveDirect(Island& island, double h, bool again) {
     const bool moved = island.direct.iterate(*this, h);
     if (!moved && island.manifolds.empty() && !weighted) break;  // converged: the rest would do nothing
     ++island.iterations;
+    island.direct.pressContacts(contacts_, manifolds_);
     bool contacts_moved = false;
     for (const int i : island.manifolds) {
       ContactManifold& m = manifolds_[i];

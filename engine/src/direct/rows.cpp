@@ -3,10 +3,12 @@
 // values C, compliance terms, bounds and gradients (the entries).
 #include "direct_solver.h"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 
 #include "reeve/engine/correction.h"
+#include "reeve/engine/math.h"
 #include "reeve/engine/world.h"
 #include "../line_up.h"
 
@@ -25,6 +27,12 @@ bool listed(const World& world, BodyId id) { return direct::listed(world.body(id
 // A cable this much of its length short of its rest length is taut by
 // rounding (evaluatePath).
 constexpr double kTautRounding = 1e-12;
+
+// The compliance term (alpha~, 1/kg) of a static friction row that does not
+// hold: dlambda = -(C + alpha~ lambda) / (J W J^T + alpha~) is then -lambda
+// to 1e-11 of itself on any body above a microgram, and C adds at most
+// 1e-20 kg m a metre: the row gives back what it held and holds nothing.
+constexpr double kLetGo = 1e20;
 
 using joint_rows::JointRowSet;
 using joint_rows::kInf;
@@ -513,6 +521,123 @@ void DirectSolver::driveAgainstLimit(int first_clamped, const JointRowSet& set) 
   }
 }
 
+int DirectSolver::frictionRows(const ContactManifold& m, const Contact& c) {
+  if (!(c.static_friction > 0.0) || m.pool >= 0 || m.group >= 0) return 0;
+  return m.patch_radius > 0.0 ? 3 : 2;
+}
+
+int DirectSolver::evaluateContacts(const World& world, int r) {
+  // C = (p_b - p_a) . n, the sweep's normal row (solveContactPositions): n
+  // is the static body's, so only the moving body's point turns, and
+  //   J = [n; r_b x n] on b,  [-n; -(r_a x n)] on a.
+  const ContactManifold& m = world.contactManifolds()[(*manifolds_)[rows_[r].index]];
+  const BodyState &a = world.body(m.a), &b = world.body(m.b);
+  const bool b_held = b.moves();
+  for (int k = 0; k < m.count; ++k, ++r) {
+    const Contact& c = world.contacts()[m.first + k];
+    const Vec3 r_a = a.q * c.local_a, r_b = b.q * c.local_b;
+    const Vec3& n = c.normal;
+    C_[r] = ((b.x + r_b) - (a.x + r_a)).dot(n);
+    const int e = rows_[r].first_entry;  // the held body's, the only one
+    if (b_held) {
+      entries_[e].lin = n;
+      entries_[e].ang = r_b.cross(n);
+      curve(e, n, r_b, false);
+    } else {
+      entries_[e].lin = -n;
+      entries_[e].ang = -r_a.cross(n);
+      curve(e, -n, r_a, false);
+    }
+    entries_[e].weighed = false;
+    alpha_[r] = 0.0;
+    contact_of_[r] = m.first + k;
+    // In the set where it overlaps or already pushes; apart, it joins only
+    // where the solve would push the points into each other
+    // (solveActiveSet).
+    state_[r] = C_[r] <= 0.0 || lambda_[r] > 0.0 ? State::Free : State::Off;
+    contact_kind_[r] = ContactRow::Normal;
+  }
+  const int friction = frictionRows(m, world.contacts()[m.first]);
+  if (friction == 0) return m.count;
+  // Static friction holds the anchor while it is held: kept from the last
+  // substep at the first iteration (anchorFriction), then as the last
+  // iteration left it (ContactManifold::stuck: these rows within their
+  // bound, or else the sweep's hold). Its bound is mu_s times the
+  // manifold's pressure as the last visit left it, at least the kept
+  // anchor's, on each tangent (a box: the sweep bounds the sum, a disc,
+  // once the rows pass theirs). Not held, the rows give back what they
+  // hold and take nothing more (kLetGo).
+  const Contact& c = world.contacts()[m.first];
+  const Vec3& n = c.normal;
+  const Vec3 t1 = n.unitOrthogonal(), t2 = n.cross(t1);
+  const bool held = first_iteration_ ? m.anchor_kept : m.stuck;  // the rows' own or the sweep's
+  const double bound = c.static_friction * std::max(m.pressure, m.kept_pressure);
+  const Vec3 r_a = a.q * m.anchor_a, r_b = b.q * m.anchor_b;
+  const Vec3 slip = (b.x + r_b) - (a.x + r_a);
+  const int manifold = (*manifolds_)[rows_[r - m.count].index];
+  for (int k = 0; k < friction; ++k, ++r) {
+    const int e = rows_[r].first_entry;
+    const double sign = b_held ? 1.0 : -1.0;  // J on b, or -J on a
+    if (k < 2) {
+      const Vec3& t = k == 0 ? t1 : t2;
+      C_[r] = slip.dot(t);
+      entries_[e].lin = sign * t;
+      entries_[e].ang = sign * (b_held ? r_b : r_a).cross(t);
+      curve(e, sign * t, b_held ? r_b : r_a, false);
+      lo_[r] = -bound;
+      hi_[r] = bound;
+      contact_dir_[r] = t;
+      contact_kind_[r] = ContactRow::Slip;
+    } else {
+      C_[r] = n.dot(rotationVector(b.q * (a.q * m.anchor_turn).conjugate()));
+      entries_[e].lin.setZero();
+      entries_[e].ang = sign * n;
+      flatten(e);
+      lo_[r] = -bound * m.patch_radius;
+      hi_[r] = bound * m.patch_radius;
+      contact_dir_[r] = n;
+      contact_kind_[r] = ContactRow::Twist;
+    }
+    entries_[e].weighed = false;
+    contact_of_[r] = manifold;
+    if (!held || bound <= 0.0) {
+      alpha_[r] = kLetGo;
+      lo_[r] = -kInf;
+      hi_[r] = kInf;
+    } else {
+      alpha_[r] = 0.0;
+    }
+    state_[r] = State::Free;
+  }
+  return m.count + friction;
+}
+
+void DirectSolver::pressContacts(std::vector<Contact>& contacts, std::vector<ContactManifold>& manifolds) {
+  // A manifold's friction rows follow its normal rows: each starts as
+  // holding, and one that does not hold (let go, or at its bound: the
+  // friction it needs passes mu_s times the pressure) leaves the sweep to
+  // decide, as without rows.
+  for (const int r : contact_rows_) {
+    if (contact_of_[r] < 0) continue;  // not evaluated this substep
+    const double gained = lambda_[r] - contact_written_[r];
+    contact_written_[r] = lambda_[r];
+    if (contact_kind_[r] == ContactRow::Normal) {
+      double& lambda_n = contacts[contact_of_[r]].lambda_n;
+      lambda_n = std::max(0.0, lambda_n + gained);
+      continue;
+    }
+    ContactManifold& m = manifolds[contact_of_[r]];
+    if (contact_kind_[r] == ContactRow::Slip) {
+      if (contact_kind_[r - 1] == ContactRow::Normal) m.friction_rows = true;  // its first friction row
+      m.friction_impulse += gained * contact_dir_[r];
+    } else {
+      m.twist_impulse += gained;
+    }
+    const bool holds = alpha_[r] == 0.0 && lambda_[r] > lo_[r] && lambda_[r] < hi_[r];
+    m.friction_rows = m.friction_rows && holds;
+  }
+}
+
 void DirectSolver::evaluate(World& world, double h) {
   damped_ = false;
   fixed_ends_.clear();
@@ -524,6 +649,8 @@ void DirectSolver::evaluate(World& world, double h) {
     if (rows_[r].source == Source::Path || rows_[r].source == Source::Distance) {
       evaluatePath(world, r, h);
       ++r;
+    } else if (rows_[r].source == Source::Contact) {
+      r += evaluateContacts(world, r);
     } else {
       r += evaluateJoint(world, r, h);
     }

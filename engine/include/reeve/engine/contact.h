@@ -93,6 +93,10 @@ struct ContactManifold {
   /// Static friction held the anchor at the manifold's last visit
   /// (solveContactPositions): the next substep may keep it.
   bool stuck = false;
+  /// The direct solve's static friction rows hold its anchor within their
+  /// bound this iteration (DirectSolver::pressContacts): its visit then
+  /// presses the normals only and counts it stuck.
+  bool friction_rows = false;
   /// mu_s x the pressure (kg m) its last visit bounded its friction by:
   /// what it adds to its FrictionPool's capacity; 0 before a visit.
   double friction_capacity = 0.0;

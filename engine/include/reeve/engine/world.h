@@ -437,6 +437,11 @@ class World {
   /// Iterations the last step() ran, over all its substeps: substeps x
   /// iterations, or fewer when the direct solver met every row early.
   int lastStepIterations() const { return last_iterations_; }
+  /// Times the last step() built a direct solve's row layout again only
+  /// because a resting contact joined or left it (a body its cables hold
+  /// set down on a static one, or lifted off: its contact rows), which
+  /// allocates; 0 under Gauss-Seidel.
+  int lastStepContactLayouts() const { return last_contact_layouts_; }
 
  private:
   /// Throws std::invalid_argument unless a and b are two different
@@ -655,6 +660,7 @@ class World {
   std::optional<NonFiniteState> non_finite_;
   std::optional<NonFiniteFind> non_finite_found_;  // this step's on no island, or of islands since rebuilt
   int last_iterations_ = 0;
+  int last_contact_layouts_ = 0;  // lastStepContactLayouts
   const std::atomic<int>* interrupt_ = nullptr;  // setInterruptFlag
   bool interrupted_ = false;
   std::function<void(int, int)> progress_;

@@ -30,13 +30,12 @@
 // it: the touched limit wins (driveAgainstLimit). A spring drive is a
 // compliant row (alpha~ on its diagonal, joint_rows::prepareCoordinate),
 // not dependent on a limit. Contacts are swept Gauss-Seidel after each
-// iteration (friction, and the contacts between moving bodies), but the
-// normal rows of a body that other rows hold, pressed on one that nothing
-// moves (a load set down on the ground while its cables still pull), are
-// rows here too (Source::Contact): swept only, the solve pulled such a
-// body back into the ground by what the contacts had pushed it out,
-// shrinking 0.17 to 0.3 an iteration (DESIGN, "Forty-ninth session").
-// Their lambdas are the contacts' pressure (pressContacts). Private to
+// iteration, but those of a body that cables hold, resting on a static
+// one (a load set down while its cables still pull), are rows here too
+// (Source::Contact: normal rows, and static friction's while it holds):
+// swept only, the solve and the sweep traded a correction that shrank
+// 0.17 to 0.3 an iteration (DESIGN, "Forty-ninth session"). Their lambdas
+// are the contacts' pressure and friction (pressContacts). Private to
 // reeve_engine.
 //
 // A body with many rows (a tackle's block, an effector on K cables, a
@@ -235,13 +234,12 @@ class DirectSolver {
   /// pushing only (lambda >= 0), rigid; then its static friction's
   /// (frictionRows). Returns the number of rows.
   int evaluateContacts(const World& world, int first_row);
-  /// The static friction rows of a manifold whose first contact is `c`:
-  /// two along the patch at its anchor (ContactManifold::anchor_a,
+  /// The number of static friction rows of a manifold whose first contact
+  /// is `c`: two along the patch at its anchor (ContactManifold::anchor_a,
   /// anchor_b), C = (p_b - p_a) . t, and one about n where the patch has a
-  /// radius, C = the turn of b relative to a since the anchor; none
-  /// without friction (mu_s = 0).
-  /// A manifold in a FrictionPool or SupportGroup has none: its fellows
-  /// share a bound that the sweep keeps (contact.h).
+  /// radius, C = the turn of b relative to a since the anchor. None
+  /// without friction (mu_s = 0), nor in a FrictionPool or SupportGroup,
+  /// whose fellows share a bound that the sweep keeps (contact.h).
   static int frictionRows(const ContactManifold& m, const Contact& c);
   /// The states of a coordinate's drive and limit rows, which share their
   /// direction, when a limit is touched and the drive is rigid;
@@ -295,16 +293,15 @@ class DirectSolver {
 
   std::vector<int> signature_, scratch_;
   std::size_t contacts_begin_ = 0;  // where signature_'s contact rows begin
-  // describe()'s: the bodies of the rows listed before the contacts, sorted.
+  // describe()'s: the bodies the cables listed before the contacts move, sorted.
   mutable std::vector<BodyId> row_bodies_;
   // The island's manifolds (Island::manifolds, this substep): a contact
   // row's index is its manifold's place in them.
   const std::vector<int>* manifolds_ = nullptr;
-  // Per contact row: its contact (World::contacts()) this iteration, and
-  // the lambda pressContacts() last added to it.
-  // A friction row's contact_of_ is its manifold's (World::
-  // contactManifolds()), and contact_dir_ its direction, world (t, or n
-  // about which it twists).
+  // Per contact row: its contact (World::contacts()) this iteration, or a
+  // friction row's manifold (World::contactManifolds()); the lambda
+  // pressContacts() last added there; a friction row's direction, world
+  // (t, or the n it twists about); and its kind.
   enum class ContactRow : unsigned char { Normal, Slip, Twist };
   std::vector<int> contact_rows_, contact_of_;
   std::vector<double> contact_written_;

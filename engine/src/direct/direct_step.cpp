@@ -1,8 +1,9 @@
 // The direct method's solve of one substep (World::solveDirect): every
 // joint row and cable path in one factorization per iteration
 // (direct_solver.h), and what stays outside it swept after each
-// iteration, Gauss-Seidel style: contacts (SCA 2020, sec. 3.5) and
-// weighted paths (cable friction).
+// iteration, Gauss-Seidel style: contacts (SCA 2020, sec. 3.5; but a
+// cable-held body's resting ones on static bodies are rows of the solve:
+// direct_solver.h) and weighted paths (cable friction).
 #include <algorithm>
 
 #include "../island.h"

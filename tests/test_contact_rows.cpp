@@ -10,7 +10,8 @@
 // rest, N = (M - m) g, met in at most two solves a substep. Turned round:
 // a weight heavier than the load lifts it off at the Atwood rate (the rows
 // push, never pull); pulled along its support, the load holds while m <
-// mu_s M and slides at (m - mu_d M) g / (M + m) above it.
+// mu_s M and slides at (m - mu_d M) g / (M + m) above it. Scaling every
+// mass scales the forces and moves nothing.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -169,6 +170,25 @@ TEST(ContactRows, ALoadPulledAlongItsSupportHoldsBelowMuSAndSlidesAtTheClosedFor
       EXPECT_LT(error, b.substeps >= 32 ? 2e-3 : b.substeps >= 10 ? 6e-3 : 5e-2);
     }
   }
+}
+
+TEST(ContactRows, ScalingEveryMassScalesTheForcesAndMovesNothing) {
+  // Pulled along (m = 0.45 M) and set down (M = 2 m), at 1e-4, 1 and 1e5
+  // times the masses: the same motion, the forces in proportion.
+  for (const Budget& b : kFourBudgets)
+    for (const bool sideways : {true, false}) {
+      SCOPED_TRACE(testing::Message() << name(b) << (sideways ? ", pulled along" : ", set down"));
+      const double weight = sideways ? 4.5 : 5.0;
+      Scene reference = rig(10.0, weight, sideways, b);
+      const Vec3 x = after(reference, body(reference, "load"), 60);
+      const double tension = reference.cables->tension(0, 0), support = supportForce(reference);
+      for (const double scale : {1e-4, 1e5}) {
+        Scene s = rig(10.0 * scale, weight * scale, sideways, b);
+        EXPECT_LT((after(s, body(s, "load"), 60) - x).norm(), 1e-12);
+        EXPECT_NEAR(s.cables->tension(0, 0) / scale, tension, 1e-9 * tension);
+        EXPECT_NEAR(supportForce(s) / scale, support, 1e-9 * support);
+      }
+    }
 }
 
 }  // namespace

@@ -198,6 +198,7 @@ std::size_t DirectSolver::describe(World& world, const Island& island, std::vect
 }
 
 void DirectSolver::describeContacts(const World& world, const Island& island, std::vector<int>& sig) const {
+  if (island.manifolds.empty()) return;  // most islands, every substep: nothing to list
   // The bodies the cables above move (paths as [source, index, 1, count,
   // bodies...], distances as joints, [source, index, rows, a, b]).
   row_bodies_.clear();
@@ -482,6 +483,7 @@ void DirectSolver::build(World& world) {
     if (const Source source = rows_[e.row].source;
         source != Source::Path && source != Source::Distance && source != Source::Contact)
       jointed_[e.body] = 1;
+  row_bodies_.reserve(contacts_begin_);  // no allocation when a contact first comes (describeContacts)
   contact_rows_.clear();
   for (int r = 0; r < n; ++r)
     if (rows_[r].source == Source::Contact) contact_rows_.push_back(r);

@@ -148,10 +148,12 @@ TEST(ContactRows, ALoadPulledAlongItsSupportHoldsBelowMuSAndSlidesAtTheClosedFor
         const Vec3 settled = after(s, load, 30);
         EXPECT_LT((after(s, load, 60) - settled).norm(), 1e-9);
         EXPECT_NEAR(s.cables->tension(0, 0), 4.5 * kG, 1e-6 * 4.5 * kG);
-        // With the friction in the solve: 3 solves a substep at 1 x 10,
-        // where sweeping it took 7; 2 at 32 x 32, where it took 5.
+        // With the friction in the solve: 2 solves a substep at 1 x 10,
+        // where sweeping it took 7 (3 while an island with contacts
+        // started at x~: DirectSolver::startPoint); 2 at 32 x 32, where
+        // it took 5.
         if (solver == SolverKind::Direct && b.iterations > 2) {
-          EXPECT_LE(s.world->lastStepIterations(), 3 * b.substeps);
+          EXPECT_LE(s.world->lastStepIterations(), 2 * b.substeps);
         }
       }
       // m = 0.6 M: a = (0.6 - mu_d) g / 1.6 along +x, for 0.5 s. Dynamic

@@ -247,7 +247,10 @@ TEST(Servin, AtThePapersBudgetTheRestingPlateMeetsTheStopBeforeItsLastIteration)
   // tail extrapolated (DirectSolver::extrapolation). Its contact's normal
   // and static friction rows are now in the solve with the cables
   // (DESIGN, "Forty-ninth session"): 2.6 a frame, the budget reached in
-  // one frame (a landing). The statics after landing are checked at this
+  // one frame (a landing); 1.87 since its island starts each substep
+  // lifted, as one without contacts does, and a drum's stop no longer
+  // keeps it at x~ (DirectSolver::startPoint; DESIGN, "Fiftieth
+  // session"). The statics after landing are checked at this
   // budget by AfterLandingSlackSpansCarryNothingAndTheGroundTakesTheRest.
   // Counted until 6 s, when the drums have stopped: from then on the left
   // V's sheave, spinning since the landing (that test), may run the slack
@@ -265,7 +268,7 @@ TEST(Servin, AtThePapersBudgetTheRestingPlateMeetsTheStopBeforeItsLastIteration)
   std::printf("[ measured ] 1 x %d, %d frames: %.3f solves a frame, %d frames at the budget\n", budget, frames, mean,
               all);
   EXPECT_LE(all, 3);
-  EXPECT_LT(mean, 3.5);
+  EXPECT_LT(mean, 2.2);
 }
 
 }  // namespace

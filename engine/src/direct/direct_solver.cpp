@@ -130,6 +130,16 @@ constexpr double kStartTurnLimit = 0.2;
 // given drive and limits (JointRowSet's layout).
 int jointRowCount(int bilateral, bool driven, bool limited) { return bilateral + (driven ? 1 : 0) + (limited ? 2 : 0); }
 
+// A residual C left in a substep h is a force error of about C m / h^2:
+// the tolerance, met at h = 1/600 s (4e-5 N per kg), shrinks with h^2
+// below that, or at 10,000 substeps of a 60 Hz frame a 1:100 Atwood
+// machine's solve stopped before it started and reported no tension.
+// (Tolerance 0, to time every iteration, still meets rows to 1e-10 m.)
+double toleranceScale(double h) {
+  constexpr double kToleranceStep = 1.0 / 600.0;  // s
+  return std::min(1.0, (h / kToleranceStep) * (h / kToleranceStep));
+}
+
 bool moves(const World& world, BodyId id) { return world.body(id).moves(); }
 bool listed(const World& world, BodyId id) { return direct::listed(world.body(id)); }
 
@@ -561,8 +571,12 @@ bool DirectSolver::prepare(World& world, const Island& island, double h, bool ag
   // bodies too: the next iteration then does not start where the last
   // one's solve left them (met_).
   touching_ = !island.manifolds.empty();
-  moves_alone_ = !touching_ && std::all_of(island.paths.begin(), island.paths.end(),
-                                           [&](int i) { return world.path(i).weights.empty(); });
+  const bool unweighted = std::all_of(island.paths.begin(), island.paths.end(),
+                                      [&](int i) { return world.path(i).weights.empty(); });
+  moves_alone_ = !touching_ && unweighted;
+  // Every manifold of the island a block of rows here ([source, index,
+  // rows, a, b] each, after contacts_begin_).
+  contacts_in_rows_ = unweighted && (signature_.size() - contacts_begin_) / 5 == island.manifolds.size();
   startPoint(world, h, again, rebuilt);
   first_iteration_ = true;
   plain_solve_ = false;
@@ -612,12 +626,22 @@ void DirectSolver::startPoint(const World& world, double h, bool again, bool reb
   //   distance row; from the lifted start the Galileo bob dips 1.05 mm
   //   below its circle at 1 x 1);
   // - an island a contact or weighted path sweeps between the iterations
-  //   (their motion is not in moved_x), and a rotor (no gravity on it);
-  // - an island whose limits pushed in the last substep: a body resting
-  //   on its stop starts exactly at it, where the limit's activity is
-  //   rounding's to decide, and at 4 x 2 the gym's redundant stops (the
+  //   (their motion is not in moved_x), and a rotor (no gravity on it).
+  //   Contacts that are all rows of this solve (describeContacts) move
+  //   their bodies in moved_x and are lifted with them: Servin's island,
+  //   its plate resting on the ground, took 4 iterations a substep at 1 x
+  //   10 from x~ (3 solves and the check that found them met), 2 or 3
+  //   lifted;
+  // - an island where the lift would move a stop that pushed in the last
+  //   substep (a limit, a one-sided slide: liftMovesStops): a body resting
+  //   on its stop would start exactly at it, where the limit's activity
+  //   is rounding's to decide, and at 4 x 2 the gym's redundant stops (the
   //   stack's and a handle's, one cable between them) then cycled, the
-  //   handle leaving its stop by multiples of g h^2;
+  //   handle leaving its stop by multiples of g h^2. A stop the lift does
+  //   not move (a winch drum's angle: the drum turns nothing) keeps its
+  //   C, and the island is lifted; lifted without the bodies on stops
+  //   (those left at x~), the bow at 1 x 10 drew its nock through the
+  //   arrow and broke its string's bookkeeping at 0.7 s;
   // - an island whose spans are long against g h^2 (kStartSag), or that
   //   has none (joints alone): its first solve from x~ is linearized well
   //   enough, and the lift would change only rounding; and one whose rows
@@ -627,14 +651,15 @@ void DirectSolver::startPoint(const World& world, double h, bool again, bool reb
   if (!again) {
     const Vec3 g = world.settings().gravity;
     const double g_size = g.norm();
-    bool lift = !rebuilt && last_h_ > 0.0 && moves_alone_ && g_size > 0.0 && world.settings().iterations > 1 &&
+    bool lift = !rebuilt && last_h_ > 0.0 && contacts_in_rows_ && g_size > 0.0 && world.settings().iterations > 1 &&
                 world.settings().projection == Projection::End && !linearRows(world);
     double shortest = kInf;  // m, of the island's spans (length_: as the last substep evaluated them)
+    bool stopped = false;    // a limit pushed in the last substep
     for (std::size_t r = 0; r < rows_.size() && lift; ++r) {
-      const bool joint = rows_[r].source != Source::Path && rows_[r].source != Source::Distance;
-      const bool one_sided = (lo_[r] == 0.0 && hi_[r] == kInf) || (hi_[r] == 0.0 && lo_[r] == -kInf);
-      if (joint && one_sided && last_lambda_[r] != 0.0) lift = false;
-      if (!joint) shortest = std::min(shortest, length_[r]);
+      const Source source = rows_[r].source;
+      const bool span = source == Source::Path || source == Source::Distance;
+      stopped = stopped || (!span && source != Source::Contact && pushedAsStop(static_cast<int>(r)));
+      if (span) shortest = std::min(shortest, length_[r]);
     }
     lift = lift && g_size * h * h >= kStartSag * shortest;
     if (lifted_ || start_x_.size() != frames_.size()) {
@@ -671,6 +696,11 @@ void DirectSolver::startPoint(const World& world, double h, bool again, bool reb
       }
       lifted_ = lifted_ || !start_x_[i].isZero(0.0) || !start_phi_[i].isZero(0.0);
     }
+    if (lifted_ && stopped && liftMovesStops(world.settings().tolerance * toleranceScale(h))) {
+      std::fill(start_x_.begin(), start_x_.end(), Vec3::Zero());
+      std::fill(start_phi_.begin(), start_phi_.end(), Vec3::Zero());
+      lifted_ = false;
+    }
     last_h_ = h;
   } else if (start_x_.size() != frames_.size()) {  // a layout built again
     start_x_.assign(frames_.size(), Vec3::Zero());
@@ -691,6 +721,26 @@ void DirectSolver::startPoint(const World& world, double h, bool again, bool reb
     rotateExactly(b.q, start_phi_[i]);
     b.solve_turn += start_phi_[i];  // a turn the cables pay out for, as the solve's
   }
+}
+
+bool DirectSolver::pushedAsStop(int r) const {
+  const Source source = rows_[r].source;
+  if (source == Source::Path || source == Source::Distance || source == Source::Contact) return false;
+  const bool one_sided = (lo_[r] == 0.0 && hi_[r] == kInf) || (hi_[r] == 0.0 && lo_[r] == -kInf);
+  return one_sided && last_lambda_[r] != 0.0;
+}
+
+bool DirectSolver::liftMovesStops(double tolerance) const {
+  // The change the lift makes to a stop's C, J . (start_x, start_phi),
+  // along the gradient the last substep's solve ended with.
+  for (std::size_t r = 0; r < rows_.size(); ++r) {
+    if (!pushedAsStop(static_cast<int>(r))) continue;
+    double dC = 0.0;
+    for (int e = rows_[r].first_entry; e < rows_[r].first_entry + rows_[r].entry_count; ++e)
+      dC += entries_[e].lin.dot(start_x_[entries_[e].body]) + entries_[e].ang.dot(start_phi_[entries_[e].body]);
+    if (!(std::abs(dC) <= tolerance)) return true;
+  }
+  return false;
 }
 
 void DirectSolver::linearizeAtStart(World& world, double h) {
@@ -1095,13 +1145,7 @@ bool DirectSolver::iterate(World& world, double h) {
   }
   first_solve_ = first_iteration_;
   first_iteration_ = false;
-  // A residual C left in a substep h is a force error of about C m / h^2:
-  // the tolerance, met at h = 1/600 s (4e-5 N per kg), shrinks with h^2
-  // below that, or at 10,000 substeps of a 60 Hz frame a 1:100 Atwood
-  // machine's solve stopped before it started and reported no tension.
-  // (Tolerance 0, to time every iteration, still meets rows to 1e-10 m.)
-  constexpr double kToleranceStep = 1.0 / 600.0;  // s
-  const double scale = std::min(1.0, (h / kToleranceStep) * (h / kToleranceStep));
+  const double scale = toleranceScale(h);
   const double tolerance = world.settings().tolerance * scale;
   // After a first solve with every body's plain W (no stiffness, and no
   // residual yet) and rows whose gradients J do not change as the bodies

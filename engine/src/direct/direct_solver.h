@@ -164,6 +164,12 @@ class DirectSolver {
   /// substep (start_x_, at most g h^2), into moved_x_ and its pose.
   /// `rebuilt`: the layout is new this substep.
   void startPoint(const World& world, double h, bool again, bool rebuilt);
+  /// Row r is a joint's one-sided row (a limit, a one-sided slide) that
+  /// pushed in the last substep.
+  bool pushedAsStop(int r) const;
+  /// The lift (start_x_, start_phi_) moves some pushedAsStop row's C by
+  /// more than `tolerance` (m or rad), along its last gradient.
+  bool liftMovesStops(double tolerance) const;
   /// Which rows take their start gradient (use_start_), at the first
   /// iteration of a substep.
   void chooseStartRows();
@@ -543,6 +549,7 @@ class DirectSolver {
   double last_rho_ = 0.0;        // the last measured ratio of a plain step's size to the one before; 0: none
   bool extrapolated_ = false;    // the last step was scaled (extrapolation())
   bool touching_ = false;        // the island has contacts (swept between its iterations)
+  bool contacts_in_rows_ = false;  // every manifold of the island is rows of this solve, and no path is weighted
   bool moves_alone_ = false;     // nothing but this solver moves the island's bodies between its iterations
   bool plain_solve_ = false;     // the last iteration was the substep's first, solved with every plain W
   bool met_ = false;             // the last solve met every row (metAsSolved) or stalled: the next one ends the substep

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -176,6 +177,62 @@ TEST(Capstan, HangingLoadsHoldWithinTheBoundAndSlideBeyondItWithTheCapstanAccele
           EXPECT_NEAR(t_heavy / t_light, k, 1e-2 * k);
         }
         mc.expectLengthKept();
+      }
+}
+
+TEST(Capstan, TheDirectSolveEndsOnceTheSlippingWrapsVisitChangesNothing) {
+  // A slipping friction wrap is a weighted path, swept after each direct
+  // solve (not symmetric: not in the LDL^T). Its island ran every
+  // iteration of the budget, converged or not: 10 solves a substep at 1 x
+  // 10, 32 at 32 x 32. It ends once the rows are met and the sweep changed
+  // no wrap's lambda (kWeightedSettled): 2 solves a substep, the heavy
+  // side falling at the capstan acceleration, its span pulling k times the
+  // other's, where every iteration run (tolerance 0) puts it to 1e-9. A
+  // wrap held within the bound sticks, unweighted: one solve, before too.
+  constexpr double mu = 0.3, r = 0.2;
+  const double k = std::exp(mu * kPi);  // half a turn: 2.57
+  const auto run = [&](const Budget& b, double M, double ratio, double tolerance, double& v, double& t,
+                       double& solves) {
+    Machine mc(b);
+    mc.world.settings().tolerance = tolerance;
+    const BodyId left = mc.box(M, Vec3(-r, -2.0, 0.0)), right = mc.box(ratio * k * M, Vec3(r, -2.0, 0.0));
+    CableDef def;
+    def.links = {LinkDef::attachment(left, Vec3(0.0, 0.05, 0.0)), wrap(mc.drum(r, Vec3::Zero()), -1, mu),
+                 LinkDef::attachment(right, Vec3(0.0, 0.05, 0.0))};
+    mc.cable = mc.cables.addCable(def);
+    mc.total = mc.cables.totalLength(mc.cable);
+    mc.run(0.25);
+    const double v0 = mc.world.body(right).v.y(), t0 = mc.world.time();
+    long count = 0;
+    for (int f = 0; f < 30; ++f) {
+      mc.world.step(1.0 / 60.0);
+      count += mc.world.lastStepIterations();
+    }
+    t = mc.world.time() - t0;
+    v = mc.world.body(right).v.y() - v0;
+    solves = static_cast<double>(count) / (30.0 * b.substeps);
+    if (ratio > 1.0) {
+      EXPECT_NEAR(mc.cables.tension(mc.cable, 1) / mc.cables.tension(mc.cable, 0), k, 1e-2 * k);
+    }
+    mc.expectLengthKept();
+  };
+  for (const Budget& b : {Budget{SolverKind::Direct, 1, 10}, Budget{SolverKind::Direct, 32, 32}})
+    for (const double M : {1e-3, 1.0, 100.0})
+      for (const double ratio : {0.97, 1.03}) {
+        SCOPED_TRACE(test::name(b) + ", M " + std::to_string(M) + ", ratio " + std::to_string(ratio));
+        double v, t, solves, v_all, t_all, solves_all;
+        run(b, M, ratio, 1e-10, v, t, solves);
+        run(b, M, ratio, 0.0, v_all, t_all, solves_all);
+        std::printf("[ measured ] %s, M %g, %.2f of the bound: %.2f solves a substep (every one: %.0f)\n",
+                    test::name(b).c_str(), M, ratio, solves, solves_all);
+        EXPECT_LE(solves, ratio < 1.0 ? 1.0 : 2.1);
+        if (ratio < 1.0) {
+          EXPECT_LT(std::abs(v), 1e-9);
+        } else {
+          const double a = kG * (ratio * k * M / k - M) / (ratio * k * M / k + M);
+          EXPECT_NEAR(v, -a * t, 1e-2 * a * t);
+          EXPECT_NEAR(v, v_all, 1e-9 * std::abs(v_all));
+        }
       }
 }
 

@@ -5,12 +5,20 @@
 // cable-held body's resting ones on static bodies are rows of the solve:
 // direct_solver.h) and weighted paths (cable friction).
 #include <algorithm>
+#include <cmath>
 
 #include "../island.h"
 #include "direct_solver.h"
 #include "reeve/engine/world.h"
 
 namespace reeve {
+namespace {
+
+// A weighted path's visit that changed its lambda by no more than this
+// fraction of it moved its bodies by as little of their correction.
+constexpr double kWeightedSettled = 1e-12;
+
+}  // namespace
 
 void World::solveDirect(Island& island, double h, bool again) {
   const double inv_h2 = 1.0 / (h * h);
@@ -52,12 +60,18 @@ void World::solveDirect(Island& island, double h, bool again) {
       const Contact& c = contacts_[m.first];
       contacts_moved |= solveContactPositions(m, contacts_.data(), body(c.a), body(c.b), frictionPool(m), supportGroup(m));
     }
+    bool weighted_moved = !(settings_.tolerance > 0.0);  // tolerance 0: every iteration runs
     if (weighted)
       for (const int i : island.paths)
-        if (PathConstraint& p = paths_[i]; !p.weights.empty()) solvePathConstraint(p, table, p.compliance * inv_h2, h);
-    // Neither the rows nor the contacts moved a body: the next iteration
-    // would start where this one did, and do the same.
-    if (!moved && !contacts_moved && !weighted) break;
+        if (PathConstraint& p = paths_[i]; !p.weights.empty()) {
+          const double before = p.lambda;
+          solvePathConstraint(p, table, p.compliance * inv_h2, h);
+          weighted_moved |= !(std::abs(p.lambda - before) <= kWeightedSettled * std::abs(p.lambda));
+        }
+    // Neither the rows nor the contacts nor the weighted paths moved a
+    // body: the next iteration would start where this one did, and do the
+    // same.
+    if (!moved && !contacts_moved && !weighted_moved) break;
     if (it + 1 < settings_.iterations && interruptRequested()) {  // the substep ends here
       island.interrupted = true;
       break;

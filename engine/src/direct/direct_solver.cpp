@@ -654,12 +654,11 @@ void DirectSolver::startPoint(const World& world, double h, bool again, bool reb
     bool lift = !rebuilt && last_h_ > 0.0 && contacts_in_rows_ && g_size > 0.0 && world.settings().iterations > 1 &&
                 world.settings().projection == Projection::End && !linearRows(world);
     double shortest = kInf;  // m, of the island's spans (length_: as the last substep evaluated them)
-    bool stopped = false;    // a limit pushed in the last substep
+    bool stopped = false;    // a limit or one-sided slide pushed in the last substep
     for (std::size_t r = 0; r < rows_.size() && lift; ++r) {
-      const Source source = rows_[r].source;
-      const bool span = source == Source::Path || source == Source::Distance;
-      stopped = stopped || (!span && source != Source::Contact && pushedAsStop(static_cast<int>(r)));
-      if (span) shortest = std::min(shortest, length_[r]);
+      stopped = stopped || pushedAsStop(static_cast<int>(r));
+      if (rows_[r].source == Source::Path || rows_[r].source == Source::Distance)
+        shortest = std::min(shortest, length_[r]);
     }
     lift = lift && g_size * h * h >= kStartSag * shortest;
     if (lifted_ || start_x_.size() != frames_.size()) {

@@ -15,7 +15,9 @@ namespace reeve {
 namespace {
 
 // A weighted path's visit that changed its lambda by no more than this
-// fraction of it moved its bodies by as little of their correction.
+// fraction of it: its bodies moved by that fraction of what the path's
+// tension moves them in a substep, and the next iteration would find the
+// rows as met as this one did.
 constexpr double kWeightedSettled = 1e-12;
 
 }  // namespace

@@ -130,16 +130,6 @@ constexpr double kStartTurnLimit = 0.2;
 // given drive and limits (JointRowSet's layout).
 int jointRowCount(int bilateral, bool driven, bool limited) { return bilateral + (driven ? 1 : 0) + (limited ? 2 : 0); }
 
-// A residual C left in a substep h is a force error of about C m / h^2:
-// the tolerance, met at h = 1/600 s (4e-5 N per kg), shrinks with h^2
-// below that, or at 10,000 substeps of a 60 Hz frame a 1:100 Atwood
-// machine's solve stopped before it started and reported no tension.
-// (Tolerance 0, to time every iteration, still meets rows to 1e-10 m.)
-double toleranceScale(double h) {
-  constexpr double kToleranceStep = 1.0 / 600.0;  // s
-  return std::min(1.0, (h / kToleranceStep) * (h / kToleranceStep));
-}
-
 bool moves(const World& world, BodyId id) { return world.body(id).moves(); }
 bool listed(const World& world, BodyId id) { return direct::listed(world.body(id)); }
 
@@ -695,7 +685,7 @@ void DirectSolver::startPoint(const World& world, double h, bool again, bool reb
       }
       lifted_ = lifted_ || !start_x_[i].isZero(0.0) || !start_phi_[i].isZero(0.0);
     }
-    if (lifted_ && stopped && liftMovesStops(world.settings().tolerance * toleranceScale(h))) {
+    if (lifted_ && stopped && liftMovesStops(direct::substepTolerance(world.settings().tolerance, h))) {
       std::fill(start_x_.begin(), start_x_.end(), Vec3::Zero());
       std::fill(start_phi_.begin(), start_phi_.end(), Vec3::Zero());
       lifted_ = false;
@@ -1144,7 +1134,8 @@ bool DirectSolver::iterate(World& world, double h) {
   }
   first_solve_ = first_iteration_;
   first_iteration_ = false;
-  const double scale = toleranceScale(h);
+  // (Tolerance 0, to time every iteration, still meets rows to 1e-10 m.)
+  const double scale = direct::substepTolerance(1.0, h);
   const double tolerance = world.settings().tolerance * scale;
   // After a first solve with every body's plain W (no stiffness, and no
   // residual yet) and rows whose gradients J do not change as the bodies

@@ -7,26 +7,6 @@
 namespace reeve {
 namespace {
 
-// (q v q^-1) . d, q v q^-1 as Eigen's Quaternion * Vector3 takes it (uv =
-// 2 q.vec x v, then v + w uv + q.vec x uv: the same operations in the same
-// order, the same bits), in scalars. Eigen's stores its cross products a
-// coefficient at a time and adds them a pair at a time, a store-forwarding
-// stall a hinge and substep: a quarter of trackHingeAngle's time on
-// Hilbert3, whose frame this takes from 153 to 146-148 us (best of 25 runs
-// alternated). Scalars returned as a Vec3 (for prepare's and integrate's
-// rotor axles too) made the frame 2 to 7 % slower instead.
-[[gnu::always_inline]] inline double rotatedDot(const Quat& q, const Vec3& v, const Vec3& d) {
-  const double qx = q.x(), qy = q.y(), qz = q.z(), qw = q.w();
-  double ux = qy * v.z() - qz * v.y(), uy = qz * v.x() - qx * v.z(), uz = qx * v.y() - qy * v.x();
-  ux += ux;
-  uy += uy;
-  uz += uz;
-  const double rx = v.x() + qw * ux + (qy * uz - qz * uy);
-  const double ry = v.y() + qw * uy + (qz * ux - qx * uz);
-  const double rz = v.z() + qw * uz + (qx * uy - qy * ux);
-  return rx * d.x() + ry * d.y() + rz * d.z();
-}
-
 joint_rows::DriveKind kindOf(HingeDrive::Mode mode) {
   switch (mode) {
     case HingeDrive::Mode::Velocity: return joint_rows::DriveKind::Velocity;
@@ -176,7 +156,9 @@ double hingeAngleTotal(const HingeJoint& j, const Quat& q_a, const Quat& q_b) {
 }
 
 void trackHingeAngle(HingeJoint& j, const BodyState& a, const BodyState& b, double h) {
-  const double estimate = j.angle_total + h * rotatedDot(a.q, j.frame.axis_a, a.omega - b.omega);
+  const Scalars3 axis = rotated(a.q, j.frame.axis_a);  // in scalars: math.h
+  const Vec3 spin = a.omega - b.omega;
+  const double estimate = j.angle_total + h * (axis.x * spin.x() + axis.y * spin.y() + axis.z * spin.z());
   // An undamped rotor turned by exactly h omega about its axle: integrate()
   // turns it by h omega_0, the solve by what updateVelocities added to
   // omega_0. The poses would correct the estimate by rounding alone (2 ulp

@@ -935,8 +935,11 @@ void World::integrate(const Island& island, double start_s, double h) {
     if (b.isRotor()) {  // no gravity, no gyroscopic torque: it turns about its axle
       b.x_prev = b.x;
       b.q_prev = b.q;
-      const Vec3 u = b.q * b.rotor_axis;
-      b.omega = u * u.dot(torqued ? Vec3(b.omega + h * b.applyInvInertia(b.applied_torque)) : b.omega);
+      // omega = u (u . omega), u the axle in the world, in scalars (math.h).
+      const Scalars3 u = rotated(b.q, b.rotor_axis);
+      const Vec3 w = torqued ? Vec3(b.omega + h * b.applyInvInertia(b.applied_torque)) : b.omega;
+      const double spin = u.x * w.x() + u.y * w.y() + u.z * w.z();
+      b.omega = Vec3(u.x * spin, u.y * spin, u.z * spin);
       rotateExactly(b.q, h * b.omega);
       b.q_pred = b.q;
       continue;

@@ -517,7 +517,8 @@ bool DirectSolver::prepare(World& world, const Island& island, double h, bool ag
     f.inv_axial = b.isRotor() ? b.rotor_axis.dot(b.inv_inertia * b.rotor_axis) : 0.0;
     f.axial_inv0 = f.inv_axial;
     f.axial_inertia = f.inv_axial > 0.0 ? 1.0 / f.inv_axial : 0.0;
-    f.axle = b.q * b.rotor_axis;
+    const Scalars3 axle = rotated(b.q, b.rotor_axis);  // in scalars: math.h
+    f.axle = Vec3(axle.x, axle.y, axle.z);
     f.evaluated_turn = b.solve_turn;
   }
   evaluated_ = false;

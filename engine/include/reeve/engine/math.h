@@ -21,6 +21,30 @@ using Quat = Eigen::Quaterniond;
 /// every file that instantiates it).
 Quat rotationBetween(const Vec3& from, const Vec3& to);
 
+/// A vector as three scalars, for kernels that go on in scalars (rotated).
+struct Scalars3 {
+  double x, y, z;
+};
+
+/// q v q^-1 for a unit q as Eigen's `q * v` takes it (uv = 2 q.vec x v,
+/// then v + w uv + q.vec x uv: the same operations in the same order, the
+/// same bits), as scalars. Eigen's stores its cross products a coefficient
+/// at a time and adds them a pair at a time, a store-forwarding stall per
+/// rotation: a quarter of trackHingeAngle's time and a fifth of
+/// DirectSolver::prepare's on Hilbert3, whose frame at 1 x 10 this takes
+/// from 153 to 142-146 us (with integrate's rotors; DESIGN, "Fifty-first
+/// session"). Made a Vec3 and read by Eigen at once (BodyState::toLocal)
+/// it gained nothing.
+[[gnu::always_inline]] inline Scalars3 rotated(const Quat& q, const Vec3& v) {
+  const double qx = q.x(), qy = q.y(), qz = q.z(), qw = q.w();
+  double ux = qy * v.z() - qz * v.y(), uy = qz * v.x() - qx * v.z(), uz = qx * v.y() - qy * v.x();
+  ux += ux;
+  uy += uy;
+  uz += uz;
+  return {v.x() + qw * ux + (qy * uz - qz * uy), v.y() + qw * uy + (qz * ux - qx * uz),
+          v.z() + qw * uz + (qx * uy - qy * ux)};
+}
+
 /// Rotates `q` by the small world-space rotation vector `dphi` (rad) and
 /// renormalizes: q <- q + 1/2 [dphi, 0] q (Müller et al. 2020, eq. 8).
 /// One division, not normalize()'s four: every solver kernel ends here.

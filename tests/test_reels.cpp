@@ -46,22 +46,26 @@ std::string number(double x) {
 /// `torque` N m to wind the tape on (`winding`) or to pay it out.
 Scene reels(double mass_a, double mass_b, bool crossed, bool winding, double torque, const Budget& b) {
   const auto drum = [](const char* name, double mass, double x) {
-    return std::string(R"({"name": ")") + name +
-           R"(", "shape": {"type": "cylinder", "radius_m": 0.1, "half_length_m": 0.05}, "mass_kg": )" + number(mass) +
-           R"(, "position_m": [)" + number(x) + R"(, 0, 0]})";
+    return std::string(R"({"name": ")") + name + R"(", "shape": {"type": "cylinder", "radius_m": )" + number(kRadius) +
+           R"(, "half_length_m": 0.05}, "mass_kg": )" + number(mass) + R"(, "position_m": [)" + number(x) + R"(, 0, 0]})";
   };
-  // Winding a (cw, seen from +z) takes the tape in from its top.
-  const std::string target = winding ? "1000" : "-1000";
+  const auto hinge = [](const char* name, double x, const std::string& drive) {
+    return std::string(R"({"body": ")") + name + R"(", "anchor_m": [)" + number(x) + R"(, 0, 0], "axis": [0, 0, 1])" +
+           drive + "}";
+  };
+  const auto link = [](const char* name, const char* orientation) {
+    return std::string(R"({"body": ")") + name + R"(", "type": "hybrid", "orientation": ")" + orientation +
+           R"(", "stored_m": )" + number(kStored) + "}";
+  };
+  // Winding a (cw, seen from +z) takes the tape in from its top; a target
+  // speed it never reaches keeps the motor at its cap.
+  const std::string drive = std::string(R"(, "drive": {"mode": "velocity", "target_rad_per_s": )") +
+                            (winding ? "1000" : "-1000") + R"(, "max_torque_N_m": )" + number(torque) + "}";
+  const double x = 0.5 * kGap;
   return parseScene(R"({"name": "reels", "duration_s": 1, )" + solverJson(b) + R"(,
-    "bodies": [)" + drum("a", mass_a, -0.5 * kGap) + ", " + drum("b", mass_b, 0.5 * kGap) + R"(],
-    "hinges": [
-      {"body": "a", "anchor_m": [-0.5, 0, 0], "axis": [0, 0, 1],
-       "drive": {"mode": "velocity", "target_rad_per_s": )" + target + R"(, "max_torque_N_m": )" + number(torque) + R"(}},
-      {"body": "b", "anchor_m": [0.5, 0, 0], "axis": [0, 0, 1]}],
-    "cables": [{"name": "tape", "links": [
-      {"body": "a", "type": "hybrid", "orientation": "cw", "stored_m": 2.0},
-      {"body": "b", "type": "hybrid", "orientation": ")" + std::string(crossed ? "ccw" : "cw") +
-                        R"(", "stored_m": 2.0}]}]})",
+    "bodies": [)" + drum("a", mass_a, -x) + ", " + drum("b", mass_b, x) + R"(],
+    "hinges": [)" + hinge("a", -x, drive) + ", " + hinge("b", x, "") + R"(],
+    "cables": [{"name": "tape", "links": [)" + link("a", "cw") + ", " + link("b", crossed ? "ccw" : "cw") + "]}]}",
                     "<reels>");
 }
 

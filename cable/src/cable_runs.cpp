@@ -38,6 +38,21 @@ void setRunEnd(PathPoint& point, const Link& link, const Vec3& anchor, bool leav
   const bool store = link.type == LinkType::Hybrid && !link.attached && point.roll_axis.z() != 0.0;
   point.roll_store = store ? std::max(0.0, link.arc()) : 0.0;
   point.store_sense = store ? (leaving ? link.orientation : -link.orientation) : 0;
+  point.slides = false;
+}
+
+// Whether the cable slides over `link`'s circle inside a run (a sliding
+// wrap or a slipping friction link): its tangent points there are held
+// where the update put them while a solve turns the body
+// (PathPoint::slides), in a weighted run, which only the path kernel
+// solves (the direct solver's rows hold none).
+bool slidesOverCircle(const Link& link) { return link.slides() && link.section.kind == Section::Kind::Circle; }
+
+// `point` (on `link`) marked as a tangent point the cable slides past.
+void markSliding(PathPoint& point, const Link& link) {
+  point.slides = true;
+  point.roll_axis = Vec3::UnitZ();
+  point.roll_centre = fromPlane(link, link.section.centre);
 }
 
 PathPoint runEnd(const Link& link, const Vec3& anchor, bool leaving) {
@@ -86,6 +101,12 @@ bool hasFriction(const Link& link) { return link.mu > 0.0 && std::isfinite(link.
 // through the solve and no further. (Taken at this substep's turn instead,
 // a slipping wrap on a hinged wheel measured its slip less the wheel's
 // next turn, stuck and slipped by turns, and created energy: issue 28.)
+// A slipping wrap's tangent points too, which the solve held where they
+// were (PathPoint::slides): turned here as if the cable stuck through the
+// solve, as the next update pays the solve's turn out, so that the share
+// measures the slip less that turn. (Held here too, the slip lagged the
+// update's pay-out by a solve: a wrap on a hinged wheel made 7e-4 J at
+// 1 x 1 under the start projection.)
 Vec3 pointAt(const BodyState& body, const Vec3& local, bool now) {
   return now ? body.toWorld(local) : body.x_prev + body.q_prev * local;
 }
@@ -279,6 +300,7 @@ void CableSystem::buildRuns(Cable& cable) {
       path.points.clear();
       path.weights.clear();
       path.points.push_back(runEnd(cable.links[j], cable.joints[j].local_a, true));
+      if (loop && slidesOverCircle(cable.links[j])) markSliding(path.points.back(), cable.links[j]);
       double w = 1.0, heaviest = 1.0;
       walkRun(cable, j, loop, [&](int k) {
         CableJoint& span = cable.joints[k];
@@ -298,6 +320,10 @@ void CableSystem::buildRuns(Cable& cable) {
             chords += (departure - span.local_b).norm();
             path.weights.push_back(w);
             path.points.push_back({to.body, departure});
+            if (slidesOverCircle(to)) {
+              markSliding(path.points.end()[-2], to);
+              markSliding(path.points.back(), to);
+            }
           }
         }
         if (!last && hasFriction(to)) w *= std::exp(to.slip_sense * to.mu * wrapAngle(cable, span.to));
@@ -314,6 +340,8 @@ void CableSystem::buildRuns(Cable& cable) {
         });
       } else {
         path.weights.clear();
+        for (PathPoint& point : path.points)
+          if (point.slides) point = PathPoint{point.body, point.local};  // the direct solver's rows: fixed points
       }
     }
     path.rest_length = rest + chords;

@@ -22,6 +22,8 @@ struct Scratch {
   // first point (by body), its turn per unit lambda and its share of w.
   std::vector<double> scale, share;
   std::vector<Vec3> body_turn;
+  // Points that slide (PathPoint::slides): held as the solve found them.
+  std::vector<SolvePoint> held;
   // A rolling end's tangent slide (tangentSlide) at the run's ends and their
   // neighbours: dC/dp and dC/d(rotation), and their weighted forces.
   std::vector<Vec3> slide_grad, slide_moment, slide_force, slide_torque;
@@ -35,6 +37,7 @@ struct Scratch {
     scale.resize(n);
     share.resize(n);
     body_turn.resize(n);
+    held.resize(n);
   }
 };
 thread_local Scratch scratch;
@@ -311,11 +314,25 @@ void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double a
   // f_i (the weighted gradient; f = g without weights).
   scratch.fit(n);
   std::vector<Vec3>&arm = scratch.arm, &grad = scratch.grad, &force = scratch.force, &pos = scratch.pos;
-  const SolvePoint first = solvePoint(bodies(path.points[0].body), path.points[0], true);
-  const SolvePoint last = solvePoint(bodies(path.points[n - 1].body), path.points[n - 1], true);
+  // A point that slides is held where the solve found it (scratch.held);
+  // at an end (a closed loop's, slipping round every link) it is otherwise
+  // a fixed point: no pay-out, no tangent slide.
+  bool slides = false;  // a point of the path slides (most paths: none)
+  const auto endPoint = [&](size_t i) {
+    const PathPoint& point = path.points[i];
+    if (!point.slides) return solvePoint(bodies(point.body), point, true);
+    slides = true;
+    SolvePoint fixed;
+    fixed.arm = (scratch.held[i] = solvePoint(bodies(point.body), point, true)).arm;
+    return fixed;
+  };
+  const SolvePoint first = endPoint(0), last = endPoint(n - 1);
   for (size_t i = 0; i < n; ++i) {
     const BodyState& b = bodies(path.points[i].body);
-    arm[i] = i == 0 ? first.arm : i + 1 == n ? last.arm : b.q * path.points[i].local;
+    if (i == 0) arm[i] = first.arm;
+    else if (i + 1 == n) arm[i] = last.arm;
+    else if (!path.points[i].slides) arm[i] = b.q * path.points[i].local;
+    else arm[i] = (scratch.held[i] = solvePoint(b, path.points[i], true)).arm, slides = true;
     pos[i] = b.x + arm[i];
     grad[i].setZero();
     force[i].setZero();
@@ -370,6 +387,11 @@ void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double a
   const auto moment = [&](size_t i, const Vec3& v) {
     return i == 0 ? first.moment(v) : i + 1 == n ? last.moment(v) : Vec3(arm[i].cross(v));
   };
+  // The length's: a point that slides does not move as its body turns
+  // about the axle (its pull, `moment`, still turns the body).
+  const auto gradMoment = [&](size_t i, const Vec3& g) {
+    return slides && path.points[i].slides ? slidingMoment(scratch.held[i], g) : moment(i, g);
+  };
   // w = J_c M^-1 J_f^T: the length's rate of change per unit of lambda.
   // Pairs of points on one body interact, so per body B it is
   // inv_mass (sum_i g_i) . (sum_j f_j) + (sum_i t(g_i)) . I^-1 (sum_j t(f_j)),
@@ -401,7 +423,7 @@ void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double a
     for (; end < n && path.points[by_body[end]].body == id; ++end) {
       const size_t i = by_body[end];
       g += grad[i];
-      t += moment(i, grad[i]);
+      t += gradMoment(i, grad[i]);
       if (slid) g += scratch.slide_grad[i], t += scratch.slide_moment[i];
       f += force[i];
     }
@@ -469,12 +491,23 @@ void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double a
   }
 }
 
+namespace {
+
+// A path point at the substep's start; one that slides is where the cable
+// update put it on its circle (a lever at the predicted pose), the circle's
+// centre where it started.
+Vec3 startPoint(const BodyState& body, const PathPoint& point) {
+  if (!point.slides) return body.toWorldAtSubstepStart(point.local);
+  return body.x_prev + body.q_prev * point.roll_centre + body.q_pred * (point.local - point.roll_centre);
+}
+
+}  // namespace
+
 double pathStartLength(const PathConstraint& path, const BodyTable& bodies) {
   double length = 0.0;
   for (size_t i = 0; i + 1 < path.points.size(); ++i) {
     const PathPoint &p = path.points[i], &q = path.points[i + 1];
-    length += segmentScale(path, i) *
-              (bodies(q.body).toWorldAtSubstepStart(q.local) - bodies(p.body).toWorldAtSubstepStart(p.local)).norm();
+    length += segmentScale(path, i) * (startPoint(bodies(q.body), q) - startPoint(bodies(p.body), p)).norm();
   }
   return length;
 }

@@ -471,11 +471,18 @@ double World::pathLength(PathId id) const {
   const std::vector<PathPoint>& points = path.points;
   const std::size_t n = points.size();
   const bool stores = settings_.solver == SolverKind::Direct;
-  const SolvePoint first = solvePoint(body(points[0].body), points[0], poses_solved_, stores);
-  const SolvePoint last = solvePoint(body(points[n - 1].body), points[n - 1], poses_solved_, stores);
+  // A point that slides (a slipping wrap's) is held as the solve holds
+  // it, and pays nothing out, at an end too.
+  const auto endPoint = [&](const PathPoint& point) {
+    SolvePoint p = solvePoint(body(point.body), point, poses_solved_, stores);
+    if (point.slides) p.axis.setZero(), p.turn = 0.0;
+    return p;
+  };
+  const SolvePoint first = endPoint(points[0]), last = endPoint(points[n - 1]);
   const auto position = [&](std::size_t i) {
     const BodyState& b = body(points[i].body);
-    return Vec3(b.x + (i == 0 ? first.arm : i + 1 == n ? last.arm : Vec3(b.q * points[i].local)));
+    if (i == 0 || i + 1 == n) return Vec3(b.x + (i == 0 ? first.arm : last.arm));
+    return Vec3(b.x + (points[i].slides ? solvePoint(b, points[i], poses_solved_).arm : Vec3(b.q * points[i].local)));
   };
   double length = 0.0;
   for (size_t i = 0; i + 1 < n; ++i) length += segmentScale(path, i) * (position(i + 1) - position(i)).norm();

@@ -32,6 +32,17 @@ struct PathPoint {
   /// (SolvePoint).
   double roll_store = 0.0;
   int store_sense = 0;
+  /// A tangent point of a circle (roll_axis, roll_centre) the cable slips
+  /// over inside a run (a slipping friction wrap): the cable slides past
+  /// it, so a solve's turn of the body about the axle leaves it where the
+  /// cable update put it on the circle and pays nothing out; only the
+  /// circle's moving changes the path's length. Its pull turns the body
+  /// all the same (the friction torque, r (T_in - T_out)). Turned with the
+  /// body instead, a belt over two hinged wheels, whose slipping length no
+  /// turn changes, grew a length gradient from the turn alone and a visit
+  /// divided by it: 16 kN, the motor flung backwards, 128 J made in a
+  /// frame (DESIGN, "Fifty-second session").
+  bool slides = false;
 };
 
 /// A path point where a solve has put it (issue 29, item 3). A point fixed
@@ -137,13 +148,22 @@ TangentSlide tangentSlide(const SolvePoint& near, const SolvePoint& far, const V
 void addSpanSlides(const SolvePoint& first, const SolvePoint& last, const Vec3& d, bool slid0, bool slid1,
                    double& length, Vec3& g0, Vec3& t0, Vec3& g1, Vec3& t1);
 
+/// dC/d(rotation) (m) of a point that slides (PathPoint::slides), at `arm`
+/// from its body's centre of mass, for the length's gradient `grad`
+/// there: the arm's moment less the lever's about the axle (`axis`, world
+/// unit; `lever` from the circle's centre), which does not move the point.
+inline Vec3 slidingMoment(const SolvePoint& p, const Vec3& grad) {
+  return p.arm.cross(grad) - p.axis * p.axis.dot(p.lever.cross(grad));
+}
+
 /// `point` on `body`. `in_solve`: the body's solve_turn is this solve's
 /// (from the start of a position solve until the next substep's
 /// integration); otherwise every point is fixed on its body. `stores`: a
 /// rolling end pays out no more than its store (PathPoint::roll_store) and
 /// is tied past it, as the direct solver's rows have it; Gauss-Seidel's
 /// visits leave the overdraft to the cable update (DESIGN, "Forty-second
-/// session").
+/// session"). A point that slides is held as a rolling end is, with no
+/// store.
 SolvePoint solvePoint(const BodyState& body, const PathPoint& point, bool in_solve, bool stores = false);
 
 /// At least two points; `rest_length` (m), `compliance` (m/N) and

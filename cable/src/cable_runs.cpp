@@ -46,7 +46,9 @@ void setRunEnd(PathPoint& point, const Link& link, const Vec3& anchor, bool leav
 // where the update put them while a solve turns the body
 // (PathPoint::slides), in a weighted run, which only the path kernel
 // solves (the direct solver's rows hold none).
-bool slidesOverCircle(const Link& link) { return link.slides() && link.section.kind == Section::Kind::Circle; }
+bool slidesOverCircle(const Link& link) {
+  return link.rolls() && link.slides() && link.section.kind == Section::Kind::Circle;  // not a pinhole
+}
 
 // `point` (on `link`) marked as a tangent point the cable slides past.
 void markSliding(PathPoint& point, const Link& link) {

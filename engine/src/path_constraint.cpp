@@ -361,8 +361,10 @@ void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double a
   for (int k = 0; k < 2; ++k) {
     const size_t i = k == 0 ? 0 : n - 1, j = k == 0 ? 1 : n - 2;
     if (!leavesPlane(k == 0 ? first : last, pos[j] - pos[i])) continue;
+    // A far point that slides is held (its slide's length moment less the
+    // lever's about the axle, as tangentSlide takes a held far end's).
     SolvePoint far = j == 0 ? first : j + 1 == n ? last : SolvePoint{};
-    if (j != 0 && j + 1 != n) far.arm = arm[j];
+    if (j != 0 && j + 1 != n) far = path.points[j].slides ? scratch.held[j] : SolvePoint{arm[j]};
     const TangentSlide slide = tangentSlide(k == 0 ? first : last, far, pos[j] - pos[i]);
     if (!slid)
       for (size_t p = 0; p < n; ++p)
@@ -377,7 +379,9 @@ void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double a
       scratch.slide_grad[p] += scale * lin;
       scratch.slide_moment[p] += scale * ang;
       scratch.slide_force[p] += scale * weight * lin;
-      scratch.slide_torque[p] += scale * weight * ang;
+      // A held point's pull turns its body all the same: the arm's moment.
+      const bool held = p == j && !far.axis.isZero() && path.points[p].slides;
+      scratch.slide_torque[p] += scale * weight * (held ? Vec3(arm[p].cross(lin)) : ang);
     }
   }
   const double C = length - path.rest_length;
@@ -462,6 +466,7 @@ void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double a
       double most = angle;
       for (size_t j = start; j < k; ++j) {
         const size_t i = by_body[j];
+        if (path.points[i].slides) continue;  // held where it is: no line-up to turn past
         if (!path.points[i].roll_axis.isZero()) {  // pays out linearly: left as it is
           most = angle;
           break;
@@ -497,7 +502,10 @@ namespace {
 // update put it on its circle (a lever at the predicted pose), the circle's
 // centre where it started.
 Vec3 startPoint(const BodyState& body, const PathPoint& point) {
-  if (!point.slides) return body.toWorldAtSubstepStart(point.local);
+  // (A body that does not move is where it is: q_pred is only ever set by
+  // integrate(), and a rotated static bollard read as unrotated gave a
+  // damped cable slipping over it a false rate, 43 N read as 121 N.)
+  if (!point.slides || !body.moves()) return body.toWorldAtSubstepStart(point.local);
   return body.x_prev + body.q_prev * point.roll_centre + body.q_pred * (point.local - point.roll_centre);
 }
 

@@ -115,7 +115,10 @@ SolvePoint DirectSolver::endPoint(const World& world, const PathPoint& point, in
   // turned back with its wheel: the tangent point is geometry, not
   // material (the wheel may have turned a radian under it).
   if (at_start_ && !point.roll_axis.isZero()) {
-    const Quat& q = world.body(point.body).q_pred;
+    // (Only integrate() sets q_pred: a static drum is as it is. Read there,
+    // a rotated static drum's rolling end was placed as if unrotated.)
+    const BodyState& b = world.body(point.body);
+    const Quat& q = b.takesImpulses() ? b.q_pred : b.q;
     SolvePoint p;
     p.arm = q * point.local;
     p.axis = q * point.roll_axis;

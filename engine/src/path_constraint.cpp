@@ -380,7 +380,7 @@ void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double a
       scratch.slide_moment[p] += scale * ang;
       scratch.slide_force[p] += scale * weight * lin;
       // A held point's pull turns its body all the same: the arm's moment.
-      const bool held = p == j && !far.axis.isZero() && path.points[p].slides;
+      const bool held = p == j && path.points[p].slides;
       scratch.slide_torque[p] += scale * weight * (held ? Vec3(arm[p].cross(lin)) : ang);
     }
   }

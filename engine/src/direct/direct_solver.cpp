@@ -131,6 +131,18 @@ constexpr double kStartTurnLimit = 0.2;
 int jointRowCount(int bilateral, bool driven, bool limited) { return bilateral + (driven ? 1 : 0) + (limited ? 2 : 0); }
 
 bool moves(const World& world, BodyId id) { return world.body(id).moves(); }
+
+// A path whose points are all fixed on one body (a rope between two
+// friction pinholes of one plate, sticking): no motion of the body
+// changes its length, its gradient is zero but for rounding, and its
+// tension is not the solve's to find. As a row it divided rounding by
+// rounding: 5e4 N in a rope laced through four holes of a 1 kg plate,
+// which flew 1.8 m in the first frame (DESIGN, "Fifty-third session").
+bool chordOfOneBody(const PathConstraint& p) {
+  return std::all_of(p.points.begin(), p.points.end(), [&](const PathPoint& q) {
+    return q.body == p.points[0].body && q.roll_axis.isZero();
+  });
+}
 bool listed(const World& world, BodyId id) { return direct::listed(world.body(id)); }
 
 }  // namespace
@@ -171,6 +183,7 @@ std::size_t DirectSolver::describe(World& world, const Island& island, std::vect
   for (const int i : island.paths) {
     const PathConstraint& p = world.path(i);
     if (!p.enabled || !p.weights.empty()) continue;  // weighted paths: World::solvePositions
+    if (chordOfOneBody(p)) continue;
     if (p.points.size() == 2) {  // a span (most paths): the loop below, unrolled
       const BodyId a = p.points[0].body, b = p.points[1].body;
       const bool on_a = listed(world, a), on_b = listed(world, b) && !(on_a && b == a);

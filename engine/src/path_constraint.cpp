@@ -340,17 +340,22 @@ void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double a
   // C = sum s_i |p_{i+1} - p_i| - L; dC/dp_i = u_{i-1} - u_i, f_i = w_{i-1} u_{i-1} - w_i u_i,
   // u_i the unit segment times s_i.
   double length = 0.0;
+  const auto paysOut = [&](size_t i) {  // a run's rolling end: its length turns with its gradient
+    return (i == 0 && !first.axis.isZero()) || (i + 1 == n && !last.axis.isZero());
+  };
   for (size_t i = 0; i + 1 < n; ++i) {
     const Vec3 d = pos[i + 1] - pos[i];
     const double l = d.norm(), s = segmentScale(path, i);
     length += s * l;
     if (l < 1e-12 || s == 0.0) continue;
-    // A chord (both points on one body: a wrap's, between its tangent
-    // points) keeps its length however the body moves: its pull on the two
-    // points cancels in the body's sums, and left in each point's gradient
-    // it only misleads the per-point line-up cap below (the point lined up
-    // with the chord, not with its span).
-    if (path.points[i].body == path.points[i + 1].body) continue;
+    // A chord (both points on one body, both fixed on it or both held on
+    // its circle, neither a rolling end that pays out: a wrap's, between
+    // its tangent points) keeps its length however the body moves: its
+    // pull on the two points cancels in the body's sums, and left in each
+    // point's gradient it only misleads the per-point line-up cap below
+    // (the point lined up with the chord, not with its span).
+    const PathPoint &p = path.points[i], &q = path.points[i + 1];
+    if (p.body == q.body && p.slides == q.slides && !paysOut(i) && !paysOut(i + 1)) continue;
     const Vec3 u = s * d / l;
     const double w = path.weights.empty() ? 1.0 : path.weights[i];
     grad[i] -= u;

@@ -504,17 +504,19 @@ void solvePathConstraint(PathConstraint& path, const BodyTable& bodies, double a
   // 0.73, -0.98 and 0.24 rad leave a wheel 0.03 rad on where their sum is
   // -0.0013: 200 J made from 0.25 at 32 x 32 (DESIGN, "Fifty-third
   // session").
+  // (scratch.body_turn: each body's sum of turns, at its first point; the
+  // cap scales all of a body's points alike.)
   for (size_t k = 0; k < n;) {
+    const size_t start = k;
     BodyState& b = bodies(path.points[by_body[k]].body);
-    Vec3 f = Vec3::Zero(), t = Vec3::Zero(), turned = Vec3::Zero();
+    Vec3 f = Vec3::Zero(), t = Vec3::Zero();
     for (const BodyId id = path.points[by_body[k]].body; k < n && path.points[by_body[k]].body == id; ++k) {
-      const size_t i = by_body[k];
-      f += force[i];
-      t += torque[i];
-      turned += scaled ? Vec3(scale[i] * turn[i]) : turn[i];
+      f += force[by_body[k]];
+      t += torque[by_body[k]];
     }
     if (!b.takesImpulses()) continue;
-    const Vec3 dphi = dl * turned;
+    const Vec3& body_turn = scratch.body_turn[start];
+    const Vec3 dphi = scaled ? Vec3(dl * scale[by_body[start]] * body_turn) : Vec3(dl * body_turn);
     b.x += dl * b.inv_mass * f;
     rotateBy(b.q, dphi);
     b.impulse += dl * f;

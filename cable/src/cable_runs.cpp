@@ -340,11 +340,20 @@ void CableSystem::buildRuns(Cable& cable) {
           cable.joints[k].weight /= heaviest;
           stretch += cable.joints[k].weight * cable.joints[k].rest_length;
         });
-      } else {
+      } else if (!loop) {
         path.weights.clear();
         for (PathPoint& point : path.points)
           if (point.slides) point = PathPoint{point.body, point.local};  // the direct solver's rows: fixed points
       }
+      // A loop (a closed cable sliding over every wheel) keeps its tangent
+      // points held on their circles and its weights of 1, as a slipping
+      // wrap's run: the path kernel solves it (between the direct solver's
+      // iterations, as friction). As the direct solver's row its points
+      // were fixed on the wheels, so a solve's turn swung them off their
+      // circles and stretched the belt by r a^2: a frictionless belt over
+      // two centred hinged wheels locked a free motor (0 rad/s where it
+      // spins up alone to 100) and under Gauss-Seidel held it to 5.6
+      // (DESIGN, "Fifty-fourth session").
     }
     path.rest_length = rest + chords;
     path.compliance = cable.compliance_per_m * stretch;

@@ -52,15 +52,15 @@ const double kCapstan = std::exp(kMu * std::numbers::pi);  // over half a turn
 Scene belt(const Budget& b, bool slips_on_motor, int sense, const std::string& rest, double compliance,
            bool with_belt = true, double wheel_mass = kWheelMass, bool frictionless = false) {
   const std::string mu = R"(, "mu": )" + std::to_string(frictionless ? 0.0 : kMu);
-  if (frictionless) slips_on_motor = true;  // and the driven wheel's too, below
+  const bool mu_on_motor = slips_on_motor || frictionless, mu_on_wheel = !slips_on_motor || frictionless;
   const std::string cables = R"(,
     "cables": [{"name": "belt", "closed": true, "compliance_m_per_N": )" +
                              std::to_string(compliance) + (rest.empty() ? "" : R"(, "rest_length_m": )" + rest) +
                              R"(, "links": [
       {"body": "motor", "type": "rolling", "orientation": "ccw")" +
-                             (slips_on_motor ? mu : "") + R"(},
+                             (mu_on_motor ? mu : "") + R"(},
       {"body": "wheel", "type": "rolling", "orientation": "ccw")" +
-                             (slips_on_motor && !frictionless ? "" : mu) + "}]}]";
+                             (mu_on_wheel ? mu : "") + "}]}]";
   Scene s = parseScene(R"({"name": "belt", "duration_s": 1, )" + solverJson(b) + R"(,
     "bodies": [
       {"name": "motor", "shape": {"type": "cylinder", "radius_m": 0.1, "half_length_m": 0.05}, "mass_kg": 1,
@@ -491,6 +491,7 @@ TEST(Belts, AFrictionlessBeltOverEccentricWheelsMakesNothingAndGaussSeidelFollow
       if (b.solver == SolverKind::GaussSeidel) frame(reference);
       ASSERT_FALSE(watch.check(s)) << "frame " << f;
       EXPECT_LE(wheelsEnergy(s), start * (1.0 + 1e-12)) << "frame " << f;
+      // (Both solvers now give the loop to the path kernel; this holds them together.)
       if (b.solver == SolverKind::GaussSeidel && f == 30 && b.substeps * b.iterations > 1) {
         EXPECT_NEAR(wheelsEnergy(s), wheelsEnergy(reference), 1e-3 * start);
       }
@@ -536,20 +537,20 @@ TEST(Belts, AHeavyDrivenEccentricWheelAtItsSaddleIsNotThrown) {
   // gradient shrinks) and b stays at rest. A line-up cap read for each
   // body as a whole, tried in the fifty-fourth session, capped a at its
   // line-up and handed the rest to b along b's near-zero gradient: b
-  // thrown to 47 rad/s, 2.2e7 J, at 1 x 10 (DESIGN). One substep a frame:
-  // the saddle's known 0.015 J (DESIGN, "Fifty-third session"); Gauss-
-  // Seidel at 32 x 32 makes 3.2e-4 J in frame 3 (1.3e-3 of the scale: a
-  // known gap, not traced).
+  // thrown to 47 rad/s, 2.2e7 J, at 1 x 10 (DESIGN). Measured: b under
+  // 1.1e-5 rad/s (its energy 1e-6 J of a's 0.25), the motor under 0.032
+  // rad/s after its first frame. One substep a frame: the saddle's known
+  // 0.015 J (DESIGN, "Fifty-third session").
   for (const Budget& b : fourBudgetsBothProjections()) {
-    if ((b.substeps == 1 && b.iterations == 1) || (b.solver == SolverKind::GaussSeidel && b.substeps == 32)) continue;
+    if (b.substeps == 1 && b.iterations == 1) continue;
     SCOPED_TRACE(name(b));
     Scene s = eccentric(b, 0.0, 0.0, 1e6);
     EnergyWatch watch(s);
     for (int f = 1; f <= 60; ++f) {
       frame(s);
       ASSERT_FALSE(watch.check(s)) << "frame " << f;
-      EXPECT_LT(std::abs(spin(s, "b")), 1e-3) << "frame " << f;
-      EXPECT_LT(std::abs(spin(s, "a")), 0.1) << "frame " << f;  // from 5 rad/s (GS 1 x 10: 0.06)
+      EXPECT_LT(std::abs(spin(s, "b")), 1e-4) << "frame " << f;  // 1e-4 J at most
+      EXPECT_LT(std::abs(spin(s, "a")), 0.05) << "frame " << f;  // from 5 rad/s: 1e-4 of its energy
     }
   }
 }

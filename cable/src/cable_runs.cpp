@@ -304,6 +304,7 @@ void CableSystem::buildRuns(Cable& cable) {
       path.points.push_back(runEnd(cable.links[j], cable.joints[j].local_a, true));
       if (loop && slidesOverCircle(cable.links[j])) markSliding(path.points.back(), cable.links[j]);
       double w = 1.0, heaviest = 1.0;
+      bool slidesOverRotor = false;
       walkRun(cable, j, loop, [&](int k) {
         CableJoint& span = cable.joints[k];
         if (cable.winch && k == winchSpan(cable).second) path.fed = cable.fed;
@@ -325,6 +326,7 @@ void CableSystem::buildRuns(Cable& cable) {
             if (slidesOverCircle(to)) {
               markSliding(path.points.end()[-2], to);
               markSliding(path.points.back(), to);
+              slidesOverRotor |= world_.body(to.body).isRotor();
             }
           }
         }
@@ -340,7 +342,7 @@ void CableSystem::buildRuns(Cable& cable) {
           cable.joints[k].weight /= heaviest;
           stretch += cable.joints[k].weight * cable.joints[k].rest_length;
         });
-      } else if (!loop) {
+      } else if (!loop && !slidesOverRotor) {
         path.weights.clear();
         for (PathPoint& point : path.points)
           if (point.slides) point = PathPoint{point.body, point.local};  // the direct solver's rows: fixed points

@@ -195,12 +195,23 @@ std::size_t DirectSolver::describe(World& world, const Island& island, std::vect
     }
     const std::size_t head = sig.size();
     sig.insert(sig.end(), {static_cast<int>(Source::Path), i, 1, 0});  // 0: the body count, below
+    // Its bodies in the order of their first points: sorted by body, each
+    // body's first point kept, then sorted back by point (a search of the
+    // bodies listed so far, per point, grew as points x bodies: a rope
+    // through 1024 beads' holes).
+    path_bodies_.clear();
+    for (int k = 0; k < static_cast<int>(p.points.size()); ++k)
+      if (listed(world, p.points[k].body)) path_bodies_.emplace_back(p.points[k].body, k);
+    std::sort(path_bodies_.begin(), path_bodies_.end());
+    path_bodies_.erase(std::unique(path_bodies_.begin(), path_bodies_.end(),
+                                   [](const auto& x, const auto& y) { return x.first == y.first; }),
+                       path_bodies_.end());
+    std::sort(path_bodies_.begin(), path_bodies_.end(),
+              [](const auto& x, const auto& y) { return x.second < y.second; });
     bool moving = false;
-    for (const PathPoint& point : p.points) {
-      if (!listed(world, point.body) || std::find(sig.begin() + head + 4, sig.end(), point.body) != sig.end())
-        continue;
-      sig.push_back(point.body);
-      moving = moving || moves(world, point.body);
+    for (const auto& [body, point] : path_bodies_) {
+      sig.push_back(body);
+      moving = moving || moves(world, body);
     }
     if (!moving) sig.resize(head);  // nothing in it moves
     else sig[head + 3] = static_cast<int>(sig.size() - head - 4);
@@ -484,6 +495,7 @@ void DirectSolver::build(World& world) {
   secants_.reserve(points);
   secant_of_.assign(entries_.size(), -1);
   frames_.assign(m, BodyFrame{});
+  run_.slot_entry.assign(m, -1);
   dx_.assign(m, Vec3::Zero());
   dphi_.assign(m, Vec3::Zero());
   for (auto* v : {&moved_x_, &moved_phi_, &shift_x_, &shift_phi_}) v->assign(m, Vec3::Zero());

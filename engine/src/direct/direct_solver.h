@@ -312,6 +312,9 @@ class DirectSolver {
   std::size_t contacts_begin_ = 0;  // where signature_'s contact rows begin
   // describe()'s: the bodies the cables listed before the contacts move, sorted.
   mutable std::vector<BodyId> row_bodies_;
+  // describe()'s: a path's (listed body, point) pairs, sorted by body to
+  // find each body's first point, then by point.
+  mutable std::vector<std::pair<BodyId, int>> path_bodies_;
   // The island's manifolds (Island::manifolds, this substep): a contact
   // row's index is its manifold's place in them.
   const std::vector<int>* manifolds_ = nullptr;
@@ -327,6 +330,11 @@ class DirectSolver {
   struct RunScratch {  // evaluateRun's, per point of the path
     std::vector<Vec3> arm, pos;
     std::vector<int> entry;
+    // Per slot: the row's entry on that body while a run is evaluated, else
+    // -1 (sized with the layout): a point's entry in O(1), not a search of
+    // the row's entries (a rope through 1024 beads' holes spent 82 % of its
+    // step there).
+    std::vector<int> slot_entry;
   } run_;
   joint_rows::JointRowSet joint_set_;  // evaluateJoint's, joint after joint
   std::vector<Row> rows_;

@@ -325,6 +325,8 @@ void DirectSolver::evaluateRun(const World& world, int r, const PathPoint* point
   }
   std::vector<Vec3>&arm = run_.arm, &pos = run_.pos;
   std::vector<int>& entry = run_.entry;
+  std::vector<int>& slot_entry = run_.slot_entry;
+  for (int e = row.first_entry; e < row.first_entry + row.entry_count; ++e) slot_entry[entries_[e].body] = e;
   SolvePoint ends[2];
   for (std::size_t i = 0; i < count; ++i) {
     const BodyId id = points[i].body;
@@ -333,11 +335,10 @@ void DirectSolver::evaluateRun(const World& world, int r, const PathPoint* point
     if (i == 0 || i + 1 == count) ends[i == 0 ? 0 : 1] = p;  // rolling ends are a run's ends
     arm[i] = p.arm;
     pos[i] = world.body(id).x + arm[i];
-    entry[i] = -1;
-    for (int e = row.first_entry; slot >= 0 && e < row.first_entry + row.entry_count; ++e)
-      if (entries_[e].body == slot) entry[i] = e;
+    entry[i] = slot >= 0 ? slot_entry[slot] : -1;
   }
   for (int e = row.first_entry; e < row.first_entry + row.entry_count; ++e) {
+    slot_entry[entries_[e].body] = -1;
     entries_[e].lin.setZero();
     entries_[e].ang.setZero();
     curvature_[e].setZero();

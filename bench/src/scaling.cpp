@@ -53,6 +53,7 @@ const std::vector<Series>& allSeries() {
       {"islands", [](const ScalingSpec& s) { return machines::islands(s); }},
       {"islands_braked", [](const ScalingSpec& s) { return machines::islands(s, true); }},
       {"wound", machines::wound},
+      {"threaded", machines::threaded},
   };
   return series;
 }
@@ -62,7 +63,7 @@ const Series& findSeries(const std::string& name) {
     if (s.name == name) return s;
   throw std::invalid_argument("--series: no series called '" + name +
                               "' (chain, tackle_hinged, tackle_rolling, tackle_stuck, star_rigid, star_compliant, "
-                              "islands, islands_braked, wound)");
+                              "islands, islands_braked, wound, threaded)");
 }
 
 // "SxI": substeps x iterations per frame.

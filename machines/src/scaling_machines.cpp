@@ -239,4 +239,39 @@ StaticMachine wound(const ScalingSpec& spec) {
   return m;
 }
 
+StaticMachine threaded(const ScalingSpec& spec) {
+  if (spec.count < 1) throw std::invalid_argument("threaded: needs at least 1 bar");
+  constexpr double kPitch = 0.4, kHole = 0.1, kDrop = 2.0, kHalf = 0.05;  // m
+  StaticMachine m{detail::emptyScene("threaded (generated)", spec.gravity, spec.budget), spec.load_kg * spec.gravity};
+  m.scene.description = "One rope threaded through two holes of each of K bars (reeve/machines/machines.h).";
+  World& world = *m.scene.world;
+  const double last = kPitch * (spec.count - 1);
+  BodyDef top;
+  top.name = "upper_block";
+  top.is_static = true;
+  top.shape = Shape::box(Vec3(last / 2 + kPitch, 0.1, 0.1));
+  top.position = Vec3(last / 2, 0.1, 0.0);
+  const BodyId upper = world.addBody(top);
+  // Its holes on hooks 5 cm below it: the rope between two of them clear
+  // of its face, which it would otherwise lie on (and wrap, by rounding).
+  const auto above = [&](double x) { return LinkDef::pinhole(upper, local(world, upper, Vec3(x, -kHalf, 0.0))); };
+  CableDef cable;
+  cable.name = "rope";
+  cable.links.push_back(LinkDef::attachment(upper, local(world, upper, Vec3(-kHole, -kHalf, 0.0))));
+  for (int k = 0; k < spec.count; ++k) {
+    const double x = kPitch * k;
+    const BodyId bar = detail::addBox(world, "bar" + std::to_string(k), Vec3(kHole + kHalf, kHalf, kHalf),
+                                      2.0 * spec.load_kg, Vec3(x, -kDrop, 0.0));
+    cable.links.push_back(LinkDef::pinhole(bar, Vec3(-kHole, kHalf, 0.0)));
+    cable.links.push_back(LinkDef::pinhole(bar, Vec3(kHole, kHalf, 0.0)));
+    cable.links.push_back(above(x + kHole));
+    if (k + 1 < spec.count) cable.links.push_back(above(x + kPitch - kHole));
+  }
+  const BodyId load = detail::addBox(world, "load", Vec3::Constant(kHalf), spec.load_kg,
+                                     Vec3(last + kHole, -kDrop, 0.0));
+  cable.links.push_back(LinkDef::attachment(load, Vec3(0.0, kHalf, 0.0)));
+  m.scene.cables->addCable(cable);
+  return m;
+}
+
 }  // namespace reeve::machines

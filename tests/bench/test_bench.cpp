@@ -373,7 +373,21 @@ TEST(ScalingMachines, MeetTheirClosedFormStaticsAtFourWithTheDirectSolver) {
   expectStatics(machines::islands(spec), "islands");
   expectStatics(machines::islands(spec, true), "islands_braked");  // each brake holds with no torque
   expectStatics(machines::wound(spec), "wound");
+  expectStatics(machines::threaded(spec), "threaded");
   EXPECT_DOUBLE_EQ(machines::tackleHinged(spec).tension_N, 15.0);  // W / K: the block weighs K m
+}
+
+// A rope threaded through 512 bars (2048 spans, 3.9 km): its tie point
+// jammed at the first bar's hole 1.9 m away at the first substep while a
+// jam's reach was 1e-3 of the cable's whole length (3.9 m), and the first
+// and last spans read no tension. Both solvers hold every fall at m g.
+TEST(ScalingMachines, ARopeThreadedThroughManyBarsHoldsEveryFallAtItsLoad) {
+  for (const SolverKind solver : {SolverKind::Direct, SolverKind::GaussSeidel}) {
+    machines::ScalingSpec spec;
+    spec.count = 512;
+    spec.budget = {1, 10, solver};
+    expectStatics(machines::threaded(spec), solver == SolverKind::Direct ? "threaded direct" : "threaded gs", 1e-9);
+  }
 }
 
 // The compliant star starts in its equilibrium, yet its first substep

@@ -133,7 +133,7 @@ std::function<int()> addBenchCommand(CLI::App& app, CLI::App*& bench_cmd) {
   addOutput(scc, sc->output, true);
   scc->add_option("--series", sc->series,
                   "Series to run (chain, tackle_hinged, tackle_rolling, tackle_stuck, star_rigid, star_compliant, islands, "
-                  "islands_braked, wound; default all)")
+                  "islands_braked, wound, threaded; default all)")
       ->delimiter(',');
   addSolvers(scc, sc->solvers);
   scc->add_option("--budget", sc->budgets, "Budgets per frame, SUBSTEPSxITERATIONS (default 1x10,10x2)")

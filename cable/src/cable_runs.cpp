@@ -44,8 +44,8 @@ void setRunEnd(PathPoint& point, const Link& link, const Vec3& anchor, bool leav
 // Whether the cable slides over `link`'s circle inside a run (a sliding
 // wrap or a slipping friction link): its tangent points there are held
 // where the update put them while a solve turns the body
-// (PathPoint::slides), in a weighted run, which only the path kernel
-// solves (the direct solver's rows hold none).
+// (PathPoint::slides), in a weighted run, a loop or a run over a rotor,
+// which only the path kernel solves (the direct solver's rows hold none).
 bool slidesOverCircle(const Link& link) {
   return link.rolls() && link.slides() && link.section.kind == Section::Kind::Circle;  // not a pinhole
 }
@@ -347,15 +347,20 @@ void CableSystem::buildRuns(Cable& cable) {
         for (PathPoint& point : path.points)
           if (point.slides) point = PathPoint{point.body, point.local};  // the direct solver's rows: fixed points
       }
-      // A loop (a closed cable sliding over every wheel) keeps its tangent
-      // points held on their circles and its weights of 1, as a slipping
-      // wrap's run: the path kernel solves it (between the direct solver's
-      // iterations, as friction). As the direct solver's row its points
-      // were fixed on the wheels, so a solve's turn swung them off their
-      // circles and stretched the belt by r a^2: a frictionless belt over
-      // two centred hinged wheels locked a free motor (0 rad/s where it
-      // spins up alone to 100) and under Gauss-Seidel held it to 5.6
-      // (DESIGN, "Fifty-fourth session").
+      // A loop (a closed cable sliding over every wheel), and a run that
+      // slides over a rotor's circle (a wheel on a fixed axle), keep their
+      // tangent points held on their circles and their weights of 1, as a
+      // slipping wrap's run: the path kernel solves them (between the
+      // direct solver's iterations, as friction). As the direct solver's
+      // row their points were fixed on the wheels, so a solve's turn
+      // swung them off their circles and stretched the belt by r a^2: a
+      // frictionless belt over two centred hinged wheels locked a free
+      // motor (0 rad/s where it spins up alone to 100), and one gripping
+      // the driven wheel made 2e9 J (DESIGN, "Fifty-fourth session",
+      // "Fifty-fifth session"). A run over moving bodies that are not
+      // rotors (a tendon over a joint's cylinder on a link) stays the
+      // direct solver's row: in the kernel it converged as Gauss-Seidel
+      // does, off the MJCF models' statics.
     }
     path.rest_length = rest + chords;
     path.compliance = cable.compliance_per_m * stretch;

@@ -228,11 +228,11 @@ StaticMachine wound(const ScalingSpec& spec);
 
 /// threaded: one rope through two frictionless holes (0.2 m apart, on the
 /// top face) of each of K bars of 2 m, 0.4 m apart in x and 2 m below a
-/// static upper block, and through two holes of the block between bars
-/// (K >= 1): tied to the block above the first bar's left hole, down
-/// through each bar and up, ending on a load of m hanging 2 m down past
-/// the last bar; every fall vertical, each bar held by two: tension m g
-/// in every span. One path of 4 K spans over K + 2 bodies (a tendon
+/// static upper block, and through two holes on hooks 5 cm below the
+/// block between bars (K >= 1): tied there above the first bar's left
+/// hole, down through each bar and up, ending on a load of m hanging 2 m
+/// down past the last bar; every fall vertical, each bar held by two:
+/// tension m g in every span. One path of 4 K spans over K + 2 bodies (a tendon
 /// through the holes of many links).
 StaticMachine threaded(const ScalingSpec& spec);
 

@@ -46,10 +46,35 @@ inline double trustedStepTurn(double arm, double h) {
 /// length hardly turns with it, and its line-up is rounding's.
 inline constexpr double kLeastGradient2 = 1e-6;
 
-/// The turn (rad, in [0, pi]) that brings a fixed point's world arm `arm`,
-/// turning about the unit axis `e` in the sense of `sign`, in line with
-/// `toward` (where its length shrinks fastest: minus its gradient, a
-/// span's direction away from it) or against it.
+/// What a turn does to a path's length, to second order in the turn's
+/// geometry: a fixed point with world arm r, turned by `angle` (rad) about
+/// the unit axis e, changes a span's length (its far end along the unit
+/// `toward` from the point) by l1 sin(angle) + l2 (1 - cos(angle)), l1 =
+/// e . (toward x r) and l2 = toward . r_perp (r_perp: r off the axis),
+/// where the row's linear model says l1 angle. Several points of one body
+/// on one path add theirs: the body's length over its turn, whose line-up
+/// is not any one point's (a wrap's two tangent points, each lined up with
+/// the chord between them, on a wheel whose circle is off its axle). A far
+/// end's own curvature (|dp|^2 / length) is left out.
+struct TurnModel {
+  double l1 = 0.0, l2 = 0.0;
+};
+
+/// The turn (rad, in [0, pi]) in the sense of `sign` about the model's
+/// axis to the nearest pose where the length is least or most over the
+/// turn (dL/d angle = l1 cos + l2 sin = 0): a single point's arm in line
+/// with `toward` (where its length shrinks fastest: minus its gradient, a
+/// span's direction away from it) or against it. Turning the other way
+/// negates l1 and keeps l2.
+inline double turnToLineUp(const TurnModel& m, double sign) {
+  const double a = std::atan2(sign > 0.0 ? m.l1 : -m.l1, m.l2);  // l1 = R sin a, l2 = R cos a
+  constexpr double kPi = 3.14159265358979323846;
+  return a < 0.0 ? -a : kPi - a;
+}
+
+/// One fixed point's (Gauss-Seidel's visit, path_constraint.cpp): its world
+/// arm `arm` turning about the unit axis `e` in the sense of `sign` in line
+/// with `toward` or against it.
 inline double turnToLineUp(const Vec3& arm, const Vec3& e, double sign, const Vec3& toward) {
   const Vec3 r = arm - e * e.dot(arm), v = toward - e * e.dot(toward);
   const double a = std::atan2(e.dot(v.cross(r)), v.dot(r));  // from v to r about e, in (-pi, pi]
@@ -58,22 +83,16 @@ inline double turnToLineUp(const Vec3& arm, const Vec3& e, double sign, const Ve
   return a > 0.0 ? a : kPi + a;
 }
 
-/// The share of its linear model a turn delivers: a fixed point with world
-/// arm `arm` turned by `angle` (rad) about the unit axis `e` changes a
-/// span's length (its far end along `toward` from the point) by
-/// l1 sin(angle) + l2 (1 - cos(angle)), l1 = -toward . (e x arm) and l2 =
-/// toward . arm_perp, where the model says l1 angle. Toward the line-up
-/// the turn gains less than the model (a half at the line-up itself);
-/// from near the other line-up, where the model says little, more (a tie
-/// point carried nearly to its span's far side, turned back to where its
-/// length is least: 2 r where the model said r sin(0.1) a radian). At
-/// least 0; 1 where the model says nothing. A far end's own curvature
-/// (|dp|^2 / length) is left out.
-inline double turnSecant(const Vec3& arm, const Vec3& e, const Vec3& toward, double angle) {
-  const double l1 = -toward.dot(e.cross(arm)), l2 = toward.dot(arm - e * e.dot(arm));
-  const double linear = l1 * angle;
+/// The share of its linear model (l1 angle) a turn by `angle` delivers
+/// (TurnModel). Toward the line-up the turn gains less than the model (a
+/// half at the line-up itself); from near the other line-up, where the
+/// model says little, more (a tie point carried nearly to its span's far
+/// side, turned back to where its length is least: 2 r where the model
+/// said r sin(0.1) a radian). At least 0; 1 where the model says nothing.
+inline double turnSecant(const TurnModel& m, double angle) {
+  const double linear = m.l1 * angle;
   if (!(std::abs(linear) > 0.0)) return 1.0;
-  const double ratio = (l1 * std::sin(angle) + l2 * (1.0 - std::cos(angle))) / linear;
+  const double ratio = (m.l1 * std::sin(angle) + m.l2 * (1.0 - std::cos(angle))) / linear;
   return std::max(ratio, 0.0);
 }
 

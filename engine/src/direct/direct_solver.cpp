@@ -1279,7 +1279,7 @@ double DirectSolver::turnPast(const FixedEnd& f, double omega, double h, double&
   const Vec3 dphi = omega * (dphi_[f.body] + shift_phi_[f.body]);
   const double angle = dphi.norm();
   most = angle;
-  if (angle > trustedStepTurn(f.arm.norm(), h)) most = turnToLineUp(f.arm, dphi / angle, 1.0, f.toward);
+  if (angle > trustedStepTurn(f.reach, h)) most = turnToLineUp(f.model(dphi / angle), 1.0);
   return angle;
 }
 
@@ -1288,7 +1288,7 @@ bool DirectSolver::stiffenTurns(double omega, double h) {
   for (const FixedEnd& f : fixed_ends_) {
     double most;
     const double angle = turnPast(f, omega, h, most);
-    if (!(angle > trustedStepTurn(f.arm.norm(), h))) continue;
+    if (!(angle > trustedStepTurn(f.reach, h))) continue;
     // The row's model promises l1 x turn of length from the end's turn; the
     // turn gives the secant's share of it (turnSecant), a half at the
     // line-up: the end's gradient is that share of its own for this solve,
@@ -1297,10 +1297,11 @@ bool DirectSolver::stiffenTurns(double omega, double h) {
     // the 1 kg weight up at 9.5 m/s from 7.5 down).
     const double turn = std::min(angle, most);
     const Vec3 e = omega * (dphi_[f.body] + shift_phi_[f.body]) / angle;
-    const double secant = turnSecant(f.arm, e, f.toward, turn);
+    const TurnModel turning = f.model(e);
+    const double secant = turnSecant(turning, turn);
     // Within kSecantSlack of its model, or of less length than the step may
     // leave unmet at kTrustedStepSpeed, the turn keeps its model.
-    const double modelled = std::abs(f.toward.dot(e.cross(f.arm))) * turn;  // l1 turn, m
+    const double modelled = std::abs(turning.l1) * turn;  // m
     const double slack =
         modelled > kTrustedStepSpeed * h / kSecantSlack ? kTrustedStepSpeed * h / modelled : kSecantSlack;
     const std::optional<Vec3> model = modelGradient(f.entry, secant, angle > most, slack);
@@ -1310,8 +1311,8 @@ bool DirectSolver::stiffenTurns(double omega, double h) {
     // a 2 g spool whose tie point its spin had carried near the far side
     // of its rim could not turn it back for what its tangent promised, and
     // its 100 kg load was thrown up at 2.4 m/s instead (307 J at 2 x 2).
-    const Vec3 moment = f.toward.cross(f.arm);
-    const Vec3 change = secant <= 1.0 ? Vec3((secant - 1.0) * moment) : Vec3((secant - 1.0) * e.dot(moment) * e);
+    const Vec3 change =
+        secant <= 1.0 ? Vec3((secant - 1.0) * f.moment) : Vec3((secant - 1.0) * e.dot(f.moment) * e);
     Entry& own = entries_[f.entry];
     own.ang = *model + change;
     weigh(own);
@@ -1324,7 +1325,7 @@ bool DirectSolver::stiffenTurns(double omega, double h) {
 
 std::optional<Vec3> DirectSolver::modelGradient(int entry, double secant, bool past, double slack) {
   if (secant_of_[entry] < 0) {
-    if (!past && secant > 1.0 - slack) return std::nullopt;
+    if (!past && std::abs(secant - 1.0) < slack) return std::nullopt;
     secant_of_[entry] = static_cast<int>(secants_.size());
     secants_.push_back({entry, entries_[entry].ang});
   }

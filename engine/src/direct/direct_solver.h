@@ -69,6 +69,7 @@
 #include "reeve/engine/body.h"
 #include "reeve/engine/path_constraint.h"
 #include "../joint_row_sets.h"
+#include "../line_up.h"
 #include "sparse_ldlt.h"
 
 namespace reeve {
@@ -329,12 +330,14 @@ class DirectSolver {
   std::vector<ContactRow> contact_kind_;
   struct RunScratch {  // evaluateRun's, per point of the path
     std::vector<Vec3> arm, pos;
+    std::vector<Vec3> u;  // segment i's unit direction times its scale
     std::vector<int> entry;
     // Per slot: the row's entry on that body while a run is evaluated, else
     // -1 (sized with the layout): a point's entry in O(1), not a search of
     // the row's entries (a rope through 1024 beads' holes spent 82 % of its
     // step there).
     std::vector<int> slot_entry;
+    std::vector<int> fixed;  // per entry of the row: its fixed end's index, or -1
   } run_;
   joint_rows::JointRowSet joint_set_;  // evaluateJoint's, joint after joint
   std::vector<Row> rows_;
@@ -350,11 +353,25 @@ class DirectSolver {
   // moves sideways; 0 for the other rows' entries (a joint's rows are
   // linear in the motion; a run's points are left out).
   std::vector<double> bend_;
-  struct FixedEnd {  // a span's or run's fixed point on a moving body, as evaluated (line_up.h)
-    int body;        // index into bodies_
-    int row, entry;  // its row and its body's entry in that row
-    Vec3 arm;        // world, from its body's centre of mass
-    Vec3 toward;     // minus its gradient (a span's: the unit span away from it)
+  // A span's fixed point on a moving body, or a run's fixed points on one
+  // body taken together, as evaluated: the sums over its points (world arm
+  // r from the body's centre of mass, `toward` minus the point's gradient,
+  // a span's unit direction away from it) that give the body's TurnModel
+  // about any axis (line_up.h).
+  struct FixedEnd {
+    int body;                      // index into bodies_
+    int row, entry;                // its row and its body's entry in that row
+    double reach = 0.0;            // the longest arm (m)
+    Vec3 moment = Vec3::Zero();    // sum of toward x r: l1 = e . moment
+    double along = 0.0;            // sum of toward . r
+    Mat3 outer = Mat3::Zero();     // sum of toward r^T: l2 = along - e . outer e
+    void add(const Vec3& arm, const Vec3& toward) {
+      reach = std::max(reach, arm.norm());
+      moment += toward.cross(arm);
+      along += toward.dot(arm);
+      outer += toward * arm.transpose();
+    }
+    TurnModel model(const Vec3& e) const { return {e.dot(moment), along - e.dot(outer * e)}; }
   };
   std::vector<FixedEnd> fixed_ends_;  // the last evaluate()'s (evaluateSpan, evaluateRun)
   struct FixedSpan {  // a span between two fixed points, as evaluated (stiffenMoves)

@@ -166,8 +166,14 @@ void DirectSolver::evaluateSpan(const World& world, int r, const PathPoint& p0, 
   // Fixed points on moving bodies, for the step's line-up (line_up.h); a
   // span with both ends on one body has no turn in its length.
   if (s0 != s1) {
-    if (s0 >= 0 && e0.axis.isZero()) fixed_ends_.push_back({s0, r, row.first_entry, a0, u});
-    if (s1 >= 0 && e1.axis.isZero()) fixed_ends_.push_back({s1, r, row.first_entry + (s0 >= 0 ? 1 : 0), a1, -u});
+    if (s0 >= 0 && e0.axis.isZero()) {
+      fixed_ends_.push_back({s0, r, row.first_entry});
+      fixed_ends_.back().add(a0, u);
+    }
+    if (s1 >= 0 && e1.axis.isZero()) {
+      fixed_ends_.push_back({s1, r, row.first_entry + (s0 >= 0 ? 1 : 0)});
+      fixed_ends_.back().add(a1, -u);
+    }
     if (e0.axis.isZero() && e1.axis.isZero()) fixed_spans_.push_back({s0, s1, a0, a1, d});
     // Rolling ends with a store still to pay out (stiffenStores).
     const auto stored = [&](int slot, const PathPoint& p, const SolvePoint& e, int entry) {
@@ -321,9 +327,11 @@ void DirectSolver::evaluateRun(const World& world, int r, const PathPoint* point
   if (run_.arm.size() < count) {  // grown to the longest path, then kept
     run_.arm.resize(count);
     run_.pos.resize(count);
+    run_.u.resize(count);
     run_.entry.resize(count);
+    run_.fixed.resize(count);
   }
-  std::vector<Vec3>&arm = run_.arm, &pos = run_.pos;
+  std::vector<Vec3>&arm = run_.arm, &pos = run_.pos, &seg = run_.u;
   std::vector<int>& entry = run_.entry;
   std::vector<int>& slot_entry = run_.slot_entry;
   for (int e = row.first_entry; e < row.first_entry + row.entry_count; ++e) slot_entry[entries_[e].body] = e;
@@ -355,6 +363,7 @@ void DirectSolver::evaluateRun(const World& world, int r, const PathPoint* point
       const double l = d.norm(), s = scales ? scales[i] : 1.0;
       length += s * l;
       if (l >= 1e-12) u = s * d / l;
+      seg[i] = u;
     }
     if (entry[i] >= 0) {
       const Vec3 grad = prev_u - u;
@@ -363,13 +372,39 @@ void DirectSolver::evaluateRun(const World& world, int r, const PathPoint* point
       entries_[entry[i]].ang += end ? ends[i == 0 ? 0 : 1].moment(grad) : Vec3(arm[i].cross(grad));
       if (end) curveEnd(entry[i], grad, ends[i == 0 ? 0 : 1], true);
       else curve(entry[i], grad, arm[i], true);
-      // Its length is most or least over its body's turn where its arm
-      // lines up with its gradient (line_up.h); a pinhole the cable runs
-      // straight through has none to speak of.
-      if ((!end || ends[i == 0 ? 0 : 1].axis.isZero()) && grad.squaredNorm() > kLeastGradient2)
-        fixed_ends_.push_back({entries_[entry[i]].body, r, entry[i], arm[i], -grad});
     }
     prev_u = u;
+  }
+  // A body's length is most or least over its turn where its fixed points'
+  // arms line up with their gradients, taken together (line_up.h,
+  // TurnModel): a bar threaded on a rope through two holes locks where it
+  // lines up with the rope, each hole alone far from its own line-up there
+  // (a solve turned a 0.1 kg bar past its lock and the next yanked its 1
+  // kg load up: DESIGN, "Fifty-sixth session"). A chord (both points on
+  // one body, both fixed or both held, neither a rolling end) keeps its
+  // length however the body turns and is left out, as the path kernel
+  // leaves it (path_constraint.cpp); a pinhole the cable runs straight
+  // through has no line-up to speak of.
+  const auto paysOut = [&](std::size_t i) {
+    return (i == 0 && !ends[0].axis.isZero()) || (i + 1 == count && !ends[1].axis.isZero());
+  };
+  const auto chord = [&](std::size_t i) {  // segment i, from point i to i + 1
+    return points[i].body == points[i + 1].body && points[i].slides == points[i + 1].slides && !paysOut(i) &&
+           !paysOut(i + 1);
+  };
+  std::fill_n(run_.fixed.begin(), row.entry_count, -1);
+  for (std::size_t i = 0; i < count; ++i) {
+    if (entry[i] < 0 || paysOut(i)) continue;
+    Vec3 grad = Vec3::Zero();
+    if (i > 0 && !chord(i - 1)) grad += seg[i - 1];
+    if (i + 1 < count && !chord(i)) grad -= seg[i];
+    if (!(grad.squaredNorm() > kLeastGradient2)) continue;
+    int& f = run_.fixed[entry[i] - row.first_entry];
+    if (f < 0) {
+      f = static_cast<int>(fixed_ends_.size());
+      fixed_ends_.push_back({entries_[entry[i]].body, r, entry[i]});
+    }
+    fixed_ends_[f].add(arm[i], -grad);
   }
   // Out of a rolling end's plane, its tangent point's slide (tangentSlide)
   // with its neighbour, the segment's scale times.

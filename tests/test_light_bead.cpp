@@ -337,8 +337,8 @@ TEST(LightBead, APlacedKnotsSpansHoldTheLoadAndAtMostTheKnotsBelowThem) {
           ASSERT_FALSE(created) << energyCreatedMessage(*created);
         }
         const double a = lifted ? 1.0 : 0.0;  // m/s^2, up
-        // N: rounding (the lifting ceiling's schedule, at 100 substeps a
-        // frame, leaves the load's tension 1.6e-9 of itself short).
+        // N: rounding (lifted, the load's tension came out up to 1.6e-9 of
+        // itself short).
         const double tolerance = 1e-8 * hang.load * (g + a);
         EXPECT_NEAR(s.cables->tension(n, 0), hang.load * (g + a), tolerance);
         // Span c holds the load and at most the knots c..n-1 below it, each

@@ -116,6 +116,43 @@ TEST(Spool, ThePaidOutSpoolWindsBackTheOtherWayRound) {
   EXPECT_GT(highest_after, lowest + 1.0);    // and lifted
 }
 
+TEST(Spool, ASpoolSpinningOnAtAWholeTurnASubstepStillWindsItsCableBackOn) {
+  // hybrid.json: spools of 1 cm (their rims' mass I / r^2 = 1 kg, as heavy
+  // as their weights) run out at 2, 3 and 4 m, spinning at 440 to 613
+  // rad/s, and spin on past the run-out. At one substep of 1/60 s a turn a
+  // substep is 377 rad/s, at two 754: a spool at about that speed brings
+  // its tie point round past a tangent point and back into view within
+  // every substep, so where it lies it never looks hidden. Before, such a
+  // spool never rolled again: its weight hung still under it while it
+  // spun on at a turn a substep (a third of the scene's kinetic energy),
+  // and at two substeps the ledger flagged 1.5 J made (thread_3, spinning
+  // at 754 rad/s). Every tie point must roll again after it ran out, at
+  // every budget, with nothing made.
+  for (const SolverKind solver : {SolverKind::Direct, SolverKind::GaussSeidel})
+    for (const auto& [substeps, iterations] : {std::pair{1, 1}, {1, 10}, {2, 1}, {2, 2}, {2, 5}, {10, 2}}) {
+      SCOPED_TRACE(std::string(solver == SolverKind::Direct ? "direct " : "gauss-seidel ") + std::to_string(substeps) +
+                   " x " + std::to_string(iterations));
+      Scene s = test::scene("hybrid", substeps, iterations);
+      s.world->settings().solver = solver;
+      EnergyWatch watch(s);
+      const int cables = static_cast<int>(s.cables->cables().size());
+      std::vector<int> ran_out(cables, 0), rolled_again(cables, 0);
+      for (int f = 0; f < s.frameCount(); ++f) {
+        test::frame(s);
+        for (const CableEvent& e : s.cables->takeEvents()) {
+          if (e.kind == CableEvent::Kind::HybridRunsOut) ran_out[e.cable] = 1;
+          if (e.kind == CableEvent::Kind::HybridRollsAgain && ran_out[e.cable]) rolled_again[e.cable] = 1;
+        }
+        const auto created = watch.check(s);
+        ASSERT_FALSE(created) << "frame " << f << ": " << energyCreatedMessage(*created);
+      }
+      for (int c = 0; c < cables; ++c) {
+        EXPECT_TRUE(ran_out[c]) << s.cables->cables()[c].name;
+        EXPECT_TRUE(rolled_again[c]) << s.cables->cables()[c].name << " ran out and never rolled again";
+      }
+    }
+}
+
 TEST(Spool, EnergyNeverGrows) {
   // No motor, no spring: kinetic plus potential energy may only fall
   // (XPBD dissipates at the switches), never rise.

@@ -86,6 +86,36 @@ double bearing(const Link& link, const BodyState& body, const Vec3& p) {
 
 }  // namespace
 
+double CableSystem::travelSinceSolve(const Cable& cable, int k, int j, double h) const {
+  // The bearing of the span's other end as the last solve left both bodies
+  // (x_prev, q_prev) and as integrated since; the body's turn between, in
+  // whole turns from its spin (integrate() turns it by h omega exactly).
+  const Link& link = cable.links[k];
+  const bool leaving = k == 0;
+  const CableJoint& joint = cable.joints[j];
+  const BodyState& body = world_.body(link.body);
+  const BodyState& other = world_.body(cable.links[leaving ? joint.to : j].body);
+  const Vec3& other_local = leaving ? joint.local_b : joint.local_a;
+  const Vec3 now = other.toWorld(other_local);
+  const Vec3 before = other.toWorldAtSubstepStart(other_local);
+  const Vec3 local_before = body.moves() ? Vec3(body.q_prev.conjugate() * (before - body.x_prev)) : body.toLocal(before);
+  const Vec2 r = Vec2(local_before.x(), local_before.y()) - link.section.centre;
+  const Vec3 n = planeNormal(body.q);
+  const double turn = body.moves() ? unwrappedTurn(body.q * body.q_prev.conjugate(), n, (h * body.omega).dot(n)) : 0.0;
+  return turn - reeve::wrapAngle(bearing(link, body, now) - std::atan2(r.y(), r.x()) + turn);
+}
+
+bool CableSystem::spunByItsLoad(const Cable& cable, int k, int j) const {
+  const Link& link = cable.links[k];
+  const CableJoint& joint = cable.joints[j];
+  const BodyState& body = world_.body(link.body);
+  const BodyState& other = world_.body(cable.links[k == 0 ? joint.to : j].body);
+  if (!(other.inv_mass > 0.0) || other.kinematic) return false;
+  const double radius = link.section.perimeter() / (2.0 * std::numbers::pi);
+  const double rim = body.inertia(2, 2) / (radius * radius);  // kg, about the cable plane's normal (local z)
+  return rim * other.inv_mass < kSpunByItsLoad;
+}
+
 double CableSystem::turnSinceUpdate(BodyId b, double spin) const {
   const BodyState& body = world_.body(b);
   return unwrappedTurn(body.q * last_q_[b].conjugate(), planeNormal(body.q), spin);
@@ -259,7 +289,7 @@ bool CableSystem::updateCable(int c, double time_s, double h) {
   out.friction_loss += settleRuns(cable, h, h == 0.0, &cable);
   for (int j = 0; j < static_cast<int>(cable.joints.size()); ++j) updateJoint(cable, c, j, time_s);
   if (cable.broken) releaseFreeEnds(cable, c, time_s);
-  switchHybrids(cable, c, time_s);
+  switchHybrids(cable, c, time_s, h);
   mergeEmptyLinks(cable, c, time_s);
   splitAtCrossedLinks(cable, c, time_s);
   if (h > 0.0) switchSlips(cable, h);
@@ -427,7 +457,7 @@ double CableSystem::wind(Cable& cable, int k, int j, double arc) {
   return rest;
 }
 
-void CableSystem::switchHybrids(Cable& cable, int c, double time_s) {
+void CableSystem::switchHybrids(Cable& cable, int c, double time_s, double h) {
   if (cable.closed) return;
   const int last = static_cast<int>(cable.links.size()) - 1;
   for (const int k : {0, last}) {
@@ -492,7 +522,26 @@ void CableSystem::switchHybrids(Cable& cable, int c, double time_s) {
       tangent[i] = *t;
       wrap[i] = leaving ? sectionWrappedArc(link.section, tie, *t, o) : sectionWrappedArc(link.section, *t, tie, o);
     }
-    if (!found || wrap[0] + wrap[1] >= link.section.perimeter()) continue;
+    if (!found) continue;
+    // Seen, it may still have been carried round past a tangent point and
+    // back into view since the last solve: by more than the hidden arc
+    // (half a turn, more for a near other end), as an arc on the circle of
+    // the section's perimeter as far as from that tangent point, the way
+    // it went, to where it is (wrap[], the long way round). Its place
+    // alone cannot tell: a spool that ran out spinning on at a whole turn
+    // a substep (hybrid.json's at 377 rad/s at one substep of 1/60 s, 754
+    // at two) was never seen hidden, and spun on with its load hanging
+    // still, a third of the scene's kinetic energy locked in an aliased
+    // spin (DESIGN, "Fifty-ninth session"). Only the integration's turn
+    // counts, and only a spool that carries its own spin (spunByItsLoad).
+    const double perimeter = link.section.perimeter();
+    const double carried = h > 0.0 ? travelSinceSolve(cable, k, j, h) : 0.0;
+    int swept = -1;  // the wrap[] index a sweep winds on from
+    if (std::abs(carried) > std::numbers::pi && !spunByItsLoad(cable, k, j)) {
+      const int s = (leaving ? -carried : carried) > 0.0 ? 0 : 1;
+      if (std::abs(carried) * perimeter / (2.0 * std::numbers::pi) >= wrap[s]) swept = s;
+    }
+    if (wrap[0] + wrap[1] >= perimeter && swept < 0) continue;
     // The tie point is hidden past the tangent point it passed, so the
     // cable wraps from that tangent point to it in the sense it travelled:
     // orientation -sense where the span leaves the link (its wrap runs
@@ -504,13 +553,21 @@ void CableSystem::switchHybrids(Cable& cable, int c, double time_s) {
     // at one substep a frame) wound on the way it came, ran out again at
     // once and was spun up by its load: 27 J made in a frame (DESIGN,
     // "Thirty-sixth session").
+    // Swept round, it winds on from the tangent point it passed, and the
+    // turn's whole turns beyond the first wind on too.
     int i = wrap[0] <= wrap[1] ? 0 : 1;  // i = 0: orientation +1
     if (travel != 0.0) i = (leaving ? -travel : travel) > 0.0 ? 0 : 1;
+    double wound = wrap[i];
+    if (swept >= 0 && wrap[0] + wrap[1] >= perimeter) {
+      i = swept;
+      const double arc = std::abs(carried) * perimeter / (2.0 * std::numbers::pi);
+      wound = wrap[i] + perimeter * std::floor((arc - wrap[i]) / perimeter);
+    }
     link.attached = false;
     link.tie_bearing = std::numeric_limits<double>::quiet_NaN();
     link.orientation = i == 0 ? 1 : -1;
     link.unwindAll();
-    wind(cable, k, j, wrap[i]);
+    wind(cable, k, j, wound);
     anchor = fromPlane(link, tangent[i]);
     updates_[c].events.push_back({CableEvent::Kind::HybridRollsAgain, time_s, c, k, link.orientation});
   }

@@ -566,7 +566,24 @@ class CableSystem {
   /// that pull, at most what the drum holds (reel()). Nothing where it is
   /// not stalled. winchWork() counts it before that update books it.
   std::optional<double> stallSlip(const Cable& cable, double length, double h) const;
-  void switchHybrids(Cable& cable, int c, double time_s);
+  void switchHybrids(Cable& cable, int c, double time_s, double h);
+  /// How far (rad, unwrapped, + counter-clockwise in the cable plane) the
+  /// tie point of hybrid link k (of span j) went round its section relative
+  /// to the span over this substep's integration of `h` s: from where the
+  /// last solve left both bodies to now (switchHybrids).
+  double travelSinceSolve(const Cable& cable, int k, int j, double h) const;
+  /// Whether hybrid link k's spool (of span j) is so light beside the body
+  /// at the span's other end that its spin is the load's, which the catch
+  /// at the tie point's line-up ends, not its own, which winds the cable
+  /// on: its rim's mass I / r^2 (r of a circle of the section's perimeter)
+  /// under kSpunByItsLoad of that body's. Measured on a yo-yo of 1 kg on a
+  /// spool of 3 cm, 4 m of cable: winding on by the integration's travel
+  /// (switchHybrids), a 2 g spool (rim 1e-3 of its load) made 28.7 J in a
+  /// frame under Gauss-Seidel at 1 x 1 and 1.9 J under the direct solver
+  /// hinged to a cart; rims of 1e-2 and 0.1 ran as without it, and
+  /// hybrid.json's (1) needs it (DESIGN, "Fifty-ninth session").
+  bool spunByItsLoad(const Cable& cable, int k, int j) const;
+  static constexpr double kSpunByItsLoad = 0.1;
   /// Breaking (cable_break.cpp): parts the span the last solve pulled
   /// hardest past the cable's breaking tension (its lambda over `h`), then
   /// lets free ends run off what cannot hold them (releaseFreeEnds).

@@ -153,6 +153,50 @@ TEST(Spool, ASpoolSpinningOnAtAWholeTurnASubstepStillWindsItsCableBackOn) {
     }
 }
 
+TEST(Spool, AYoYoFallingFromAHandClimbsBackWithoutBeingThrownUp) {
+  // Turned round: the spool free (not hinged), its string tied to a static
+  // hand 1 m above it, 1.5 m stored on a 50 g spool of 1 cm. It runs out at
+  // about 440 rad/s, 7.3 rad a substep at one substep of 1/60 s, and winds
+  // its string back on. The direct solver's lifted start repeated the last
+  // substep's 4 rad turn and 2 cm rise as the next one's start; with the
+  // string slack the first solve found its row met and kept that start:
+  // the spool was thrown up on a slack string and spun the other way
+  // (+0.09 J of its 1.27 J in a frame at 1 x 2 to 1 x 100, 1.8 J made by
+  // 0.8 s). It must roll again, and the ledger see nothing made.
+  const std::string json = R"({"name": "yo_yo_from_a_hand", "duration_s": 2.0,
+    "solver": {"frame_rate_hz": 60, "substeps": 1, "iterations": 1, "gravity_m_per_s2": [0, -9.81, 0]},
+    "bodies": [
+      {"name": "hand", "shape": {"type": "box", "half_extents_m": [0.05, 0.05, 0.05]}, "static": true,
+       "position_m": [0, 1.0, 0]},
+      {"name": "spool", "shape": {"type": "cylinder", "radius_m": 0.01, "half_length_m": 0.02}, "mass_kg": 0.05,
+       "position_m": [0.01, 0, 0]}],
+    "cables": [{"name": "string", "links": [
+      {"body": "hand", "type": "attachment", "point_m": [0, -0.05, 0]},
+      {"body": "spool", "type": "hybrid", "orientation": "cw", "stored_m": 1.5}]}]})";
+  for (const test::Budget& b : {test::Budget{SolverKind::Direct, 1, 1}, {SolverKind::Direct, 1, 2},
+                                {SolverKind::Direct, 1, 10}, {SolverKind::Direct, 2, 5},
+                                {SolverKind::Direct, 10, 2}, {SolverKind::GaussSeidel, 1, 10}}) {
+    SCOPED_TRACE(test::name(b));
+    Scene s = parseScene(json, "yo_yo_from_a_hand");
+    s.world->settings().solver = b.solver;
+    s.world->settings().substeps = b.substeps;
+    s.world->settings().iterations = b.iterations;
+    EnergyWatch watch(s);
+    bool ran_out = false, rolled_again = false;
+    for (int f = 0; f < s.frameCount(); ++f) {
+      test::frame(s);
+      for (const CableEvent& e : s.cables->takeEvents()) {
+        ran_out |= e.kind == CableEvent::Kind::HybridRunsOut;
+        rolled_again |= ran_out && e.kind == CableEvent::Kind::HybridRollsAgain;
+      }
+      const auto created = watch.check(s);
+      ASSERT_FALSE(created) << "frame " << f << ": " << energyCreatedMessage(*created);
+    }
+    EXPECT_TRUE(ran_out);
+    EXPECT_TRUE(rolled_again);
+  }
+}
+
 TEST(Spool, EnergyNeverGrows) {
   // No motor, no spring: kinetic plus potential energy may only fall
   // (XPBD dissipates at the switches), never rise.
